@@ -1,0 +1,52 @@
+"""ballpass: rolling-element-bearing vibration in plain Python.
+
+A fast Sawalhi-Randall simulator with exact ground truth (:func:`simulate`), the
+standard envelope-analysis toolbox (:mod:`ballpass.features`), physics-based and
+learned diagnosis (:mod:`ballpass.diagnose`) and labelled datasets over parameter
+grids (:mod:`ballpass.datasets`).
+
+Importing ``ballpass`` is cheap: numba, scipy, pandas and matplotlib load only when
+the part that needs them is first used.
+
+Examples
+--------
+>>> import ballpass as bp
+>>> scene = bp.Scene(bearing="6205", rpm=1797.0, fault=bp.Fault("outer"), fs=48_000.0)
+>>> res = bp.simulate(scene)            # doctest: +SKIP
+"""
+
+from __future__ import annotations
+
+import importlib
+
+from .bearing import Bearing, BearingFrequencies
+from .scene import Fault, Scene, Sensor, SpeedProfile
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "Bearing",
+    "BearingFrequencies",
+    "Fault",
+    "Scene",
+    "Sensor",
+    "SpeedProfile",
+    "simulate",
+    "features",
+    "diagnose",
+    "datasets",
+    "plot",
+    "__version__",
+]
+
+_LAZY_SUBMODULES = {"features", "diagnose", "datasets", "plot"}
+
+
+def __getattr__(name: str):
+    if name in _LAZY_SUBMODULES:
+        return importlib.import_module(f".{name}", __name__)
+    if name == "simulate":
+        # ``bp.simulate`` is the function; the package stays reachable as
+        # ``importlib.import_module("ballpass.simulate")``.
+        return importlib.import_module(".simulate", __name__).simulate
+    raise AttributeError(f"module 'ballpass' has no attribute {name!r}")

@@ -1,0 +1,1 @@
+"""Subcommands of the ``ballpass`` command, one module each (see :mod:`ballpass.cli`)."""
