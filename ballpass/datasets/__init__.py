@@ -1,0 +1,50 @@
+"""Labelled datasets: simulated over parameter grids, or loaded from real recordings.
+
+Simulated datasets
+------------------
+read_grid     validate a TOML grid file (or dict) into a :class:`Grid` of runs
+generate      simulate a grid into a dataset folder, in parallel, resumable
+dry_run       estimate rows, time and disk of a grid without writing
+load          a dataset folder as ``(X float32 (n, L), meta DataFrame)``
+load_features the feature table written by ``generate(..., features=True)``
+regenerate    simulate one stored row again, bit for bit
+info          what a dataset folder holds (counts per label and condition, fs, size)
+
+Real recordings
+---------------
+load_cwru     Case Western Reserve University bearing data (.mat) in the same shape
+
+Importing this package loads numpy only; numba, pyarrow and pandas load on first use.
+"""
+
+from __future__ import annotations
+
+import importlib
+
+# Eager imports (numpy only; pyarrow, pandas and numba load on first use). They also
+# make ``ballpass.datasets.generate`` the function rather than its module.
+from .generate import dry_run, generate, regenerate
+from .grid import Grid, read_grid
+from .store import info, load, load_features
+
+__all__ = [
+    "Grid",
+    "read_grid",
+    "generate",
+    "dry_run",
+    "load",
+    "load_features",
+    "regenerate",
+    "info",
+    "load_cwru",
+]
+
+
+def __getattr__(name: str):
+    if name == "load_cwru":  # scipy.io and friends load only for real recordings
+        return importlib.import_module(".real", __name__).load_cwru
+    raise AttributeError(f"module 'ballpass.datasets' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(__all__)

@@ -1,0 +1,457 @@
+"""Dataset grids: a TOML file (or the same dict) expanded into simulation runs.
+
+A grid has two tables. ``[dataset]`` holds the settings shared by every run
+(duration, sampling rate, repeats, root seed, model, segmenting, shard size);
+``[grid]`` holds the axes: every key is a list of values and the runs are the
+Cartesian product of the axes, times ``repeats``. Healthy runs do not multiply
+over the fault axes (width, depth, angle). ``sensor`` is not an axis of the
+product: its values are the channels of one run (one simulation, one row per
+sensor, same ``run_id``).
+
+Everything is validated by :func:`read_grid` before any simulation work: unknown
+keys, empty lists, reversed or non-positive ranges, wrong types and values a
+:class:`~ballpass.Scene` would refuse raise ``ValueError`` naming the key.
+
+Examples
+--------
+>>> from ballpass.datasets import read_grid
+>>> g = read_grid({
+...     "dataset": {"duration_s": 0.1, "fs": 12000, "repeats": 2},
+...     "grid": {"bearing": ["6205"], "fault": ["healthy", "outer"],
+...              "fault_width_mm": [0.18, 0.53], "rpm": {"start": 1730, "stop": 1797, "step": 67},
+...              "resonance_hz": [3000], "sensor": ["loaded", "unloaded"]},
+... })
+>>> g.n_runs, g.n_rows                 # (1 healthy + 2 outer) x 2 rpm x 2 repeats; x 2 sensors
+(12, 24)
+"""
+
+from __future__ import annotations
+
+import itertools
+import json
+import math
+import os
+import tomllib
+from dataclasses import asdict, dataclass, field, fields
+from functools import cached_property
+from pathlib import Path
+
+import numpy as np
+
+from ..scene import Fault, Scene, Sensor
+
+__all__ = ["Grid", "Run", "read_grid", "run_seed", "scene_from_dict", "FAULT_VALUES"]
+
+#: values of the ``fault`` axis
+FAULT_VALUES = ("healthy", "outer", "inner", "ball")
+
+#: [dataset] key -> default (None: not set)
+DATASET_DEFAULTS: dict[str, object] = {
+    "duration_s": 1.0,
+    "fs": 48_000.0,
+    "repeats": 1,
+    "seed": 0,
+    "model": "auto",
+    "solver": "auto",
+    "segment_s": None,
+    "shard_size": None,
+}
+
+#: [grid] axes; runs follow this order, with the fault-size axes varying fastest
+AXES = (
+    "bearing", "fault", "fault_width_mm", "fault_depth_mm", "fault_angle_deg", "rpm",
+    "radial_load_n", "slip", "snr_db", "resonance_hz", "model", "sensor",
+)
+REQUIRED_AXES = ("bearing", "fault", "rpm")
+_FAULT_AXES = {"fault_width_mm": "width_mm", "fault_depth_mm": "depth_mm",
+               "fault_angle_deg": "angle_deg"}
+_SCENE_AXES = ("radial_load_n", "slip", "snr_db", "resonance_hz")
+_NUMERIC_AXES = ("fault_width_mm", "fault_depth_mm", "fault_angle_deg", "rpm",
+                 *_SCENE_AXES)
+_SENSOR_KEYS = {f.name for f in fields(Sensor)}
+
+#: target size of one shard, bytes of float32 signal (shard_size default)
+_SHARD_BYTES = 32 * 2**20
+_MAX_SHARD_RUNS = 256
+_MIN_SHARDS = 16
+
+
+def _is_number(value) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+def _expand_range(key: str, spec: dict) -> list[float]:
+    """``{start, stop, step}`` -> ``start, start + step, ...`` up to ``stop`` inclusive."""
+    unknown = set(spec) - {"start", "stop", "step"}
+    missing = {"start", "stop", "step"} - set(spec)
+    if unknown or missing:
+        raise ValueError(
+            f"grid.{key}: a range is a table with keys start, stop, step; "
+            f"got keys {sorted(spec)}"
+        )
+    for name in ("start", "stop", "step"):
+        if not _is_number(spec[name]) or not math.isfinite(spec[name]):
+            raise ValueError(f"grid.{key}.{name} must be a finite number, got {spec[name]!r}")
+    start, stop, step = (float(spec[k]) for k in ("start", "stop", "step"))
+    if step <= 0:
+        raise ValueError(f"grid.{key}: range step must be > 0, got {step:g}")
+    if stop < start:
+        raise ValueError(f"grid.{key}: range stop {stop:g} is below start {start:g}")
+    n = int(math.floor((stop - start) / step + 1e-9)) + 1
+    # rounding to 12 significant digits removes the float drift of start + k*step
+    return [float(f"{start + k * step:.12g}") for k in range(n)]
+
+
+def _axis_values(key: str, raw) -> list:
+    """Validate one [grid] axis and return its list of normalized values."""
+    if isinstance(raw, dict) and key in _NUMERIC_AXES:
+        return _expand_range(key, raw)
+    values = raw if isinstance(raw, list) else [raw]
+    if not values:
+        raise ValueError(f"grid.{key} is an empty list; give at least one value or drop the key")
+    out = []
+    for i, v in enumerate(values):
+        where = f"grid.{key}[{i}]"
+        if key == "bearing":
+            if not isinstance(v, str):
+                raise ValueError(f"{where} must be a catalogue bearing name, got {v!r}")
+        elif key == "fault":
+            if v not in FAULT_VALUES:
+                raise ValueError(f"{where} must be one of {FAULT_VALUES}, got {v!r}")
+        elif key == "model":
+            if not isinstance(v, str):
+                raise ValueError(f"{where} must be a model name (str), got {v!r}")
+        elif key == "sensor":
+            v = _sensor_value(where, v)
+        elif key == "rpm" and isinstance(v, list):
+            if len(v) != 2 or not all(_is_number(x) for x in v):
+                raise ValueError(f"{where}: a speed ramp is [start_rpm, end_rpm], got {v!r}")
+            v = [float(x) for x in v]
+        elif key == "snr_db" and v == "inf":
+            v = math.inf
+        elif not _is_number(v):
+            raise ValueError(f"{where} must be a number, got {type(v).__name__} ({v!r})")
+        else:
+            v = float(v)
+        out.append(v)
+    if key == "sensor":
+        names = [s if isinstance(s, str) else s["name"] for s in out]
+        if len(set(names)) != len(names):
+            raise ValueError(f"grid.sensor names must be unique, got {names}")
+    elif len({json.dumps(v) for v in out}) != len(out):
+        raise ValueError(f"grid.{key} has duplicate values {out}; use [dataset] repeats instead")
+    return out
+
+
+def _sensor_value(where: str, v) -> str | dict:
+    """A sensor is "loaded", "unloaded" or a table of :class:`~ballpass.Sensor` fields."""
+    try:
+        if isinstance(v, str):
+            return Sensor.named(v).name
+        if isinstance(v, dict):
+            unknown = set(v) - _SENSOR_KEYS
+            if unknown:
+                raise ValueError(f"unknown keys {sorted(unknown)}; allowed: {sorted(_SENSOR_KEYS)}")
+            s = Sensor(**v)
+            return {"name": s.name, "angle_deg": s.angle_deg,
+                    "attenuation_per_rad": s.attenuation_per_rad}
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"{where}: {exc}") from None
+    raise ValueError(f'{where} must be "loaded", "unloaded" or a table with keys '
+                     f"{sorted(_SENSOR_KEYS)}, got {v!r}")
+
+
+def _dataset_settings(raw: dict) -> dict:
+    """Validate the [dataset] table; return it with defaults filled (None entries dropped)."""
+    unknown = set(raw) - set(DATASET_DEFAULTS)
+    if unknown:
+        raise ValueError(f"unknown [dataset] key(s) {sorted(unknown)}; "
+                         f"allowed: {sorted(DATASET_DEFAULTS)}")
+    out = {**DATASET_DEFAULTS, **raw}
+    for key in ("duration_s", "fs", "segment_s"):
+        v = out[key]
+        if v is not None and (not _is_number(v) or not math.isfinite(v) or v <= 0):
+            raise ValueError(f"dataset.{key} must be a positive number, got {v!r}")
+        out[key] = None if v is None else float(v)
+    for key, lo in (("repeats", 1), ("seed", 0), ("shard_size", 1)):
+        v = out[key]
+        if v is not None and (isinstance(v, bool) or not isinstance(v, int) or v < lo):
+            raise ValueError(f"dataset.{key} must be an int >= {lo}, got {v!r}")
+    for key in ("model", "solver"):
+        if not isinstance(out[key], str):
+            raise ValueError(f"dataset.{key} must be a str, got {out[key]!r}")
+    if out["segment_s"] is not None and out["segment_s"] > out["duration_s"]:
+        raise ValueError(f"dataset.segment_s={out['segment_s']:g} s is longer than "
+                         f"dataset.duration_s={out['duration_s']:g} s")
+    return {k: v for k, v in out.items() if v is not None}
+
+
+def _json_safe(value):
+    """Replace infinities (noise-free ``snr_db``) by the string "inf" for strict JSON."""
+    if isinstance(value, float) and math.isinf(value):
+        return "inf"
+    if isinstance(value, list):
+        return [_json_safe(v) for v in value]
+    if isinstance(value, dict):
+        return {k: _json_safe(v) for k, v in value.items()}
+    return value
+
+
+def run_seed(root: int, run_id: int) -> int:
+    """Seed of run ``run_id``: child ``run_id`` of ``SeedSequence(root).spawn(...)``, as an int.
+
+    ``SeedSequence(root, spawn_key=(run_id,))`` is exactly the ``run_id``-th child that
+    ``SeedSequence(root).spawn(n)`` returns, for any ``n > run_id``; its first 64-bit
+    state word, shifted to 63 bits so it fits a Parquet int64, is the scene's seed.
+    """
+    state = np.random.SeedSequence(root, spawn_key=(run_id,)).generate_state(1, np.uint64)
+    return int(state[0] >> np.uint64(1))
+
+
+def scene_from_dict(spec: dict) -> Scene:
+    """Build the :class:`~ballpass.Scene` of a run from its JSON-able keyword dict.
+
+    ``spec`` holds :class:`~ballpass.Scene` keyword arguments, with ``fault`` as a dict of
+    :class:`~ballpass.Fault` fields (or None), ``sensors`` as a list of
+    :class:`~ballpass.Sensor` field dicts and a ramp ``rpm`` as ``[start, end]`` (rpm).
+    This is the form stored in the ``scene`` column of every dataset row.
+    """
+    kwargs = dict(spec)
+    if kwargs.get("fault") is not None:
+        kwargs["fault"] = Fault(**kwargs["fault"])
+    if "sensors" in kwargs:
+        kwargs["sensors"] = tuple(Sensor(**s) for s in kwargs["sensors"])
+    if isinstance(kwargs.get("rpm"), list):
+        kwargs["rpm"] = tuple(kwargs["rpm"])
+    return Scene(**kwargs)
+
+
+@dataclass(frozen=True)
+class Run:
+    """One simulation of a dataset: a scene, a model, a seed.
+
+    Attributes
+    ----------
+    run_id : int
+        Index of the run in the grid's order, from 0; shared by all rows of the run.
+    repeat : int
+        Which repeat of its grid point this run is, from 0.
+    model : str
+        Model requested (``"auto"`` or a registered model name).
+    scene : dict
+        JSON-able keyword arguments of the run's :class:`~ballpass.Scene`, including
+        its seed (see :func:`scene_from_dict`).
+    """
+
+    run_id: int
+    repeat: int
+    model: str
+    scene: dict
+
+    @property
+    def seed(self) -> int:
+        """The scene's seed (int)."""
+        return self.scene["seed"]
+
+    def build_scene(self) -> Scene:
+        """The validated :class:`~ballpass.Scene` of this run."""
+        return scene_from_dict(self.scene)
+
+
+@dataclass(frozen=True)
+class Grid:
+    """A validated dataset grid; build it with :func:`read_grid`.
+
+    Attributes
+    ----------
+    dataset : dict
+        The [dataset] settings with defaults filled: ``duration_s`` (s), ``fs`` (Hz),
+        ``repeats``, ``seed`` (root seed), ``model``, ``solver``, ``shard_size`` (runs
+        per shard) and optionally ``segment_s`` (s).
+    axes : dict
+        The [grid] axes as lists of normalized values (ranges expanded).
+    """
+
+    dataset: dict
+    axes: dict
+    _points: tuple = field(repr=False, compare=False)
+
+    # ------------------------------------------------------------ derived sizes
+    @property
+    def sensors(self) -> tuple:
+        """Sensor channels of every run (names or field dicts), in row order."""
+        return tuple(self.axes.get("sensor", ["loaded"]))
+
+    @property
+    def n_samples(self) -> int:
+        """Samples simulated per run and sensor, ``round(duration_s * fs)``."""
+        return max(1, round(self.dataset["duration_s"] * self.dataset["fs"]))
+
+    @property
+    def signal_length(self) -> int:
+        """Samples per row: one segment, or the whole run when not segmented."""
+        seg = self.dataset.get("segment_s")
+        return self.n_samples if seg is None else max(1, round(seg * self.dataset["fs"]))
+
+    @property
+    def n_segments(self) -> int:
+        """Rows cut from each run and sensor (non-overlapping; the remainder is dropped)."""
+        return self.n_samples // self.signal_length
+
+    @property
+    def n_runs(self) -> int:
+        """Simulations: grid points times repeats."""
+        return len(self._points) * self.dataset["repeats"]
+
+    @property
+    def rows_per_run(self) -> int:
+        """Rows per run: sensors times segments."""
+        return len(self.sensors) * self.n_segments
+
+    @property
+    def n_rows(self) -> int:
+        """Rows (signals) of the dataset."""
+        return self.n_runs * self.rows_per_run
+
+    @property
+    def n_shards(self) -> int:
+        """Parquet shards, of ``shard_size`` runs each (the last may be shorter)."""
+        return -(-self.n_runs // self.dataset["shard_size"])
+
+    def shard_runs(self, index: int) -> range:
+        """Run ids of shard ``index``."""
+        size = self.dataset["shard_size"]
+        return range(index * size, min((index + 1) * size, self.n_runs))
+
+    # ------------------------------------------------------------ runs
+    @cached_property
+    def runs(self) -> tuple[Run, ...]:
+        """Every run, in ``run_id`` order (repeats of one grid point are adjacent)."""
+        repeats = self.dataset["repeats"]
+        root = self.dataset["seed"]
+        out = []
+        for p, (model, base) in enumerate(self._points):
+            for r in range(repeats):
+                run_id = p * repeats + r
+                scene = {**base, "seed": run_seed(root, run_id)}
+                out.append(Run(run_id=run_id, repeat=r, model=model, scene=scene))
+        return tuple(out)
+
+    def as_dict(self) -> dict:
+        """The normalized grid as a strict-JSON dict; ``read_grid`` of it gives this grid."""
+        return _json_safe({"dataset": dict(self.dataset), "grid": dict(self.axes)})
+
+
+def _load_source(source) -> dict:
+    if isinstance(source, dict):
+        return source
+    if isinstance(source, (str, os.PathLike)):
+        path = Path(source)
+        try:
+            with path.open("rb") as fh:
+                return tomllib.load(fh)
+        except tomllib.TOMLDecodeError as exc:
+            raise ValueError(f"{path}: not a valid TOML grid file: {exc}") from None
+    raise TypeError(f"grid must be a TOML file path, a dict or a Grid, got {type(source).__name__}")
+
+
+def _point_scene(dataset: dict, sensors: list, values: dict) -> dict:
+    """JSON-able Scene kwargs of one grid point (without its seed)."""
+    scene = {"bearing": values["bearing"], "rpm": values["rpm"],
+             "duration_s": dataset["duration_s"], "fs": dataset["fs"],
+             "sensors": [asdict(Sensor.named(s)) if isinstance(s, str) else s
+                         for s in sensors]}
+    if values["fault"] != "healthy":
+        scene["fault"] = {"kind": values["fault"],
+                          **{arg: values[k] for k, arg in _FAULT_AXES.items() if k in values}}
+    for key in _SCENE_AXES:
+        if key in values:
+            scene[key] = None if values[key] == math.inf else values[key]
+    return scene
+
+
+def read_grid(source) -> Grid:
+    """Read and validate a dataset grid.
+
+    Parameters
+    ----------
+    source : str or os.PathLike or dict or Grid
+        A TOML file, or the same content as a dict with tables ``"dataset"`` and
+        ``"grid"``. A :class:`Grid` is returned unchanged.
+
+    Returns
+    -------
+    Grid
+
+    Raises
+    ------
+    ValueError
+        Malformed TOML, unknown tables, keys or axes, empty lists, reversed or
+        non-positive ranges, values of the wrong type, duplicate values, or a grid
+        point that :class:`~ballpass.Scene` refuses (the message names the point).
+
+    Notes
+    -----
+    ``[grid]`` axes (each a list; a bare value is a one-value list; numeric axes also
+    accept a range table ``{start, stop, step}`` with ``stop`` included):
+
+    ``bearing`` (catalogue names), ``fault`` ("healthy", "outer", "inner", "ball"),
+    ``fault_width_mm``, ``fault_depth_mm``, ``fault_angle_deg`` (fault rows only),
+    ``rpm`` (a value or a ``[start, end]`` ramp), ``radial_load_n`` (N), ``slip``,
+    ``snr_db`` (dB; ``inf`` = noise-free), ``resonance_hz`` (Hz), ``model``, and
+    ``sensor`` ("loaded", "unloaded" or ``{angle_deg, name, attenuation_per_rad}``),
+    the channels of each run. Axes left out take the :class:`~ballpass.Scene`
+    defaults; ``bearing``, ``fault`` and ``rpm`` are required.
+    """
+    if isinstance(source, Grid):
+        return source
+    raw = _load_source(source)
+    unknown = set(raw) - {"dataset", "grid"}
+    if unknown:
+        raise ValueError(f"unknown table(s) {sorted(unknown)}; a grid has [dataset] and [grid]")
+    for table in ("dataset", "grid"):
+        if not isinstance(raw.get(table, {}), dict):
+            raise ValueError(f"[{table}] must be a table, got {raw[table]!r}")
+    dataset = _dataset_settings(raw.get("dataset", {}))
+    grid_raw = raw.get("grid", {})
+    unknown = set(grid_raw) - set(AXES)
+    if unknown:
+        raise ValueError(f"unknown grid axis/axes {sorted(unknown)}; allowed: {list(AXES)}")
+    missing = [k for k in REQUIRED_AXES if k not in grid_raw]
+    if missing:
+        raise ValueError(f"grid is missing required axis/axes {missing}")
+    if "model" in grid_raw and "model" in raw.get("dataset", {}):
+        raise ValueError("give the model either as [dataset] model or as the grid.model axis")
+    axes = {k: _axis_values(k, grid_raw[k]) for k in AXES if k in grid_raw}
+
+    points = _expand(dataset, axes)
+    if "shard_size" not in dataset:
+        run_bytes = 4 * len(axes.get("sensor", ["loaded"])) * max(
+            1, round(dataset["duration_s"] * dataset["fs"]))
+        n_runs = len(points) * dataset["repeats"]
+        dataset["shard_size"] = max(1, min(_SHARD_BYTES // run_bytes, _MAX_SHARD_RUNS,
+                                           -(-n_runs // _MIN_SHARDS)))
+    return Grid(dataset=dataset, axes=axes, _points=points)
+
+
+def _expand(dataset: dict, axes: dict) -> tuple:
+    """Grid points as (model, scene kwargs) in product order; each validated as a Scene."""
+    product_axes = [k for k in AXES if k in axes and k != "sensor"]
+    fault_axes = [k for k in product_axes if k in _FAULT_AXES]
+    other_axes = [k for k in product_axes if k not in _FAULT_AXES]
+    sensors = axes.get("sensor", ["loaded"])
+    points = []
+    for combo in itertools.product(*(axes[k] for k in other_axes)):
+        values = dict(zip(other_axes, combo, strict=True))
+        fault_combos = ([()] if values["fault"] == "healthy"
+                        else itertools.product(*(axes[k] for k in fault_axes)))
+        for fcombo in fault_combos:
+            values_f = {**values, **dict(zip(fault_axes, fcombo, strict=False))}
+            scene = _point_scene(dataset, sensors, values_f)
+            try:
+                scene_from_dict({**scene, "seed": 0})
+            except (TypeError, ValueError) as exc:
+                point = ", ".join(f"{k}={v!r}" for k, v in values_f.items())
+                raise ValueError(f"grid point ({point}): {exc}") from None
+            points.append((values_f.get("model", dataset["model"]), scene))
+    return tuple(points)
