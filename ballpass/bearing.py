@@ -1000,7 +1000,8 @@ class LoadDistribution:
         element layout is symmetric about the load line.
     load_zone_half_angle_deg : float
         Continuous Stribeck extent psi_l = arccos(c / delta_r), delta_r the total radial
-        displacement, clipped to [0, 180] deg (180 = full ring).
+        displacement, clipped to [0, 180] deg (180 = full ring). The zone is centred on
+        the load line, or at atan2(lateral, deflection) when the ring also moved sideways.
     n_loaded : int
         Number of elements with Q_j > 0.
     epsilon : float
