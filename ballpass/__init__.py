@@ -46,7 +46,7 @@ def __getattr__(name: str):
     if name in _LAZY_SUBMODULES:
         return importlib.import_module(f".{name}", __name__)
     if name == "simulate":
-        # ``bp.simulate`` is the function; the package stays reachable as
-        # ``importlib.import_module("ballpass.simulate")``.
-        return importlib.import_module(".simulate", __name__).simulate
+        # the subpackage is callable: ``bp.simulate(scene)`` runs a simulation and
+        # ``bp.simulate.resolve_model`` etc. are its other functions
+        return importlib.import_module(".simulate", __name__)
     raise AttributeError(f"module 'ballpass' has no attribute {name!r}")

@@ -1,0 +1,301 @@
+"""Simulate bearing vibration with exact ground truth.
+
+:func:`simulate` runs a :class:`~ballpass.Scene` through one of the models in
+:data:`MODELS` with a fixed-step (``"rk4"``) or adaptive (``"dopri5"``) integrator
+and returns a :class:`SimulationResult`.
+
+Models
+------
+``sr5``
+    Sawalhi & Randall (2008) bearing-pedestal model with a high-frequency resonator per
+    sensor: shaft x/y, pedestal x/y, resonator(s). The default (see :mod:`.sr5`).
+``sr4``
+    The same without the resonator: the sensors read the housing acceleration.
+
+``model="auto"`` picks the cheapest model that represents the scene. Every scene has a
+structural resonance (``resonance_hz``), which only ``sr5`` represents, so ``auto``
+resolves to ``sr5``; the resolved name is stored in ``res.info["model"]``.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+import time
+import types
+
+import numpy as np
+from scipy import signal as _signal
+
+from ..scene import Scene
+from . import _integrators as _I
+from . import _kernels as _K
+from .result import FaultCrossings, GroundTruth, SimulationResult
+from .sr5 import BearingModel, SR5Parameters, build_model
+
+__all__ = [
+    "simulate",
+    "resolve_model",
+    "build",
+    "MODELS",
+    "SOLVERS",
+    "SimulationResult",
+    "SimulationUnstableError",
+    "SR5Parameters",
+    "BearingModel",
+]
+
+#: model name -> one-line description
+MODELS = {
+    "sr5": "Sawalhi-Randall 5-DOF: shaft, pedestal and a high-frequency resonator per sensor",
+    "sr4": "Sawalhi-Randall 4-DOF: shaft and pedestal, sensors read the housing acceleration",
+}
+#: solver name -> description
+SOLVERS = {
+    "rk4": "classical Runge-Kutta, fixed step, split at fault edges",
+    "dopri5": "Dormand-Prince 5(4), adaptive step with error control, split at fault edges",
+}
+
+#: internal output rate = OVERSAMPLE * fs before the anti-alias decimation
+OVERSAMPLE = 4
+
+
+class SimulationUnstableError(RuntimeError):
+    """The integration diverged (non-finite or unbounded state) or could not proceed."""
+
+
+def resolve_model(scene: Scene, model: str = "auto") -> str:
+    """Name of the model :func:`simulate` will run for ``scene``.
+
+    Parameters
+    ----------
+    scene : Scene
+    model : str
+        ``"auto"`` or one of :data:`MODELS`.
+
+    Returns
+    -------
+    str
+    """
+    if not isinstance(model, str):
+        raise TypeError(f"model must be a str, got {type(model).__name__}")
+    if model == "auto":
+        return "sr5"
+    if model not in MODELS:
+        raise ValueError(f"model must be 'auto' or one of {sorted(MODELS)}, got {model!r}")
+    return model
+
+
+def build(scene: Scene, model: str = "auto", params: SR5Parameters | None = None
+          ) -> BearingModel:
+    """Bind ``scene`` to a model without integrating (e.g. to call ``.rhs`` from scipy)."""
+    name = resolve_model(scene, model)
+    return build_model(scene, params, resonator=(name == "sr5"))
+
+
+def _characteristic_omega(bm: BearingModel) -> float:
+    """Highest natural angular frequency the step must resolve, rad/s."""
+    nd = 4 + bm.n_res
+    w_contact = bm.scale[nd] / bm.scale[0]
+    w_res = bm.m[0][_K.P_WR] if bm.n_res else 0.0
+    return max(w_contact, w_res)
+
+
+def _events(bm: BearingModel, h_out: float, n_out: int):
+    if bm.levels.shape[0] == 0:
+        empty = np.empty(0)
+        e = np.empty(0, dtype=np.int64)
+        return empty, empty.copy(), e, e.copy(), e.copy()
+    grid = np.arange(n_out, dtype=np.float64) * h_out
+    return _K.find_crossings(bm.m, grid, bm.levels)
+
+
+def _edge_names(bm: BearingModel, fault: np.ndarray, level: np.ndarray) -> np.ndarray:
+    forward = np.array(["entry", "ramp_end", "ramp_start", "exit"])
+    backward = forward[::-1]
+    inner = np.array([f.kind == "inner" for f in bm.scene.faults], dtype=bool)
+    names = np.where(inner[fault], backward[level], forward[level]) if fault.size else \
+        np.empty(0, dtype=forward.dtype)
+    return names
+
+
+def _validate_solver_args(solver, dt, rtol, atol, oversample):
+    if solver not in ("auto", *SOLVERS):
+        raise ValueError(f"solver must be 'auto' or one of {sorted(SOLVERS)}, got {solver!r}")
+    if dt is not None and not (isinstance(dt, (int, float)) and 1e-10 <= dt <= 1e-3):
+        raise ValueError(f"dt must be a step size in [1e-10, 1e-3] s, got {dt!r}")
+    if rtol is not None and not (isinstance(rtol, (int, float)) and 1e-13 <= rtol <= 1e-1):
+        raise ValueError(f"rtol must be in [1e-13, 0.1], got {rtol!r}")
+    if atol is not None and not (isinstance(atol, (int, float)) and atol > 0):
+        raise ValueError(f"atol must be a positive number (scale factor), got {atol!r}")
+    if not (isinstance(oversample, int) and 1 <= oversample <= 64):
+        raise ValueError(f"oversample must be an int in [1, 64], got {oversample!r}")
+
+
+def simulate(scene: Scene, model: str = "auto", solver: str = "auto", *, dt: float | None = None,
+             rtol: float | None = None, atol: float | None = None,
+             params: SR5Parameters | None = None, return_forces: bool = False,
+             oversample: int = OVERSAMPLE) -> SimulationResult:
+    """Simulate the vibration of a scene.
+
+    Parameters
+    ----------
+    scene : Scene
+        What to simulate (validated on construction).
+    model : str, optional
+        ``"auto"`` (default) or a name in :data:`MODELS`.
+    solver : {"auto", "rk4", "dopri5"}, optional
+        ``"auto"`` is ``"rk4"`` with the automatic step.
+    dt : float, optional
+        RK4 step, s. Default: 0.25 / omega_max (omega_max the highest of the resonator
+        and the linearised contact natural frequencies, rad/s), rounded down to divide
+        the internal output spacing.
+    rtol : float, optional
+        Relative tolerance of ``dopri5`` (default 1e-6).
+    atol : float, optional
+        Absolute tolerance of ``dopri5`` as a multiple of ``rtol`` times each state
+        component's characteristic scale (default 1).
+    params : SR5Parameters, optional
+        Structural parameters; defaults in :class:`SR5Parameters`.
+    return_forces : bool, optional
+        Also return every element's contact load at the output samples
+        (``res.truth.contact_forces``).
+    oversample : int, optional
+        Internal output rate as a multiple of ``scene.fs`` before the anti-alias
+        decimation (default 4).
+
+    Returns
+    -------
+    SimulationResult
+        ``accel`` in m/s^2, shape (n_samples,) or (n_sensors, n_samples).
+
+    Raises
+    ------
+    ValueError
+        Bad arguments (before any work).
+    SimulationUnstableError
+        The integration diverged; the message names the scene and the step size.
+
+    Examples
+    --------
+    >>> import ballpass as bp
+    >>> scene = bp.Scene(bearing="6205", rpm=1797, fault=bp.Fault("outer"),
+    ...                  duration_s=0.1, fs=48_000)
+    >>> res = bp.simulate(scene)
+    >>> res.accel.shape
+    (4800,)
+    """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a ballpass.Scene, got {type(scene).__name__}")
+    name = resolve_model(scene, model)
+    _validate_solver_args(solver, dt, rtol, atol, oversample)
+    solver = "rk4" if solver == "auto" else solver
+    t_wall = time.perf_counter()
+
+    bm = build_model(scene, params, resonator=(name == "sr5"))
+    n_samples = scene.n_samples
+    h_out = 1.0 / (scene.fs * oversample)
+    n_out = n_samples * oversample
+    ev_before, ev_after, ev_fault, ev_elem, ev_level = _events(bm, h_out, n_out)
+    n_sensors = len(scene.sensors)
+    out = np.empty((n_out, n_sensors))
+    states = np.empty((n_out if return_forces else 0, bm.n_state))
+    bound = np.empty(bm.n_state)
+    nd = 4 + bm.n_res
+    bound[:nd] = 1e4 * np.maximum(bm.scale[:nd], 1e-6)
+    bound[nd:] = 1e4 * bm.scale[nd:] + 1e3
+    omega = _characteristic_omega(bm)
+    info = {"model": name, "solver": solver, "internal_fs": scene.fs * oversample,
+            "n_events": int(ev_before.shape[0])}
+
+    if solver == "rk4":
+        dt_req = dt if dt is not None else 0.25 / omega
+        n_sub = max(1, math.ceil(h_out / dt_req - 1e-9))
+        status, n_steps, t_fail = _I.rk4(bm.y0, bm.m, bm.n_res, bm.work(), h_out, n_sub, n_out,
+                                         ev_before, ev_after, bound, out, states)
+        step = h_out / n_sub
+        info.update(n_steps=int(n_steps), n_rejected=0, dt_s=step)
+        step_text = f"dt = {step:.3g} s"
+    else:
+        rtol_v = 1e-6 if rtol is None else float(rtol)
+        atol_v = rtol_v * (1.0 if atol is None else float(atol)) * bm.scale
+        h_max = 0.5 / omega * math.pi  # at least 4 steps per period of the fastest mode
+        max_steps = int(50 * n_out + 100 * ev_before.shape[0] + 10_000)
+        status, n_acc, n_rej, h_min, t_fail = _I.dopri5(
+            bm.y0, bm.m, bm.n_res, bm.work(), h_out, n_out, ev_before, ev_after, bound, rtol_v,
+            atol_v, h_max, max_steps, out, states)
+        info.update(n_steps=int(n_acc), n_rejected=int(n_rej), dt_min_s=float(h_min),
+                    rtol=rtol_v)
+        step_text = f"rtol = {rtol_v:g}, smallest step {h_min:.3g} s"
+    if status != _I.STATUS_OK:
+        reason = {
+            _I.STATUS_NONFINITE: "the state became non-finite or unbounded",
+            _I.STATUS_UNDERFLOW: "the step size underflowed",
+            _I.STATUS_MAX_STEPS: "the step budget was exhausted",
+        }[status]
+        raise SimulationUnstableError(
+            f"simulation with model {name!r}, solver {solver!r} ({step_text}) failed at "
+            f"t = {t_fail:.6g} s: {reason}. Try a smaller dt / rtol or solver='dopri5'. "
+            f"Scene: {scene!r}"
+        )
+
+    accel = _signal.resample_poly(out, 1, oversample, axis=0) if oversample > 1 else out
+    accel = accel[:n_samples].T.copy()
+    accel -= accel.mean(axis=1, keepdims=True)  # AC-coupled accelerometers
+    accel = _add_noise(scene, accel)
+    if not np.all(np.isfinite(accel)):
+        raise SimulationUnstableError(f"non-finite output for scene {scene!r}")
+
+    t = np.arange(n_samples) / scene.fs
+    forces = None
+    if return_forces:
+        idx = np.arange(n_samples) * oversample
+        forces = _K.contact_loads_many(idx * h_out, states[idx], bm.m).T.copy()
+    crossings = FaultCrossings(
+        time_s=ev_before.copy(), fault=ev_fault, element=ev_elem,
+        edge=_edge_names(bm, ev_fault, ev_level),
+    )
+    truth = GroundTruth(
+        label=scene.label,
+        faults=scene.faults,
+        frequencies=scene.frequencies,
+        shaft_angle=scene.speed.shaft_angle(t, scene.duration_s),
+        rpm=scene.speed.rpm_at(t, scene.duration_s) * np.ones_like(t),
+        fault_crossings=crossings,
+        effective_depth_mm=tuple(f.effective_depth_mm(scene.bearing) for f in scene.faults),
+        contact_forces=forces,
+    )
+    info["wall_time_s"] = time.perf_counter() - t_wall
+    return SimulationResult(
+        accel=accel[0] if n_sensors == 1 else accel,
+        fs=scene.fs,
+        t=t,
+        scene=scene,
+        sensor_names=tuple(s.name for s in scene.sensors),
+        truth=truth,
+        info=info,
+    )
+
+
+def _add_noise(scene: Scene, accel: np.ndarray) -> np.ndarray:
+    """White Gaussian measurement noise from the scene's own noise stream."""
+    if scene.snr_db is None and scene.noise_rms is None:
+        return accel
+    _slip_seed, noise_seed = np.random.SeedSequence(scene.seed).spawn(2)
+    rng = np.random.default_rng(noise_seed)
+    if scene.noise_rms is not None:
+        sigma = np.full((accel.shape[0], 1), scene.noise_rms)
+    else:
+        rms = np.sqrt(np.mean(accel**2, axis=1, keepdims=True))
+        sigma = rms * 10.0 ** (-scene.snr_db / 20.0)
+    return accel + sigma * rng.standard_normal(accel.shape)
+
+
+class _CallableModule(types.ModuleType):
+    """``ballpass.simulate`` is both this namespace and the :func:`simulate` function."""
+
+    def __call__(self, *args, **kwargs) -> SimulationResult:
+        return simulate(*args, **kwargs)
+
+
+sys.modules[__name__].__class__ = _CallableModule

@@ -1,0 +1,117 @@
+"""What a simulation returns: the signals and the exact ground truth that produced them."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..bearing import BearingFrequencies
+from ..scene import Fault, Scene
+
+__all__ = ["SimulationResult", "GroundTruth", "FaultCrossings"]
+
+
+@dataclass(frozen=True)
+class FaultCrossings:
+    """Times at which rolling elements cross fault edges.
+
+    Attributes
+    ----------
+    time_s : ndarray (n,)
+        Crossing times, s, increasing.
+    fault : ndarray of int (n,)
+        Index into ``GroundTruth.faults``.
+    element : ndarray of int (n,)
+        Rolling element (for a ball defect: 0 = the defect meets the outer race,
+        1 = the inner race).
+    edge : ndarray of str (n,)
+        ``"entry"`` / ``"exit"`` for the defect's edges, ``"ramp_end"`` /
+        ``"ramp_start"`` for the ends of the half-cosine ramps inside a ramped defect.
+    """
+
+    time_s: np.ndarray
+    fault: np.ndarray
+    element: np.ndarray
+    edge: np.ndarray
+
+    def entries(self, fault: int | None = None) -> np.ndarray:
+        """Times (s) at which an element enters a defect (optionally one fault only)."""
+        mask = self.edge == "entry"
+        if fault is not None:
+            mask &= self.fault == fault
+        return self.time_s[mask]
+
+    def __len__(self) -> int:
+        return int(self.time_s.shape[0])
+
+
+@dataclass(frozen=True)
+class GroundTruth:
+    """Exactly what the simulated bearing did.
+
+    Attributes
+    ----------
+    label : str
+        ``"healthy"``, ``"outer"``, ``"inner"``, ``"ball"`` or kinds joined by ``"+"``.
+    faults : tuple of Fault
+    frequencies : BearingFrequencies
+        Defect frequencies at the mean shaft speed, Hz.
+    shaft_angle : ndarray (n_samples,)
+        Tachometer channel: shaft angle turned since t = 0 at each output sample, rad.
+    rpm : ndarray (n_samples,)
+        Instantaneous shaft speed at each output sample, rpm.
+    fault_crossings : FaultCrossings
+        When each fault edge was crossed.
+    effective_depth_mm : tuple of float
+        Depth each element could actually drop into each fault (ball-drop limit), mm.
+    contact_forces : ndarray (n_elements, n_samples) or None
+        Contact load of each rolling element at each output sample, N (on request).
+    """
+
+    label: str
+    faults: tuple[Fault, ...]
+    frequencies: BearingFrequencies
+    shaft_angle: np.ndarray
+    rpm: np.ndarray
+    fault_crossings: FaultCrossings
+    effective_depth_mm: tuple[float, ...]
+    contact_forces: np.ndarray | None = None
+
+
+@dataclass(frozen=True)
+class SimulationResult:
+    """Signals of one simulated scene plus its ground truth.
+
+    Attributes
+    ----------
+    accel : ndarray
+        Acceleration at the sensors, m/s^2: shape (n_samples,) for one sensor,
+        (n_sensors, n_samples) for several, in the order of ``scene.sensors``.
+    fs : float
+        Sampling rate, Hz.
+    t : ndarray (n_samples,)
+        Sample times, s.
+    scene : Scene
+    sensor_names : tuple of str
+    truth : GroundTruth
+    info : dict
+        ``model``, ``solver``, ``n_steps`` (accepted), ``n_rejected``, ``dt_s`` (fixed
+        step) or ``dt_min_s`` (adaptive), ``rtol``, ``internal_fs`` (Hz), ``wall_time_s``,
+        ``n_events``.
+    """
+
+    accel: np.ndarray
+    fs: float
+    t: np.ndarray
+    scene: Scene
+    sensor_names: tuple[str, ...]
+    truth: GroundTruth
+    info: dict = field(default_factory=dict)
+
+    def channel(self, name: str) -> np.ndarray:
+        """The signal of one sensor by name, (n_samples,), m/s^2."""
+        if name not in self.sensor_names:
+            raise ValueError(f"sensor must be one of {self.sensor_names}, got {name!r}")
+        data = np.atleast_2d(self.accel)
+        return data[self.sensor_names.index(name)]
