@@ -69,11 +69,16 @@ def _atomic_write(path: Path, write) -> None:
         tmp.unlink(missing_ok=True)
 
 
+def is_temporary(path: Path) -> bool:
+    """True for the temporary files this module writes (``.<name>.<random>.tmp``)."""
+    return path.name.startswith(".") and path.name.endswith(".tmp")
+
+
 def remove_temporaries(folder: Path) -> None:
     """Delete temporary files left by a killed run (never complete shards)."""
     for sub in (folder, folder / FEATURES_DIR):
         if sub.is_dir():
-            for tmp in sub.glob(".*.tmp"):
+            for tmp in filter(is_temporary, sub.iterdir()):
                 tmp.unlink(missing_ok=True)
 
 

@@ -1,0 +1,252 @@
+"""Dataset generation end to end: CLI, storage, determinism, resume, Dask, refusals.
+
+Signals are tiny (0.05 s at 12 kHz, resonance 3 kHz) so the whole file runs in seconds.
+Every comparison of signals is exact (``np.array_equal``): a dataset row is a pure
+function of its stored scene and seed, so regenerating it, resuming a killed run or
+running the shards on another executor must reproduce it bit for bit.
+"""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pyarrow.parquet as pq
+import pytest
+
+from ballpass.cli import main
+from ballpass.datasets import dry_run, generate, info, load, read_grid, regenerate
+from ballpass.datasets.grid import run_seed
+
+GRID_TOML = """\
+[dataset]
+duration_s = 0.05
+fs = 12000
+repeats = 2
+seed = 3
+shard_size = 4
+
+[grid]
+bearing = ["6205"]
+fault = ["healthy", "outer", "inner", "ball"]
+fault_width_mm = [0.2, 0.5]
+rpm = [1797, [1700, 1800]]
+snr_db = [inf, 10]
+resonance_hz = [3000]
+sensor = ["loaded", "unloaded"]
+"""
+# (healthy + 3 faults x 2 widths) points x 2 rpm x 2 snr x 2 repeats; one row per sensor
+N_RUNS = (1 + 3 * 2) * 2 * 2 * 2
+N_ROWS = N_RUNS * 2
+
+
+@pytest.fixture(scope="module")
+def grid_file(tmp_path_factory):
+    path = tmp_path_factory.mktemp("grid") / "small.toml"
+    path.write_text(GRID_TOML)
+    return path
+
+
+@pytest.fixture(scope="module")
+def local_dataset(grid_file, tmp_path_factory):
+    """The small grid generated through the CLI with two local worker processes."""
+    out = tmp_path_factory.mktemp("local") / "ds"
+    assert main(["generate", str(grid_file), "--out", str(out), "--jobs", "2",
+                 "--no-progress"]) == 0
+    return out
+
+
+def test_cli_end_to_end(local_dataset, capsys):
+    X, meta = load(local_dataset)
+    assert len(meta) == N_ROWS == read_grid(tomllib.loads(GRID_TOML)).n_rows
+    assert X.shape == (N_ROWS, 600) and X.dtype == np.float32
+    assert np.isfinite(X).all() and (X.std(axis=1) > 0).all()
+    assert meta.label.value_counts().to_dict() == {"healthy": 16, "outer": 32, "inner": 32,
+                                                   "ball": 32}
+    faulty = meta[meta.label != "healthy"]
+    assert set(faulty.fault_width_mm) == {0.2, 0.5} and meta[meta.label == "healthy"
+                                                             ].fault_width_mm.isna().all()
+    assert set(meta.snr_db) == {np.inf, 10.0}
+    assert set(meta.rpm) == {1797.0, 1750.0}          # the ramp's mean speed
+    assert set(meta.rpm_end) == {1797.0, 1800.0}
+    assert (meta.model == "sr5").all() and (meta.group == meta.run_id).all()
+    # one simulation per run, one row per sensor, rows of one run share run_id and seed
+    per_run = meta.groupby("run_id")
+    assert (per_run.sensor.apply(list) == pd.Series([["loaded", "unloaded"]] * N_RUNS)).all()
+    assert (per_run.seed.nunique() == 1).all()
+    assert all(meta.seed == [run_seed(3, r) for r in meta.run_id])
+    assert not meta.duplicated(["run_id", "sensor", "segment"]).any()
+    # a shard is plain Parquet: pandas reads it without ballpass
+    shard = pd.read_parquet(local_dataset / "part-00000.parquet")
+    assert len(shard) == 4 * 2 and len(shard.signal.iloc[0]) == 600
+    assert pq.read_schema(local_dataset / "part-00000.parquet").field("signal").type.list_size \
+        == 600
+    manifest = json.loads((local_dataset / "manifest.json").read_text())
+    assert manifest["status"] == "complete" and manifest["root_seed"] == 3
+    assert manifest["units"]["signal"] == "m/s^2"
+
+    assert main(["info", str(local_dataset)]) == 0
+    out = capsys.readouterr().out
+    assert f"rows      {N_ROWS} of {N_ROWS}" in out and "600 samples at 12000 Hz" in out
+
+
+def test_load_columns_and_filters(local_dataset):
+    X, meta = load(local_dataset, columns=["label", "rpm"],
+                   filters=[("sensor", "==", "unloaded"), ("label", "in", ["outer", "ball"])])
+    assert list(meta.columns) == ["label", "rpm"]
+    assert len(meta) == X.shape[0] == 32
+    with pytest.raises(ValueError, match="unknown column"):
+        load(local_dataset, columns=["nope"])
+    d = info(local_dataset)
+    assert d["n_rows"] == N_ROWS and d["labels"]["healthy"] == 16
+
+
+def test_regenerate_is_exact(local_dataset):
+    X, meta = load(local_dataset)
+    # noise-free and noisy, constant speed and ramp, both sensors, each fault kind
+    picks = meta.groupby(["label", "snr_db", "rpm", "sensor"]).head(1).index[::3]
+    assert len(picks) >= 8
+    for i in picks:
+        assert np.array_equal(regenerate(meta.loc[i]), X[i])
+
+
+def test_segments_share_the_run_group(tmp_path):
+    grid = read_grid({"dataset": {"duration_s": 0.05, "fs": 12000, "segment_s": 0.02},
+                      "grid": {"bearing": ["6205"], "fault": ["outer"], "rpm": [[1700, 1800]],
+                               "resonance_hz": [3000]}})
+    generate(grid, tmp_path / "seg", progress=False)
+    X, meta = load(tmp_path / "seg")
+    assert X.shape == (2, 240)                          # 600 samples -> 2 x 240, rest dropped
+    assert list(meta.segment) == [0, 1] and meta.group.nunique() == 1
+    assert list(meta.start_s) == [0.0, 0.02]
+    # mean speed over each segment: the ramp's value at the segment's mid-time
+    assert np.allclose(meta.rpm, [1700 + 100 * 0.01 / 0.05, 1700 + 100 * 0.03 / 0.05],
+                       rtol=1e-12)
+    assert np.array_equal(regenerate(meta.iloc[1]), X[1])
+
+
+def test_dask_local_cluster_gives_the_same_rows(local_dataset, grid_file, tmp_path):
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster, \
+            distributed.Client(cluster) as client:
+        summary = generate(grid_file, tmp_path / "dask", executor=client.get_executor(),
+                           progress=False)
+    assert summary.rows_written == N_ROWS
+    X_local, meta_local = load(local_dataset)
+    X_dask, meta_dask = load(tmp_path / "dask")
+    assert np.array_equal(X_local, X_dask)
+    pd.testing.assert_frame_equal(meta_local, meta_dask)
+
+
+def test_kill_and_resume(tmp_path):
+    """SIGKILL a generation mid-run, rerun: only missing shards are made, nothing doubles."""
+    grid = tmp_path / "kill.toml"
+    grid.write_text(GRID_TOML.replace("shard_size = 4", "shard_size = 1")
+                    .replace("duration_s = 0.05", "duration_s = 0.1"))
+    out = tmp_path / "ds"
+    n_shards = read_grid(grid).n_shards
+    proc = subprocess.Popen([sys.executable, "-m", "ballpass", "generate", str(grid), "--out",
+                             str(out), "--no-progress"], stdout=subprocess.DEVNULL,
+                            stderr=subprocess.PIPE)
+    deadline = time.monotonic() + 60
+    while len(list(out.glob("part-*.parquet"))) < 3:
+        assert proc.poll() is None, proc.stderr.read().decode()
+        assert time.monotonic() < deadline
+        time.sleep(0.002)
+    os.kill(proc.pid, signal.SIGKILL)
+    proc.wait()
+    before = {p.name: p.stat().st_mtime_ns for p in out.glob("part-*.parquet")}
+    assert 3 <= len(before) < n_shards
+    assert json.loads((out / "manifest.json").read_text())["status"] == "running"
+
+    summary = generate(grid, out, progress=False)
+    assert summary.shards_written == n_shards - len(before)
+    assert summary.n_rows == N_ROWS
+    after = {p.name: p.stat().st_mtime_ns for p in out.glob("part-*.parquet")}
+    assert len(after) == n_shards
+    assert all(after[name] == mtime for name, mtime in before.items())   # kept, not redone
+    assert not list(out.glob(".*.tmp"))
+    for path in out.glob("part-*.parquet"):
+        pq.read_table(path)                                               # every shard readable
+    X, meta = load(out)
+    assert len(meta) == N_ROWS and not meta.duplicated(["run_id", "sensor", "segment"]).any()
+    assert sorted(meta.run_id.unique()) == list(range(N_RUNS))
+    i = int(np.flatnonzero(meta.run_id == min(int(n[5:10]) for n in before))[0])
+    assert np.array_equal(regenerate(meta.iloc[i]), X[i])
+    assert json.loads((out / "manifest.json").read_text())["status"] == "complete"
+
+
+@pytest.mark.parametrize("text, key", [
+    (GRID_TOML.replace("snr_db", "noise"), "noise"),
+    (GRID_TOML.replace("[0.2, 0.5]", "[]"), "grid.fault_width_mm is an empty list"),
+    (GRID_TOML.replace("rpm = [1797, [1700, 1800]]",
+                       "rpm = {start = 1800, stop = 1700, step = 10}"), "grid.rpm: range stop"),
+    (GRID_TOML.replace("repeats = 2", 'repeats = "2"'), "dataset.repeats"),
+    (GRID_TOML.replace("resonance_hz = [3000]", 'resonance_hz = ["3 kHz"]'), "grid.resonance_hz"),
+    (GRID_TOML.replace("[grid]", "[grid"), "not a valid TOML grid file"),
+])
+def test_bad_grid_refused_before_any_work(tmp_path, capsys, text, key):
+    grid = tmp_path / "bad.toml"
+    grid.write_text(text)
+    out = tmp_path / "ds"
+    assert main(["generate", str(grid), "--out", str(out), "--no-progress"]) == 2
+    assert key in capsys.readouterr().err
+    assert not out.exists()
+
+
+def test_unwritable_folder_refused(tmp_path, grid_file):
+    blocker = tmp_path / "a_file"
+    blocker.write_text("")
+    with pytest.raises(PermissionError, match="cannot write to output folder"):
+        generate(grid_file, blocker / "ds", progress=False)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a_file"]
+
+
+@pytest.mark.skipif(os.name != "posix" or os.geteuid() == 0,
+                    reason="root can write to read-only folders")
+def test_read_only_folder_refused(tmp_path, grid_file):
+    locked = tmp_path / "locked"
+    locked.mkdir(mode=0o555)
+    try:
+        with pytest.raises(PermissionError, match="cannot write to output folder"):
+            generate(grid_file, locked / "ds", progress=False)
+        assert not list(locked.iterdir())
+    finally:
+        locked.chmod(0o755)
+
+
+def test_other_grid_or_foreign_folder_refused(local_dataset, grid_file, tmp_path):
+    manifest = (local_dataset / "manifest.json").read_bytes()
+    other = tomllib.loads(GRID_TOML)
+    other["dataset"]["seed"] = 4
+    with pytest.raises(ValueError, match="already holds a dataset of another grid"):
+        generate(other, local_dataset, progress=False)
+    assert (local_dataset / "manifest.json").read_bytes() == manifest
+    foreign = tmp_path / "foreign"
+    foreign.mkdir()
+    (foreign / "notes.txt").write_text("mine")
+    with pytest.raises(FileExistsError, match="not an empty folder or a ballpass dataset"):
+        generate(grid_file, foreign, progress=False)
+    assert sorted(p.name for p in foreign.iterdir()) == ["notes.txt"]
+
+
+def test_rerun_of_complete_dataset_does_nothing(local_dataset, grid_file):
+    mtimes = {p: p.stat().st_mtime_ns for p in Path(local_dataset).glob("part-*.parquet")}
+    summary = generate(grid_file, local_dataset, n_jobs=2, progress=False)
+    assert summary.rows_written == 0 and summary.shards_skipped == len(mtimes)
+    assert all(p.stat().st_mtime_ns == m for p, m in mtimes.items())
+
+
+def test_dry_run_counts_and_writes_nothing(local_dataset, grid_file, tmp_path):
+    est = dry_run(grid_file, out_dir=tmp_path / "none")
+    assert (est.n_rows, est.n_runs, est.n_shards, est.shards_done) == (N_ROWS, N_RUNS, 14, 0)
+    assert est.time_s > 0 and est.size_bytes > N_ROWS * 600 * 4 * 0.5
+    assert not (tmp_path / "none").exists()
+    assert dry_run(grid_file, out_dir=local_dataset).shards_done == 14

@@ -1,0 +1,121 @@
+"""Dataset grids: expansion, seeds and validation (no simulation runs here)."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from ballpass.datasets import Grid, read_grid
+from ballpass.datasets.grid import run_seed
+
+BASE = {
+    "dataset": {"duration_s": 0.05, "fs": 12000, "repeats": 2, "seed": 7},
+    "grid": {"bearing": ["6205"], "fault": ["healthy", "outer", "inner"],
+             "fault_width_mm": [0.2, 0.5], "fault_depth_mm": [0.1], "rpm": [1797],
+             "resonance_hz": [3000], "sensor": ["loaded", "unloaded"]},
+}
+
+
+def with_(table, **changes):
+    """BASE with keys of one table replaced (a value of None removes the key)."""
+    out = json.loads(json.dumps(BASE))
+    out[table].update(changes)
+    out[table] = {k: v for k, v in out[table].items() if v is not None}
+    return out
+
+
+def test_healthy_rows_do_not_multiply_over_fault_sizes():
+    g = read_grid(BASE)
+    # (1 healthy + 2 faults x 2 widths) points x 2 repeats; one row per sensor
+    assert g.n_runs == 5 * 2
+    assert g.n_rows == 5 * 2 * 2
+    labels = [r.build_scene().label for r in g.runs]
+    assert labels.count("healthy") == 2
+    widths = {r.build_scene().fault.width_mm for r in g.runs if r.scene.get("fault")}
+    assert widths == {0.2, 0.5}
+
+
+def test_run_seeds_are_seedsequence_children_and_unique():
+    g = read_grid(BASE)
+    children = np.random.SeedSequence(7).spawn(g.n_runs)
+    for run, child in zip(g.runs, children, strict=True):
+        expected = int(child.generate_state(1, np.uint64)[0] >> np.uint64(1))
+        assert run.seed == expected == run_seed(7, run.run_id)
+        assert run.build_scene().seed == run.seed
+    assert len({r.seed for r in g.runs}) == g.n_runs
+    assert [r.repeat for r in g.runs[:4]] == [0, 1, 0, 1]
+
+
+def test_ranges_include_stop_and_ramps():
+    g = read_grid(with_("grid", rpm={"start": 500, "stop": 3000, "step": 500}))
+    assert g.axes["rpm"] == [500.0, 1000.0, 1500.0, 2000.0, 2500.0, 3000.0]
+    g = read_grid(with_("grid", fault_width_mm={"start": 0.1, "stop": 0.3, "step": 0.1}))
+    assert g.axes["fault_width_mm"] == [0.1, 0.2, 0.3]   # no float drift (0.30000000000000004)
+    g = read_grid(with_("grid", rpm=[[1000, 1500], 1797]))
+    assert g.runs[0].build_scene().speed.rpm_end == 1500.0
+
+
+def test_segments_and_shards():
+    g = read_grid(with_("dataset", duration_s=0.05, segment_s=0.02, shard_size=3))
+    assert g.signal_length == 240 and g.n_segments == 2      # 600 samples, remainder dropped
+    assert g.n_rows == g.n_runs * 2 * 2
+    assert g.n_shards == math.ceil(g.n_runs / 3)
+    assert [len(g.shard_runs(i)) for i in range(g.n_shards)] == [3, 3, 3, 1]
+
+
+def test_as_dict_round_trips_through_json():
+    g = read_grid(with_("grid", snr_db=[math.inf, 10], sensor=["loaded", {"angle_deg": 90}]))
+    d = json.loads(json.dumps(g.as_dict(), allow_nan=False))
+    assert d["grid"]["snr_db"] == ["inf", 10.0]
+    g2 = read_grid(d)
+    assert g2 == g and g2.runs == g.runs
+    assert g.runs[0].build_scene().snr_db is None        # inf = noise-free
+    assert [s.name for s in g.runs[0].build_scene().sensors] == ["loaded", "sensor_90deg"]
+
+
+def test_toml_file(tmp_path):
+    path = tmp_path / "g.toml"
+    path.write_text('[dataset]\nfs = 12000\nduration_s = 0.05\n[grid]\nbearing = ["6205"]\n'
+                    'fault = ["healthy"]\nrpm = { start = 1700, stop = 1800, step = 50 }\n'
+                    'resonance_hz = [3000]\n')
+    g = read_grid(path)
+    assert isinstance(g, Grid) and g.n_runs == 3
+    assert read_grid(g) is g
+
+
+@pytest.mark.parametrize("grid, message", [
+    (with_("grid", speed=[1]), r"unknown grid axis.*'speed'"),
+    (with_("dataset", fps=1), r"unknown \[dataset\] key.*'fps'"),
+    (with_("grid", rpm=[]), r"grid.rpm is an empty list"),
+    (with_("grid", rpm={"start": 3000, "stop": 500, "step": 500}), r"grid.rpm: range stop"),
+    (with_("grid", rpm={"start": 500, "stop": 3000, "step": -500}), r"grid.rpm: range step"),
+    (with_("grid", rpm={"start": 500, "stop": 3000}), r"grid.rpm: a range is a table"),
+    (with_("grid", rpm=["fast"]), r"grid.rpm\[0\] must be a number"),
+    (with_("grid", rpm=[-100]), r"rpm must be a finite number in \(0"),
+    (with_("grid", fault=["cage"]), r"grid.fault\[0\] must be one of"),
+    (with_("grid", bearing=[6205]), r"grid.bearing\[0\] must be a catalogue"),
+    (with_("grid", bearing=["nope"]), r"unknown bearing 'nope'"),
+    (with_("grid", sensor=["top"]), r"grid.sensor\[0\]"),
+    (with_("grid", rpm=[1797, 1797.0]), r"grid.rpm has duplicate values"),
+    (with_("grid", resonance_hz=[15000]), r"resonance_hz=15000 lies above 0.45\*fs"),
+    (with_("grid", fault_width_mm=[20.0]), r"fault_width_mm=20.0.*element spacing"),
+    (with_("grid", rpm=None), r"missing required axis.*'rpm'"),
+    (with_("dataset", repeats=0), r"dataset.repeats must be an int >= 1"),
+    (with_("dataset", repeats=1.5), r"dataset.repeats must be an int"),
+    (with_("dataset", fs="12k"), r"dataset.fs must be a positive number"),
+    (with_("dataset", segment_s=1.0), r"dataset.segment_s=1 s is longer"),
+    (with_("dataset", model="sr5") | {"grid": {**BASE["grid"], "model": ["sr4"]}},
+     r"either as \[dataset\] model or as the grid.model axis"),
+    ({**BASE, "extra": {}}, r"unknown table"),
+])
+def test_bad_grids_name_the_key(grid, message):
+    with pytest.raises(ValueError, match=message):
+        read_grid(grid)
+
+
+def test_malformed_toml_names_the_file(tmp_path):
+    path = tmp_path / "bad.toml"
+    path.write_text("[grid]\nrpm = [1797,\n")
+    with pytest.raises(ValueError, match=r"bad.toml: not a valid TOML grid file"):
+        read_grid(path)
