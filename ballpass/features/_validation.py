@@ -1,0 +1,81 @@
+"""Argument checks shared by the feature functions.
+
+Every public function validates here, before any numerical work, and raises
+``ValueError``/``TypeError`` naming the argument, its value and the allowed range.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+
+import numpy as np
+
+
+def check_fs(fs) -> float:
+    """Return ``fs`` as a float after checking it is a finite number > 0 (Hz)."""
+    if isinstance(fs, bool) or not isinstance(fs, numbers.Real):
+        raise TypeError(f"fs must be a number (Hz), got {type(fs).__name__} ({fs!r})")
+    fs = float(fs)
+    if not (math.isfinite(fs) and fs > 0):
+        raise ValueError(f"fs must be a finite number > 0 Hz, got {fs!r}")
+    return fs
+
+
+def check_signal(x, axis: int = -1, *, name: str = "x", min_samples: int = 2) -> np.ndarray:
+    """Return ``x`` as a float64 array with the sample axis moved last.
+
+    Raises ``TypeError`` for non-real input and ``ValueError`` for signals shorter
+    than ``min_samples`` or containing NaN/inf.
+    """
+    arr = np.asarray(x)
+    if arr.dtype == object or not (
+        np.issubdtype(arr.dtype, np.floating) or np.issubdtype(arr.dtype, np.integer)
+    ):
+        raise TypeError(f"{name} must be a real numeric array, got dtype {arr.dtype}")
+    if arr.ndim == 0:
+        raise ValueError(f"{name} must have at least one dimension (the samples), got a scalar")
+    if not isinstance(axis, numbers.Integral) or not -arr.ndim <= axis < arr.ndim:
+        raise ValueError(f"axis must be an int in [{-arr.ndim}, {arr.ndim}), got {axis!r}")
+    arr = np.moveaxis(arr.astype(np.float64, copy=False), axis, -1)
+    if arr.shape[-1] < min_samples:
+        raise ValueError(
+            f"{name} must have at least {min_samples} samples along axis {axis}, "
+            f"got {arr.shape[-1]}"
+        )
+    if arr.size and not np.isfinite(arr).all():
+        raise ValueError(f"{name} contains NaN or inf; clean or interpolate the signal first")
+    return arr
+
+
+def check_band(band, fs: float) -> tuple[float, float]:
+    """Return ``band`` as ``(lo, hi)`` floats with ``0 <= lo < hi <= fs/2`` (Hz)."""
+    try:
+        lo, hi = (float(v) for v in band)
+    except (TypeError, ValueError):
+        raise TypeError(f"band must be a pair (lo, hi) in Hz or None, got {band!r}") from None
+    nyquist = 0.5 * fs
+    if not (math.isfinite(lo) and math.isfinite(hi) and 0.0 <= lo < hi <= nyquist):
+        raise ValueError(
+            f"band must satisfy 0 <= lo < hi <= fs/2 = {nyquist:g} Hz, got ({lo:g}, {hi:g})"
+        )
+    return lo, hi
+
+
+def check_positive_int(name: str, value, minimum: int) -> int:
+    """Return ``value`` as an int after checking ``value >= minimum``."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise TypeError(f"{name} must be an int, got {type(value).__name__} ({value!r})")
+    if value < minimum:
+        raise ValueError(f"{name} must be an int >= {minimum}, got {value!r}")
+    return int(value)
+
+
+def check_nonnegative(name: str, value) -> float:
+    """Return ``value`` as a float after checking it is finite and >= 0."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise TypeError(f"{name} must be a number, got {type(value).__name__} ({value!r})")
+    value = float(value)
+    if not (math.isfinite(value) and value >= 0):
+        raise ValueError(f"{name} must be a finite number >= 0, got {value!r}")
+    return value

@@ -1,0 +1,356 @@
+"""Spectral kurtosis and the fast kurtogram.
+
+The spectral kurtosis (SK) of a signal is the kurtosis of its complex envelope in a
+frequency band: about 0 for stationary Gaussian noise, large where repetitive
+transients (bearing impacts ringing a structural resonance) dominate. The fast
+kurtogram maps SK over centre frequency and bandwidth on Antoni's 1/3-binary tree and
+picks the band that maximises it: the classic way to choose the demodulation band of
+envelope analysis.
+
+References
+----------
+.. [1] J. Antoni, "The spectral kurtosis: a useful tool for characterising
+   non-stationary signals", MSSP 20 (2006) 282-307 (definition, eq. 8; estimator
+   variance 4/K for K independent segments of Gaussian noise, section 4).
+.. [2] J. Antoni, "Fast computation of the kurtogram for the detection of transient
+   faults", MSSP 21 (2007) 108-124 (the 1/3-binary tree, levels k and k + log2(3) - 1,
+   kurtosis of complex band signals E|c|^4 / (E|c|^2)^2 - 2).
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.fft
+import scipy.signal
+
+from ._validation import check_fs, check_nonnegative, check_positive_int, check_signal
+
+__all__ = ["KurtogramResult", "fast_kurtogram", "spectral_kurtosis"]
+
+#: Bands whose mean power density lies more than this many dB below the signal's
+#: average density carry no content (anti-aliasing roll-off, dead bands near Nyquist).
+FLOOR_DB = -20.0
+#: Narrowest band the automatic choice accepts, Hz: an envelope band must pass the
+#: modulation sidebands of the fault frequencies (BPFI of a 6205 at 1800 rpm is 162 Hz).
+MIN_BANDWIDTH_HZ = 300.0
+
+
+@dataclass(frozen=True, eq=False)
+class KurtogramResult:
+    """Fast-kurtogram grid and the band it selects.
+
+    Attributes
+    ----------
+    kurtosis : ndarray, shape (..., n_rows, n_cols)
+        Spectral kurtosis of each band, each band's value repeated over the grid
+        columns it spans (the layout of Antoni's figures). 0 for Gaussian noise.
+    density_db : ndarray, shape (..., n_rows, n_cols)
+        Mean power spectral density of each band relative to the signal's average
+        density, dB.
+    levels : ndarray, shape (n_rows,)
+        Tree level of each row: 0, 1, 1.585, 2, 2.585, ..., nlevel. A row at level
+        ``l`` splits ``[0, fs/2]`` into ``2**l`` bands.
+    bandwidths : ndarray, shape (n_rows,)
+        Bandwidth of the bands of each row, Hz.
+    freqs : ndarray, shape (n_cols,)
+        Centre frequency of each grid column, Hz.
+    fs : float
+        Sampling frequency, Hz.
+    best_band : tuple of float or ndarray of shape (..., 2)
+        ``(lo, hi)`` in Hz of the band with the largest kurtosis among the admissible
+        ones (see :func:`fast_kurtogram`); an array for batched input.
+    best_level, best_kurtosis : float or ndarray, shape (...)
+        Level and kurtosis of that band.
+    """
+
+    kurtosis: np.ndarray
+    density_db: np.ndarray
+    levels: np.ndarray
+    bandwidths: np.ndarray
+    freqs: np.ndarray
+    fs: float
+    best_band: tuple[float, float] | np.ndarray
+    best_level: float | np.ndarray
+    best_kurtosis: float | np.ndarray
+
+    def plot(self, ax=None):
+        """Draw the kurtogram heat map; see :func:`ballpass.plot.kurtogram`.
+
+        Returns
+        -------
+        matplotlib.axes.Axes
+        """
+        from ..plot import kurtogram
+
+        return kurtogram(self, ax=ax)
+
+
+@functools.lru_cache(maxsize=16)
+def _tree(n: int, fs: float, nlevel: int):
+    """Frequency-domain plan of the 1/3-binary tree for ``n`` samples at ``fs``.
+
+    Returns the row levels, the number of bands per row and, per row, the FFT-bin
+    indices ``(n_bands, n_taps)`` each band gathers and their weights. Cached: the plan
+    depends only on the signal length and rate.
+    """
+    n_bins = n // 2 + 1
+    df = fs / n
+    levels, n_bands = [0.0], [1]
+    for k in range(1, nlevel + 1):
+        if k > 1:
+            levels.append(k - 1 + math.log2(3))
+            n_bands.append(3 * 2 ** (k - 2))
+        levels.append(float(k))
+        n_bands.append(2**k)
+    rows = []
+    for nb in n_bands:
+        width = 0.5 * fs / nb
+        centres = (np.arange(nb) + 0.5) * width
+        n_taps = scipy.fft.next_fast_len(math.ceil(1.5 * width / df) + 1)
+        first = np.round((centres - 0.75 * width) / df).astype(np.int64)
+        idx = first[:, None] + np.arange(n_taps)
+        f = idx * df
+        u = np.abs(f - centres[:, None]) / width
+        # Raised-cosine edges, -6 dB at the band edges, so neighbouring bands sum to one.
+        taper = 0.5 + 0.5 * np.cos(2 * np.pi * (u - 0.25))
+        w = np.where(u <= 0.25, 1.0, np.where(u >= 0.75, 0.0, taper))
+        w[0, f[0] < centres[0]] = 1.0  # no neighbour below 0 Hz ...
+        w[-1, f[-1] > centres[-1]] = 1.0  # ... nor above fs/2
+        outside = (idx < 0) | (idx >= n_bins)
+        w[outside] = 0.0
+        rows.append((np.where(outside, 0, idx), w))
+    return np.array(levels), np.array(n_bands), rows
+
+
+def _default_nlevel(n: int) -> int:
+    """Levels such that the finest band keeps about 64 samples of complex envelope."""
+    return int(min(7, max(0, math.floor(math.log2(n)) - 7)))
+
+
+def fast_kurtogram(
+    x,
+    fs: float,
+    *,
+    nlevel: int | None = None,
+    min_bandwidth: float = MIN_BANDWIDTH_HZ,
+    floor_db: float = FLOOR_DB,
+    axis: int = -1,
+) -> KurtogramResult:
+    """Fast kurtogram: spectral kurtosis on Antoni's 1/3-binary band tree.
+
+    Row ``k`` splits ``[0, fs/2]`` into ``2**k`` equal bands and row
+    ``k + log2(3) - 1`` into ``3 * 2**(k-1)`` bands ([2]_). For each band the complex
+    envelope ``c`` is formed and its kurtosis ``E|c|^4 / (E|c|^2)^2 - 2`` (0 for Gaussian
+    noise) is computed. The tree is evaluated in the frequency domain: one real FFT of
+    the signal, then per row one batched inverse FFT of the bins each band gathers
+    (raised-cosine band edges, -6 dB at the nominal edges, so the bands of a row sum
+    to the analytic signal). Each band signal comes out sampled at the rate of its
+    support (1.5 times its bandwidth), like the decimated outputs of Antoni's FIR tree,
+    at a cost of one FFT-length of work per row.
+
+    The band returned as ``best_band`` maximises the kurtosis among *admissible*
+    bands: at least ``min_bandwidth`` wide (narrower bands cannot carry the fault
+    modulation sidebands) and with content, i.e. a mean power density no more than
+    ``-floor_db`` dB below the signal's average density. The latter excludes the dead
+    bands above an anti-aliasing filter, where a few spikes give enormous kurtosis
+    (on the CWRU 12 kHz recordings the 5.6-6 kHz band reaches kurtosis > 100). The
+    full band (level 0) is always admissible.
+
+    Parameters
+    ----------
+    x : array_like, shape (..., n_samples)
+        Signal(s), any unit. The mean is removed.
+    fs : float
+        Sampling frequency, Hz.
+    nlevel : int, optional
+        Number of binary levels (>= 0; ``2**nlevel <= n_samples / 2``). Default
+        ``min(7, floor(log2(n_samples)) - 7)``, so the finest bands keep about 64
+        samples of envelope.
+    min_bandwidth : float, optional
+        Narrowest admissible band for ``best_band``, Hz (default 300).
+    floor_db : float, optional
+        Content threshold for ``best_band``, dB relative to the average power
+        density (default -20).
+    axis : int, optional
+        Sample axis (default -1).
+
+    Returns
+    -------
+    KurtogramResult
+        ``.kurtosis`` grid, ``.levels``, ``.freqs``, ``.best_band``, ``.plot()``.
+
+    See Also
+    --------
+    spectral_kurtosis : SK from the short-time Fourier transform.
+    ballpass.features.envelope_spectrum : uses ``best_band`` when ``band=None``.
+
+    References
+    ----------
+    .. [1] J. Antoni, MSSP 20 (2006) 282-307.
+    .. [2] J. Antoni, MSSP 21 (2007) 108-124.
+
+    Examples
+    --------
+    An impulse every 10 ms ringing a 3 kHz resonance, in white noise:
+
+    >>> import numpy as np
+    >>> from ballpass.features import fast_kurtogram
+    >>> fs = 12_000.0
+    >>> t = np.arange(12_000) / fs
+    >>> ring = np.exp(-600 * t[:240]) * np.sin(2 * np.pi * 3000 * t[:240])
+    >>> x = np.convolve(np.tile(np.r_[1.0, np.zeros(119)], 100), ring)[:12_000]
+    >>> x += 0.1 * np.random.default_rng(0).standard_normal(x.size)
+    >>> res = fast_kurtogram(x, fs)
+    >>> lo, hi = res.best_band
+    >>> bool(lo <= 3000 <= hi), res.kurtosis.shape
+    (True, (12, 192))
+    """
+    fs = check_fs(fs)
+    x = check_signal(x, axis)
+    n = x.shape[-1]
+    if nlevel is None:
+        nlevel = _default_nlevel(n)
+    nlevel = check_positive_int("nlevel", nlevel, 0)
+    if 2**nlevel > n / 2:
+        raise ValueError(f"nlevel must satisfy 2**nlevel <= n_samples/2 = {n / 2:g}, got {nlevel}")
+    min_bandwidth = check_nonnegative("min_bandwidth", min_bandwidth)
+    if not math.isfinite(floor_db):
+        raise ValueError(f"floor_db must be a finite number of dB, got {floor_db!r}")
+
+    levels, n_bands, rows = _tree(n, fs, nlevel)
+    spectrum = scipy.fft.rfft(x - x.mean(axis=-1, keepdims=True), axis=-1)
+    mean_power = np.mean(spectrum.real**2 + spectrum.imag**2, axis=-1)[..., None]
+    n_cols = math.lcm(*n_bands.tolist())
+    kurt = np.empty(x.shape[:-1] + (len(levels), n_cols))
+    dens = np.empty_like(kurt)
+    for r, (idx, w) in enumerate(rows):
+        bands = spectrum[..., idx] * w
+        band_power = np.sum(bands.real**2 + bands.imag**2, axis=-1) / np.sum(w**2, axis=-1)
+        c = scipy.fft.ifft(bands, axis=-1, overwrite_x=True)
+        p = c.real**2 + c.imag**2
+        m2 = p.mean(axis=-1)
+        m4 = np.einsum("...i,...i->...", p, p) / p.shape[-1]
+        k = np.divide(m4, m2**2, out=np.full_like(m2, 2.0), where=m2 > 0) - 2.0
+        ratio = np.divide(band_power, mean_power, out=np.zeros_like(m2), where=mean_power > 0)
+        reps = n_cols // n_bands[r]
+        kurt[..., r, :] = np.repeat(k, reps, axis=-1)
+        dens[..., r, :] = np.repeat(10 * np.log10(np.maximum(ratio, 1e-300)), reps, axis=-1)
+
+    bandwidths = 0.5 * fs / n_bands
+    ok = (dens >= floor_db) & (bandwidths >= min(min_bandwidth, 0.5 * fs))[:, None]
+    ok[..., 0, :] = True
+    flat = np.where(ok, kurt, -np.inf).reshape(x.shape[:-1] + (-1,))
+    best = np.argmax(flat, axis=-1)
+    row, col = np.divmod(best, n_cols)
+    width = bandwidths[row]
+    lo = (col // (n_cols // n_bands[row])) * width
+    best_band = np.stack([lo, lo + width], axis=-1)
+    best_k = np.take_along_axis(flat, best[..., None], axis=-1)[..., 0]
+    if x.ndim == 1:
+        best_band = (float(best_band[0]), float(best_band[1]))
+        best_level, best_k = float(levels[row]), float(best_k)
+    else:
+        best_level = levels[row]
+    return KurtogramResult(
+        kurtosis=kurt,
+        density_db=dens,
+        levels=levels,
+        bandwidths=bandwidths,
+        freqs=(np.arange(n_cols) + 0.5) * (0.5 * fs / n_cols),
+        fs=fs,
+        best_band=best_band,
+        best_level=best_level,
+        best_kurtosis=best_k,
+    )
+
+
+def spectral_kurtosis(
+    x,
+    fs: float,
+    *,
+    nperseg: int = 256,
+    noverlap: int | None = None,
+    window="hann",
+    axis: int = -1,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Spectral kurtosis from the short-time Fourier transform.
+
+    ``SK(f) = <|S(t, f)|^4> / <|S(t, f)|^2>^2 - 2`` averaged over the STFT segments
+    that lie fully inside the signal ([1]_, eq. 8). For stationary Gaussian noise
+    ``SK = 0``; with ``K`` non-overlapping segments its standard deviation is about
+    ``2 / sqrt(K)`` ([1]_, section 4), so ``|SK| > 3 * 2 / sqrt(K)`` flags
+    non-Gaussian (impulsive) content at roughly 99.7 % confidence. The 0 Hz and Nyquist
+    bins of a real signal are real-valued; their reference is 3, not 2, so they too
+    read 0 for Gaussian noise.
+
+    Parameters
+    ----------
+    x : array_like, shape (..., n_samples)
+        Signal(s), any unit.
+    fs : float
+        Sampling frequency, Hz.
+    nperseg : int, optional
+        Segment length, samples (default 256; frequency resolution ``fs / nperseg``).
+    noverlap : int, optional
+        Overlap between segments, samples (default ``nperseg // 2``). Overlap
+        correlates the segments and widens the confidence bound above.
+    window : str or tuple or array_like, optional
+        Window, as accepted by :func:`scipy.signal.get_window` (default ``"hann"``).
+    axis : int, optional
+        Sample axis (default -1).
+
+    Returns
+    -------
+    freqs : ndarray, shape (nperseg // 2 + 1,)
+        Frequencies, Hz.
+    sk : ndarray, shape (..., nperseg // 2 + 1)
+        Spectral kurtosis (dimensionless).
+
+    References
+    ----------
+    .. [1] J. Antoni, MSSP 20 (2006) 282-307.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ballpass.features import spectral_kurtosis
+    >>> x = np.random.default_rng(0).standard_normal(256 * 400)
+    >>> f, sk = spectral_kurtosis(x, fs=1000.0, noverlap=0)
+    >>> bool(np.all(np.abs(sk) < 5 * 2 / np.sqrt(400)))
+    True
+    """
+    fs = check_fs(fs)
+    x = check_signal(x, axis)
+    nperseg = check_positive_int("nperseg", nperseg, 2)
+    noverlap = nperseg // 2 if noverlap is None else check_positive_int("noverlap", noverlap, 0)
+    if noverlap >= nperseg:
+        raise ValueError(f"noverlap must be < nperseg = {nperseg}, got {noverlap}")
+    n = x.shape[-1]
+    if isinstance(window, (str, tuple)):
+        win = scipy.signal.get_window(window, nperseg)
+    else:
+        win = np.asarray(window, dtype=float)
+    if win.shape != (nperseg,):
+        raise ValueError(f"window must have nperseg = {nperseg} samples, got shape {win.shape}")
+    stft = scipy.signal.ShortTimeFFT(win, hop=nperseg - noverlap, fs=fs, fft_mode="onesided")
+    p0, p1 = stft.lower_border_end[1], stft.upper_border_begin(n)[1]
+    if p1 - p0 < 2:
+        raise ValueError(
+            f"x must span at least two full segments of nperseg = {nperseg} samples "
+            f"(hop {nperseg - noverlap}), got {n} samples"
+        )
+    s = stft.stft(x, p0=p0, p1=p1, axis=-1)  # (..., n_freqs, n_segments)
+    p = s.real**2 + s.imag**2
+    m2 = p.mean(axis=-1)
+    m4 = np.mean(p * p, axis=-1)
+    reference = np.full(stft.f.shape, 2.0)
+    reference[0] = 3.0
+    if nperseg % 2 == 0:
+        reference[-1] = 3.0
+    out = np.broadcast_to(reference, m2.shape).copy()  # a silent bin reads 0
+    sk = np.divide(m4, m2**2, out=out, where=m2 > 0) - reference
+    return stft.f, sk
