@@ -165,9 +165,10 @@ class Sensor:
 
     Each sensor sees the contact forces through its own transfer path: the force of a
     contact at angle phi is attenuated by the transmission factor
-    ``exp(-attenuation_per_rad * |wrap(phi - angle)|)`` (an exponential decay with the
-    angular distance travelled round the ring, after McFadden & Smith's transmission
-    factor) and then filtered by the structure's resonance (``Scene.resonance_hz``).
+    ``exp(-attenuation * (1 - cos(phi - angle)))`` — 1 at the sensor, decaying smoothly
+    with the angular distance round the ring to ``exp(-2 attenuation)`` opposite it
+    (after McFadden & Smith's transmission factor) — and then filtered by the
+    structure's resonance (``Scene.resonance_hz``).
 
     Parameters
     ----------
@@ -177,10 +178,10 @@ class Sensor:
     name : str, optional
         Channel name; defaults to ``"loaded"`` at 0 deg, ``"unloaded"`` at 180 deg, else
         ``"sensor_<angle>deg"``.
-    attenuation_per_rad : float, optional
-        Exponential decay of the transmitted force per radian of angular distance,
-        1/rad, in [0, 10]. Default 0.5 (a contact opposite the sensor reaches it at
-        exp(-0.5 pi) = 21 % amplitude, -13.6 dB).
+    attenuation : float, optional
+        kappa of the transmission factor, dimensionless, in [0, 10]. Default 0.8: a
+        contact 90 deg away reaches the sensor at 45 % amplitude, one opposite it at
+        exp(-1.6) = 20 % (-13.9 dB). 0 makes every sensor see the pedestal motion.
 
     Examples
     --------
@@ -191,13 +192,13 @@ class Sensor:
 
     angle_deg: float = 0.0
     name: str | None = None
-    attenuation_per_rad: float = 0.5
+    attenuation: float = 0.8
 
     def __post_init__(self) -> None:
         angle = _number("sensor angle_deg", self.angle_deg, -1e6, 1e6)
         object.__setattr__(self, "angle_deg", wrap_deg(angle))
-        object.__setattr__(self, "attenuation_per_rad",
-                           _number("attenuation_per_rad", self.attenuation_per_rad, 0.0, 10.0))
+        object.__setattr__(self, "attenuation",
+                           _number("attenuation", self.attenuation, 0.0, 10.0))
         if self.name is None:
             default = {0.0: "loaded", 180.0: "unloaded"}.get(self.angle_deg)
             object.__setattr__(self, "name", default or f"sensor_{self.angle_deg:g}deg")

@@ -23,6 +23,7 @@ import math
 import sys
 import time
 import types
+from dataclasses import dataclass
 
 import numpy as np
 from scipy import signal as _signal
@@ -35,6 +36,7 @@ from .sr5 import BearingModel, SR5Parameters, build_model
 
 __all__ = [
     "simulate",
+    "integrate",
     "resolve_model",
     "build",
     "MODELS",
@@ -132,6 +134,108 @@ def _validate_solver_args(solver, dt, rtol, atol, oversample):
         raise ValueError(f"oversample must be an int in [1, 64], got {oversample!r}")
 
 
+@dataclass(frozen=True)
+class RawIntegration:
+    """Output of :func:`integrate` on the internal grid, before decimation.
+
+    Attributes
+    ----------
+    output : ndarray (n_out, n_sensors)
+        Sensor output at t = k h_out, m/s^2 (not AC-coupled).
+    states : ndarray (n_out, n_state) or (0, n_state)
+        States at the grid times when requested.
+    h_out : float
+        Grid spacing, s.
+    crossings : FaultCrossings
+    info : dict
+        Solver statistics.
+    """
+
+    output: np.ndarray
+    states: np.ndarray
+    h_out: float
+    crossings: FaultCrossings
+    info: dict
+
+
+def integrate(bm: BearingModel, solver: str, *, h_out: float, n_out: int,
+              dt: float | None = None, rtol: float | None = None, atol: float | None = None,
+              keep_states: bool = False) -> RawIntegration:
+    """Integrate a bound model and return the sensor output on a uniform grid.
+
+    This is the integration step of :func:`simulate` without decimation, AC coupling
+    or noise; useful to compare solvers with each other and with scipy.
+
+    Parameters
+    ----------
+    bm : BearingModel
+        From :func:`build`.
+    solver : {"rk4", "dopri5"}
+    h_out : float
+        Grid spacing of the output, s.
+    n_out : int
+        Number of grid points (t = 0 .. (n_out - 1) h_out).
+    dt, rtol, atol
+        As in :func:`simulate`.
+    keep_states : bool
+        Also return the state at every grid point.
+
+    Returns
+    -------
+    RawIntegration
+    """
+    scene = bm.scene
+    _validate_solver_args(solver, dt, rtol, atol, OVERSAMPLE)
+    if solver == "auto":
+        solver = "rk4"
+    t_wall = time.perf_counter()
+    ev_before, ev_after, ev_fault, ev_elem, ev_level = _events(bm, h_out, n_out)
+    out = np.empty((n_out, len(scene.sensors)))
+    states = np.empty((n_out if keep_states else 0, bm.n_state))
+    nd = 4 + bm.n_res
+    bound = np.empty(bm.n_state)
+    bound[:nd] = 1e4 * np.maximum(bm.scale[:nd], 1e-6)
+    bound[nd:] = 1e4 * bm.scale[nd:] + 1e3
+    omega = _characteristic_omega(bm)
+    info = {"solver": solver, "internal_fs": 1.0 / h_out, "n_events": int(ev_before.shape[0])}
+    if solver == "rk4":
+        dt_req = dt if dt is not None else 0.25 / omega
+        n_sub = max(1, math.ceil(h_out / dt_req - 1e-9))
+        status, n_steps, t_fail = _I.rk4(bm.y0, bm.m, bm.n_res, bm.work(), h_out, n_sub, n_out,
+                                         ev_before, ev_after, bound, out, states)
+        step = h_out / n_sub
+        info.update(n_steps=int(n_steps), n_rejected=0, dt_s=step)
+        step_text = f"dt = {step:.3g} s"
+    else:
+        rtol_v = 1e-6 if rtol is None else float(rtol)
+        atol_v = rtol_v * (1.0 if atol is None else float(atol)) * bm.scale
+        h_max = 0.5 * math.pi / omega  # at least 4 steps per period of the fastest mode
+        max_steps = int(50 * n_out + 100 * ev_before.shape[0] + 10_000)
+        status, n_acc, n_rej, h_min, t_fail = _I.dopri5(
+            bm.y0, bm.m, bm.n_res, bm.work(), h_out, n_out, ev_before, ev_after, bound, rtol_v,
+            atol_v, h_max, max_steps, out, states)
+        info.update(n_steps=int(n_acc), n_rejected=int(n_rej), dt_min_s=float(h_min),
+                    rtol=rtol_v)
+        step_text = f"rtol = {rtol_v:g}, smallest step {h_min:.3g} s"
+    if status != _I.STATUS_OK:
+        reason = {
+            _I.STATUS_NONFINITE: "the state became non-finite or unbounded",
+            _I.STATUS_UNDERFLOW: "the step size underflowed",
+            _I.STATUS_MAX_STEPS: "the step budget was exhausted",
+        }[status]
+        raise SimulationUnstableError(
+            f"simulation with solver {solver!r} ({step_text}) failed at t = {t_fail:.6g} s: "
+            f"{reason}. Try a smaller dt / rtol or solver='dopri5'. Scene: {scene!r}"
+        )
+    info["integration_time_s"] = time.perf_counter() - t_wall
+    crossings = FaultCrossings(
+        time_s=ev_before.copy(), fault=ev_fault, element=ev_elem,
+        edge=_edge_names(bm, ev_fault, ev_level),
+    )
+    return RawIntegration(output=out, states=states, h_out=h_out, crossings=crossings,
+                          info=info)
+
+
 def simulate(scene: Scene, model: str = "auto", solver: str = "auto", *, dt: float | None = None,
              rtol: float | None = None, atol: float | None = None,
              params: SR5Parameters | None = None, return_forces: bool = False,
@@ -194,50 +298,13 @@ def simulate(scene: Scene, model: str = "auto", solver: str = "auto", *, dt: flo
 
     bm = build_model(scene, params, resonator=(name == "sr5"))
     n_samples = scene.n_samples
-    h_out = 1.0 / (scene.fs * oversample)
-    n_out = n_samples * oversample
-    ev_before, ev_after, ev_fault, ev_elem, ev_level = _events(bm, h_out, n_out)
+    raw = integrate(bm, solver, h_out=1.0 / (scene.fs * oversample),
+                    n_out=n_samples * oversample, dt=dt, rtol=rtol, atol=atol,
+                    keep_states=return_forces)
+    out, states, info = raw.output, raw.states, raw.info
+    info["model"] = name
+    h_out = raw.h_out
     n_sensors = len(scene.sensors)
-    out = np.empty((n_out, n_sensors))
-    states = np.empty((n_out if return_forces else 0, bm.n_state))
-    bound = np.empty(bm.n_state)
-    nd = 4 + bm.n_res
-    bound[:nd] = 1e4 * np.maximum(bm.scale[:nd], 1e-6)
-    bound[nd:] = 1e4 * bm.scale[nd:] + 1e3
-    omega = _characteristic_omega(bm)
-    info = {"model": name, "solver": solver, "internal_fs": scene.fs * oversample,
-            "n_events": int(ev_before.shape[0])}
-
-    if solver == "rk4":
-        dt_req = dt if dt is not None else 0.25 / omega
-        n_sub = max(1, math.ceil(h_out / dt_req - 1e-9))
-        status, n_steps, t_fail = _I.rk4(bm.y0, bm.m, bm.n_res, bm.work(), h_out, n_sub, n_out,
-                                         ev_before, ev_after, bound, out, states)
-        step = h_out / n_sub
-        info.update(n_steps=int(n_steps), n_rejected=0, dt_s=step)
-        step_text = f"dt = {step:.3g} s"
-    else:
-        rtol_v = 1e-6 if rtol is None else float(rtol)
-        atol_v = rtol_v * (1.0 if atol is None else float(atol)) * bm.scale
-        h_max = 0.5 / omega * math.pi  # at least 4 steps per period of the fastest mode
-        max_steps = int(50 * n_out + 100 * ev_before.shape[0] + 10_000)
-        status, n_acc, n_rej, h_min, t_fail = _I.dopri5(
-            bm.y0, bm.m, bm.n_res, bm.work(), h_out, n_out, ev_before, ev_after, bound, rtol_v,
-            atol_v, h_max, max_steps, out, states)
-        info.update(n_steps=int(n_acc), n_rejected=int(n_rej), dt_min_s=float(h_min),
-                    rtol=rtol_v)
-        step_text = f"rtol = {rtol_v:g}, smallest step {h_min:.3g} s"
-    if status != _I.STATUS_OK:
-        reason = {
-            _I.STATUS_NONFINITE: "the state became non-finite or unbounded",
-            _I.STATUS_UNDERFLOW: "the step size underflowed",
-            _I.STATUS_MAX_STEPS: "the step budget was exhausted",
-        }[status]
-        raise SimulationUnstableError(
-            f"simulation with model {name!r}, solver {solver!r} ({step_text}) failed at "
-            f"t = {t_fail:.6g} s: {reason}. Try a smaller dt / rtol or solver='dopri5'. "
-            f"Scene: {scene!r}"
-        )
 
     accel = _signal.resample_poly(out, 1, oversample, axis=0) if oversample > 1 else out
     accel = accel[:n_samples].T.copy()
@@ -247,23 +314,24 @@ def simulate(scene: Scene, model: str = "auto", solver: str = "auto", *, dt: flo
         raise SimulationUnstableError(f"non-finite output for scene {scene!r}")
 
     t = np.arange(n_samples) / scene.fs
-    forces = None
+    forces = angles = displacement = None
     if return_forces:
         idx = np.arange(n_samples) * oversample
         forces = _K.contact_loads_many(idx * h_out, states[idx], bm.m).T.copy()
-    crossings = FaultCrossings(
-        time_s=ev_before.copy(), fault=ev_fault, element=ev_elem,
-        edge=_edge_names(bm, ev_fault, ev_level),
-    )
+        angles = _K.element_angles_many(idx * h_out, bm.m[0], bm.m[1],
+                                        scene.bearing.n_elements).T.copy()
+        displacement = states[idx][:, :4].T.copy()
     truth = GroundTruth(
         label=scene.label,
         faults=scene.faults,
         frequencies=scene.frequencies,
         shaft_angle=scene.speed.shaft_angle(t, scene.duration_s),
         rpm=scene.speed.rpm_at(t, scene.duration_s) * np.ones_like(t),
-        fault_crossings=crossings,
+        fault_crossings=raw.crossings,
         effective_depth_mm=tuple(f.effective_depth_mm(scene.bearing) for f in scene.faults),
         contact_forces=forces,
+        element_angles=angles,
+        displacement=displacement,
     )
     info["wall_time_s"] = time.perf_counter() - t_wall
     return SimulationResult(

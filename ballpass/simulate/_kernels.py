@@ -49,29 +49,40 @@ def shaft_angle(t, p):
 
 
 @njit(cache=True)
-def element_angles(t, p, dev, psi):
+def element_angles(t, p, walk, psi, cpsi, spsi):
     """Angular positions of the rolling elements at time t, rad, written into ``psi``.
 
-    Element j sits at the cage angle + 2 pi j / Z plus a slip deviation interpolated
-    linearly (in the element's own nominal angle) between random knots drawn once per
-    revolution, each knot where the element crosses the unloaded zone (pi). The cage
-    keeps its mean speed (Randall & Antoni 2011 slip model).
+    The cage turns at its kinematic rate plus a random walk ``walk`` (rad), sampled at
+    every element spacing of nominal cage angle and interpolated linearly between:
+    each interval between consecutive ball passes is stretched by an independent
+    random fraction, so inter-impact periods vary with standard deviation ``slip`` of
+    the nominal period and the cage keeps its mean speed (the random-slip model of
+    Randall & Antoni 2011). Elements keep their nominal spacing 2 pi / Z.
+    Also writes cos(psi) and sin(psi) into ``cpsi``, ``spsi``, advancing from element to
+    element by a rotation (four trigonometric calls in all, whatever Z).
     """
     z = psi.shape[0]
-    cage = p[P_CAGE] * shaft_angle(t, p)
     step = TWO_PI / z
-    n_knots = dev.shape[1]
+    cage = p[P_CAGE] * shaft_angle(t, p)
+    x = cage / step
+    k = math.floor(x)
+    f = x - k
+    kk = int(k)
+    n_knots = walk.shape[0]
+    if kk < 0:
+        kk = 0
+    if kk > n_knots - 2:
+        kk = n_knots - 2
+    cage += walk[kk] * (1.0 - f) + walk[kk + 1] * f
+    c = math.cos(cage)
+    sn = math.sin(cage)
+    cs = math.cos(step)
+    ss = math.sin(step)
     for j in range(z):
-        nominal = cage + step * j
-        x = (nominal - math.pi) / TWO_PI
-        k = math.floor(x)
-        f = x - k
-        kk = int(k) + 1
-        if kk < 0:
-            kk = 0
-        if kk > n_knots - 2:
-            kk = n_knots - 2
-        psi[j] = nominal + dev[j, kk] * (1.0 - f) + dev[j, kk + 1] * f
+        psi[j] = cage + step * j
+        cpsi[j] = c
+        spsi[j] = sn
+        c, sn = c * cs - sn * ss, sn * cs + c * ss
 
 
 @njit(cache=True)
@@ -124,7 +135,7 @@ def fault_depths(t, m, psi, depth):
 
 
 @njit(cache=True)
-def contact_loads(y, p, psi, depth, q):
+def contact_loads(y, p, cpsi, spsi, depth, q):
     """Hertz contact loads Q_j = K max(delta_j, 0)^n, N, written into ``q``.
 
     delta_j = (u_s - u_p) cos psi_j + (v_s - v_p) sin psi_j - c - depth_j
@@ -136,33 +147,36 @@ def contact_loads(y, p, psi, depth, q):
     kh = p[P_KH]
     nh = p[P_NH]
     c = p[P_CLEAR]
-    for j in range(psi.shape[0]):
-        d = du * math.cos(psi[j]) + dv * math.sin(psi[j]) - c - depth[j]
+    ball = nh == 1.5
+    for j in range(cpsi.shape[0]):
+        d = du * cpsi[j] + dv * spsi[j] - c - depth[j]
         if d > 0.0:
-            q[j] = kh * d**nh
+            q[j] = kh * d * math.sqrt(d) if ball else kh * d**nh
         else:
             q[j] = 0.0
 
 
 @njit(cache=True)
-def housing_accel(y, p, psi, q, s_ang, s_att, fu, fv, out):
+def housing_accel(p, cpsi, spsi, q, s_ang, s_att, fu, fv, out):
     """Local housing acceleration along each sensor's direction, m/s^2.
 
     The pedestal's rigid-body acceleration with each contact force weighted by its
-    transmission factor exp(-att |wrap(psi_j - theta_i)|) to sensor i. With zero
-    attenuation this is exactly the pedestal acceleration projected on the sensor axis.
-    ``fu, fv`` are the spring, damping and gravity forces on the pedestal (N).
+    transmission factor exp(-kappa (1 - cos(psi_j - theta_i))) to sensor i: 1 at the
+    sensor, exp(-2 kappa) opposite it (after McFadden & Smith 1984). With kappa = 0 this
+    is exactly the pedestal acceleration projected on the sensor axis. ``fu, fv`` are
+    the spring, damping and gravity forces on the pedestal (N).
     """
     mp = p[P_MP]
     for i in range(s_ang.shape[0]):
         ci = math.cos(s_ang[i])
         si = math.sin(s_ang[i])
+        kappa = s_att[i]
         acc = (fu * ci + fv * si) / mp
-        for j in range(psi.shape[0]):
+        for j in range(cpsi.shape[0]):
             if q[j] != 0.0:
-                rel = wrap_pi(psi[j] - s_ang[i])
-                w = math.exp(-s_att[i] * abs(rel))
-                acc += w * q[j] * math.cos(rel) / mp
+                cos_rel = cpsi[j] * ci + spsi[j] * si
+                w = math.exp(-kappa * (1.0 - cos_rel)) if kappa != 0.0 else 1.0
+                acc += w * q[j] * cos_rel / mp
         out[i] = acc
 
 
@@ -176,19 +190,20 @@ def rhs(t, y, dydt, m, n_res, work):
     local housing acceleration s_i'' of :func:`housing_accel`).
 
     ``m`` is the model tuple built by :func:`ballpass.simulate.sr5.build_model`; ``work``
-    holds scratch arrays ``(psi, depth, q, sacc)`` (lengths Z, Z, Z, n_sensors).
+    holds scratch arrays ``(psi, depth, q, sacc, cpsi, spsi)`` (lengths Z, Z, Z,
+    n_sensors, Z, Z).
     """
-    p, dev, s_ang, s_att = m[0], m[1], m[9], m[10]
-    psi, depth, q, sacc = work
-    element_angles(t, p, dev, psi)
+    p, s_ang, s_att = m[0], m[9], m[10]
+    psi, depth, q, sacc, cpsi, spsi = work
+    element_angles(t, p, m[1], psi, cpsi, spsi)
     fault_depths(t, m, psi, depth)
-    contact_loads(y, p, psi, depth, q)
+    contact_loads(y, p, cpsi, spsi, depth, q)
     fu = 0.0
     fv = 0.0
     for j in range(psi.shape[0]):
         if q[j] != 0.0:
-            fu += q[j] * math.cos(psi[j])
-            fv += q[j] * math.sin(psi[j])
+            fu += q[j] * cpsi[j]
+            fv += q[j] * spsi[j]
     nd = 4 + n_res
     g = p[P_G]
     # shaft
@@ -204,7 +219,7 @@ def rhs(t, y, dydt, m, n_res, work):
     dydt[nd + 2] = (pu + fu) / p[P_MP]
     dydt[nd + 3] = (pv + fv) / p[P_MP]
     if n_res > 0:
-        housing_accel(y, p, psi, q, s_ang, s_att, pu, pv, sacc)
+        housing_accel(p, cpsi, spsi, q, s_ang, s_att, pu, pv, sacc)
         w = p[P_WR]
         zeta = p[P_ZETA]
         for i in range(n_res):
@@ -228,28 +243,30 @@ def sensor_output(t, y, m, n_res, work, out):
         for i in range(n_res):
             out[i] = -(2.0 * zeta * w * y[nd + 4 + i] + w * w * y[4 + i])
         return
-    psi, depth, q = work[0], work[1], work[2]
-    element_angles(t, p, m[1], psi)
+    psi, depth, q, cpsi, spsi = work[0], work[1], work[2], work[4], work[5]
+    element_angles(t, p, m[1], psi, cpsi, spsi)
     fault_depths(t, m, psi, depth)
-    contact_loads(y, p, psi, depth, q)
+    contact_loads(y, p, cpsi, spsi, depth, q)
     pu = -p[P_KP] * y[2] - p[P_CP] * y[6] + p[P_MP] * p[P_G]
     pv = -p[P_KP] * y[3] - p[P_CP] * y[7]
-    housing_accel(y, p, psi, q, m[9], m[10], pu, pv, out)
+    housing_accel(p, cpsi, spsi, q, m[9], m[10], pu, pv, out)
 
 
 @njit(cache=True)
-def element_angles_many(t, p, dev, z):
+def element_angles_many(t, p, walk, z):
     """Element angles at many times: (len(t), Z) array, rad (for kinematics in Python)."""
     out = np.empty((t.shape[0], z))
     psi = np.empty(z)
+    cpsi = np.empty(z)
+    spsi = np.empty(z)
     for k in range(t.shape[0]):
-        element_angles(t[k], p, dev, psi)
+        element_angles(t[k], p, walk, psi, cpsi, spsi)
         out[k, :] = psi
     return out
 
 
 @njit(cache=True)
-def fault_offset(t, m, i, j, psi):
+def fault_offset(t, m, i, j, psi, cpsi, spsi):
     """Signed angular offset (rad, in [-pi, pi)) of element j from the centre of fault i.
 
     For a ball defect ``j`` selects the face: 0 = facing the outer race (phase 0),
@@ -257,7 +274,7 @@ def fault_offset(t, m, i, j, psi):
     crossing times found with it are exactly where the kernels switch.
     """
     p = m[0]
-    element_angles(t, p, m[1], psi)
+    element_angles(t, p, m[1], psi, cpsi, spsi)
     kind = m[3][i]
     if kind == KIND_BALL:
         e = m[8][i]
@@ -292,8 +309,10 @@ def find_crossings(m, t_grid, levels_per_fault):
     fault, element, level : ndarray of int64
         Which fault, which element (face for a ball defect) and which level.
     """
-    z = m[1].shape[0]
+    z = m[2].shape[0]
     psi = np.empty(z)
+    cpsi = np.empty(z)
+    spsi = np.empty(z)
     n_f = m[3].shape[0]
     cap = 1024
     before = np.empty(cap)
@@ -305,9 +324,9 @@ def find_crossings(m, t_grid, levels_per_fault):
     for i in range(n_f):
         n_paths = 2 if m[3][i] == KIND_BALL else z
         for j in range(n_paths):
-            o_prev = fault_offset(t_grid[0], m, i, j, psi)
+            o_prev = fault_offset(t_grid[0], m, i, j, psi, cpsi, spsi)
             for k in range(1, t_grid.shape[0]):
-                o_next = fault_offset(t_grid[k], m, i, j, psi)
+                o_next = fault_offset(t_grid[k], m, i, j, psi, cpsi, spsi)
                 if abs(o_next - o_prev) < math.pi:
                     for lv in range(4):
                         level = levels_per_fault[i, lv]
@@ -325,7 +344,7 @@ def find_crossings(m, t_grid, levels_per_fault):
                             mid = 0.5 * (lo + hi)
                             if mid <= lo or mid >= hi:
                                 break
-                            if (fault_offset(mid, m, i, j, psi) >= level) == a_side:
+                            if (fault_offset(mid, m, i, j, psi, cpsi, spsi) >= level) == a_side:
                                 lo = mid
                             else:
                                 hi = mid
@@ -350,14 +369,16 @@ def find_crossings(m, t_grid, levels_per_fault):
 def contact_loads_many(t, states, m):
     """Contact loads of every element at many (time, state) pairs: (len(t), Z), N."""
     p = m[0]
-    z = m[1].shape[0]
+    z = m[2].shape[0]
     psi = np.empty(z)
+    cpsi = np.empty(z)
+    spsi = np.empty(z)
     depth = np.empty(z)
     q = np.empty(z)
     out = np.empty((t.shape[0], z))
     for k in range(t.shape[0]):
-        element_angles(t[k], p, m[1], psi)
+        element_angles(t[k], p, m[1], psi, cpsi, spsi)
         fault_depths(t[k], m, psi, depth)
-        contact_loads(states[k], p, psi, depth, q)
+        contact_loads(states[k], p, cpsi, spsi, depth, q)
         out[k, :] = q
     return out

@@ -67,6 +67,10 @@ class GroundTruth:
         Depth each element could actually drop into each fault (ball-drop limit), mm.
     contact_forces : ndarray (n_elements, n_samples) or None
         Contact load of each rolling element at each output sample, N (on request).
+    element_angles : ndarray (n_elements, n_samples) or None
+        Angle of each rolling element from the load line, rad, unwrapped (on request).
+    displacement : ndarray (4, n_samples) or None
+        Shaft u, v and pedestal u, v displacement, m (on request); u along the load line.
     """
 
     label: str
@@ -77,6 +81,8 @@ class GroundTruth:
     fault_crossings: FaultCrossings
     effective_depth_mm: tuple[float, ...]
     contact_forces: np.ndarray | None = None
+    element_angles: np.ndarray | None = None
+    displacement: np.ndarray | None = None
 
 
 @dataclass(frozen=True)

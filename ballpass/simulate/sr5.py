@@ -13,6 +13,7 @@ The radial load F_r and gravity act along the load line u (angle 0 = centre of t
 zone). Element angles psi_j follow the cage kinematics with random slip (see
 :func:`._kernels.element_angles`); d_j(t) is the extra clearance opened by the defects
 (``ramped`` or ``sharp`` edges, depth limited by the ball-drop geometry).
+The cage carries a random walk for slip (:func:`._kernels.element_angles`).
 
 ``sr5`` adds, for every sensor, Sawalhi & Randall's high-frequency resonator (the
 "sprung mass" y_b, default 15 kHz, 5 % damping: m_r = 1 kg, k_r = 8.8826e9 N/m,
@@ -23,9 +24,9 @@ deviations from the paper, stated:
   coupling; the paper couples its 1 kg back). Its output is the absolute acceleration
   of the resonator mass, as in the paper;
 * each sensor's housing excitation weights every contact force by a transmission
-  factor exp(-a |angle from contact to sensor|) (McFadden & Smith 1984), so loaded- and
-  unloaded-zone sensors differ; with a = 0 it is the pedestal acceleration projected on
-  the sensor axis;
+  factor exp(-kappa (1 - cos(angle from contact to sensor))) (after McFadden & Smith
+  1984), so loaded- and unloaded-zone sensors differ; with kappa = 0 it is the pedestal
+  acceleration projected on the sensor axis;
 * sensors are AC-coupled: the mean of each output channel is removed;
 * the balls are massless (quasi-static), there is no contact damping, no centrifugal or
   gyroscopic load and no lubricant film.
@@ -125,7 +126,8 @@ class BearingModel:
     def work(self) -> tuple:
         """Fresh scratch arrays for the kernels."""
         z = self.scene.bearing.n_elements
-        return (np.empty(z), np.empty(z), np.empty(z), np.empty(len(self.scene.sensors)))
+        return (np.empty(z), np.empty(z), np.empty(z), np.empty(len(self.scene.sensors)),
+                np.empty(z), np.empty(z))
 
     def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
         """dy/dt at (t, y): the compiled right-hand side, callable from Python (e.g. by
@@ -176,19 +178,22 @@ def _fault_arrays(scene: Scene):
     )
 
 
-def _slip_table(scene: Scene, cage_ratio: float, rng: np.random.Generator) -> np.ndarray:
-    """Random slip knots (Z, n_knots), rad, one per element and revolution.
+def _slip_walk(scene: Scene, cage_ratio: float, rng: np.random.Generator) -> np.ndarray:
+    """Random walk of the cage angle (rad), one knot per element spacing of cage angle.
 
-    The deviation at the load line is the mean of two independent knots, so the
-    difference between consecutive elements' passing times has standard deviation
-    sigma / omega_cage; sigma = slip * 2 pi / Z makes it ``slip`` of the nominal
-    inter-impact period.
+    Knot k holds (2 pi / Z) * sum_{i<=k} eps_i with eps_i ~ N(0, slip^2): the cage takes
+    (1 + eps_i) times the nominal angle increment over the i-th ball-pass interval, so
+    consecutive impact intervals differ by ``slip`` of the period (1 sigma).
     """
     z = scene.bearing.n_elements
     total_cage = cage_ratio * scene.speed.shaft_angle(scene.duration_s, scene.duration_s)
-    n_knots = int(math.floor(total_cage / (2 * math.pi))) + 4
-    sigma = scene.slip * 2.0 * math.pi / z
-    return sigma * rng.standard_normal((z, n_knots))
+    n_knots = int(math.floor(total_cage * z / (2 * math.pi))) + 3
+    # A pass at a fixed angle falls at a fraction u of a knot interval and mixes two
+    # increments, (1-u) eps_k + u eps_k+1; E[(1-u)^2 + u^2] = 2/3 over u, hence the
+    # sqrt(3/2): on average over fault positions the period std equals ``slip``.
+    steps = -scene.slip * math.sqrt(1.5) * rng.standard_normal(n_knots)
+    steps[0] = 0.0
+    return (2.0 * math.pi / z) * np.cumsum(steps)
 
 
 def _pedestal_forces(params: SR5Parameters, y: np.ndarray, g: float, n_res: int):
@@ -249,12 +254,12 @@ def build_model(scene: Scene, params: SR5Parameters | None = None, *,
     p[K.P_ZETA] = scene.resonance_damping
 
     slip_seed, _noise_seed = np.random.SeedSequence(scene.seed).spawn(2)
-    dev = _slip_table(scene, cage_ratio, np.random.default_rng(slip_seed))
-    psi0 = K.element_angles_many(np.zeros(1), p, dev, b.n_elements)[0]
+    walk = _slip_walk(scene, cage_ratio, np.random.default_rng(slip_seed))
+    psi0 = K.element_angles_many(np.zeros(1), p, walk, b.n_elements)[0]
     f_kind, f_center, f_half, f_depth, f_ramp, f_elem, levels = _fault_arrays(scene)
     s_ang = np.array([math.radians(s.angle_deg) for s in scene.sensors])
-    s_att = np.array([s.attenuation_per_rad for s in scene.sensors])
-    m = (p, dev, psi0, f_kind, f_center, f_half, f_depth, f_ramp, f_elem, s_ang, s_att)
+    s_att = np.array([s.attenuation for s in scene.sensors])
+    m = (p, walk, psi0, f_kind, f_center, f_half, f_depth, f_ramp, f_elem, s_ang, s_att)
     n_res = len(scene.sensors) if resonator else 0
 
     y0, scale = _static_state(scene, params, m, n_res, kh)
@@ -321,7 +326,7 @@ def _static_state(scene: Scene, params: SR5Parameters, m: tuple, n_res: int, kh:
     if n_res:
         sacc = np.empty(len(scene.sensors))
         pu, pv = _pedestal_forces(params, y0, g, n_res)
-        K.housing_accel(y0, p, psi, q, m[9], m[10], pu, pv, sacc)
+        K.housing_accel(p, cos_psi, sin_psi, q, m[9], m[10], pu, pv, sacc)
         y0[4:nd] = -sacc / p[K.P_WR] ** 2
     load = bearing_load + params.pedestal_mass * g
 
