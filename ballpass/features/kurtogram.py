@@ -65,6 +65,11 @@ class KurtogramResult:
         ones (see :func:`fast_kurtogram`); an array for batched input.
     best_level, best_kurtosis : float or ndarray, shape (...)
         Level and kurtosis of that band.
+    min_bandwidth : float
+        Narrowest band admitted for ``best_band``, Hz.
+    floor_db : float
+        Content threshold for ``best_band``: bands with ``density_db < floor_db`` were
+        not admitted.
     """
 
     kurtosis: np.ndarray
@@ -76,6 +81,8 @@ class KurtogramResult:
     best_band: tuple[float, float] | np.ndarray
     best_level: float | np.ndarray
     best_kurtosis: float | np.ndarray
+    min_bandwidth: float
+    floor_db: float
 
     def plot(self, ax=None):
         """Draw the kurtogram heat map; see :func:`ballpass.plot.kurtogram`.
@@ -102,7 +109,7 @@ def _tree(n: int, fs: float, nlevel: int):
     levels, n_bands = [0.0], [1]
     for k in range(1, nlevel + 1):
         if k > 1:
-            levels.append(k - 1 + math.log2(3))
+            levels.append(k - 2 + math.log2(3))
             n_bands.append(3 * 2 ** (k - 2))
         levels.append(float(k))
         n_bands.append(2**k)
@@ -265,6 +272,8 @@ def fast_kurtogram(
         best_band=best_band,
         best_level=best_level,
         best_kurtosis=best_k,
+        min_bandwidth=min_bandwidth,
+        floor_db=float(floor_db),
     )
 
 

@@ -1,0 +1,446 @@
+"""Figures of vibration signals: waveform, envelope spectrum with fault markers, kurtogram.
+
+Every plotting function takes ``ax=None`` (a new figure when omitted) and returns the
+Axes it drew on; nothing calls ``plt.show()``. matplotlib is imported on first use;
+without a display (no ``DISPLAY``/``WAYLAND_DISPLAY`` on Linux and no ``MPLBACKEND``)
+the non-interactive Agg backend is selected, so figures can be saved on servers.
+:func:`signal_overview` builds its figure without pyplot (no global state), which
+suits command-line tools and loops.
+
+Examples
+--------
+>>> import numpy as np
+>>> import ballpass as bp
+>>> from ballpass import plot
+>>> fs = 12_000.0
+>>> x = np.random.default_rng(0).standard_normal(12_000)
+>>> f, ses = bp.features.envelope_spectrum(x, fs, band=(2000, 4000))
+>>> freqs = bp.Bearing.catalog("6205").frequencies(29.95)
+>>> ax = plot.envelope_spectrum(f, ses, frequencies=freqs)
+>>> ax.get_xlabel()
+'Frequency (Hz)'
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["waveform", "envelope_spectrum", "kurtogram", "signal_overview"]
+
+#: Marker style per fault line: (label, colour).
+_LINE_STYLE = {
+    "shaft": ("shaft", "0.55"),
+    "ftf": ("FTF", "tab:purple"),
+    "bpfo": ("BPFO", "tab:red"),
+    "bpfi": ("BPFI", "tab:blue"),
+    "bsf": ("BSF", "tab:olive"),
+    "ball_defect": ("2×BSF", "tab:green"),
+}
+#: Lines marked by default (BSF itself is rarely seen; a ball defect shows at 2×BSF).
+DEFAULT_LINES = ("shaft", "ftf", "bpfo", "bpfi", "ball_defect")
+
+
+def _pyplot():
+    """Import pyplot, selecting Agg when there is no display to draw on."""
+    import matplotlib
+
+    headless = sys.platform.startswith("linux") and not (
+        os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")
+    )
+    if headless and "matplotlib.pyplot" not in sys.modules and not os.environ.get("MPLBACKEND"):
+        matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def _axes(ax):
+    if ax is not None:
+        return ax
+    _, ax = _pyplot().subplots(figsize=(8, 3.5), layout="constrained")
+    return ax
+
+
+def waveform(x, fs_or_t, *, channels=None, unit="m/s²", ax=None):
+    """Plot signal(s) against time.
+
+    Parameters
+    ----------
+    x : array_like, shape (n_samples,) or (n_channels, n_samples)
+        Signal(s).
+    fs_or_t : float or array_like of shape (n_samples,)
+        Sampling frequency in Hz, or the sample times in s.
+    channels : sequence of str, optional
+        Channel names for the legend (default ``ch0, ch1, ...``; no legend for one).
+    unit : str, optional
+        Unit for the y label (default ``"m/s²"``).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on (default: a new figure).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ballpass.plot import waveform
+    >>> ax = waveform(np.sin(np.arange(1000) / 10), 1000.0)
+    >>> ax.get_xlabel()
+    'Time (s)'
+    """
+    data = np.atleast_2d(np.asarray(x, dtype=float))
+    if data.ndim != 2 or data.shape[-1] < 1:
+        raise ValueError(
+            f"x must have shape (n_samples,) or (n_channels, n_samples), got {data.shape}"
+        )
+    n = data.shape[-1]
+    if np.ndim(fs_or_t) == 0:
+        fs = float(fs_or_t)
+        if not (np.isfinite(fs) and fs > 0):
+            raise ValueError(
+                f"fs_or_t must be a sampling frequency > 0 Hz or times, got {fs_or_t!r}"
+            )
+        t = np.arange(n) / fs
+    else:
+        t = np.asarray(fs_or_t, dtype=float)
+        if t.shape != (n,):
+            raise ValueError(f"fs_or_t as times must have shape ({n},), got {t.shape}")
+    names = list(channels) if channels is not None else [f"ch{i}" for i in range(len(data))]
+    if len(names) != len(data):
+        raise ValueError(f"channels must name {len(data)} channel(s), got {len(names)}")
+    ax = _axes(ax)
+    for row, name in zip(data, names, strict=True):
+        ax.plot(t, row, lw=0.6, label=name, alpha=0.9 if len(data) == 1 else 0.75)
+    ax.set_xlabel("Time (s)")
+    ax.set_ylabel(f"Acceleration ({unit})" if unit else "Amplitude")
+    ax.set_xlim(t[0], t[-1])
+    ax.grid(True, alpha=0.3)
+    if len(data) > 1:
+        ax.legend(loc="upper right", fontsize="small", ncols=min(len(data), 4))
+    return ax
+
+
+def _fault_lines(frequencies, lines) -> dict[str, float]:
+    """``{name: Hz}`` of the lines to mark, from BearingFrequencies or a dict."""
+    if frequencies is None:
+        return {}
+    if hasattr(frequencies, "as_dict"):  # BearingFrequencies
+        table = frequencies.as_dict()
+        default = DEFAULT_LINES
+    else:
+        table = dict(frequencies)
+        default = tuple(table)
+    unknown = [name for name in lines or () if name not in table]
+    if unknown:
+        raise ValueError(f"lines must be names in frequencies {sorted(table)}, got {unknown}")
+    return {name: float(table[name]) for name in (lines or default)}
+
+
+def envelope_spectrum(
+    freqs,
+    amp,
+    *,
+    frequencies=None,
+    harmonics: int = 3,
+    lines=None,
+    fmax: float | None = None,
+    labels=None,
+    unit="(m/s²)²",
+    ax=None,
+):
+    """Plot an envelope spectrum with labelled fault-frequency markers.
+
+    Each fault line gets a colour and dashed markers at harmonics ``1..harmonics``,
+    numbered at the top; the legend gives its name and frequency.
+
+    Parameters
+    ----------
+    freqs : array_like, shape (n_bins,)
+        Frequencies, Hz.
+    amp : array_like, shape (n_bins,) or (n_spectra, n_bins)
+        Envelope spectrum amplitude(s).
+    frequencies : BearingFrequencies or dict of str to float, optional
+        Fault frequencies in Hz, e.g. ``Bearing.catalog("6205").frequencies(29.95)``.
+        Known names (``shaft``, ``ftf``, ``bpfo``, ``bpfi``, ``bsf``, ``ball_defect``)
+        get fixed colours and labels.
+    harmonics : int, optional
+        Harmonics to mark per line (default 3).
+    lines : sequence of str, optional
+        Which entries of ``frequencies`` to mark (default: shaft, FTF, BPFO, BPFI and
+        2×BSF for BearingFrequencies; every entry of a dict).
+    fmax : float, optional
+        Upper frequency limit, Hz (default: a little above the highest marker, or
+        the whole spectrum without markers).
+    labels : sequence of str, optional
+        Legend labels of the spectra when there are several.
+    unit : str, optional
+        Unit of ``amp`` for the y label (default ``"(m/s²)²"``, the SES of m/s²).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on (default: a new figure).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ballpass.plot import envelope_spectrum
+    >>> f = np.arange(1001) * 0.5
+    >>> ax = envelope_spectrum(f, np.exp(-f / 50), frequencies={"BPFO": 107.3}, harmonics=2)
+    >>> [t.get_text() for t in ax.texts]
+    ['1×', '2×']
+    """
+    freqs = np.asarray(freqs, dtype=float)
+    spectra = np.atleast_2d(np.asarray(amp, dtype=float))
+    if freqs.ndim != 1 or spectra.shape[-1] != freqs.size:
+        raise ValueError(
+            f"amp must have shape (n_bins,) or (n, n_bins) with n_bins = len(freqs) = "
+            f"{freqs.size}, got {spectra.shape}"
+        )
+    if isinstance(harmonics, bool) or not isinstance(harmonics, int) or harmonics < 1:
+        raise ValueError(f"harmonics must be an int >= 1, got {harmonics!r}")
+    marks = _fault_lines(frequencies, lines)
+    if fmax is None:
+        fmax = min(freqs[-1], 1.1 * harmonics * max(marks.values())) if marks else freqs[-1]
+    ax = _axes(ax)
+    keep = freqs <= fmax
+    names = list(labels) if labels is not None else [None] * len(spectra)
+    for spectrum, label in zip(spectra, names, strict=True):
+        ax.plot(
+            freqs[keep],
+            spectrum[keep],
+            lw=0.8,
+            color="k" if len(spectra) == 1 else None,
+            label=label,
+        )
+    transform = ax.get_xaxis_transform()
+    placed: list[float] = []  # harmonic numbers closer than 2 % of the axis are skipped
+    for i, (name, f0) in enumerate(marks.items()):
+        text, colour = _LINE_STYLE.get(name, (name, f"C{i % 10}"))
+        minor = name in ("shaft", "ftf")
+        for h in range(1, harmonics + 1):
+            if h * f0 > fmax:
+                break
+            ax.axvline(
+                h * f0,
+                color=colour,
+                ls=":" if minor else "--",
+                lw=0.8 if minor else 1.0,
+                alpha=0.7 if minor else 0.85,
+                label=f"{text} {f0:.1f} Hz" if h == 1 else None,
+            )
+            if all(abs(h * f0 - p) > 0.02 * fmax for p in placed):
+                placed.append(h * f0)
+                ax.text(
+                    h * f0,
+                    1.0,
+                    f"{h}×",
+                    transform=transform,
+                    color=colour,
+                    ha="center",
+                    va="bottom",
+                    fontsize="x-small",
+                )
+    ax.set_xlim(0, fmax)
+    ax.set_ylim(bottom=0)
+    ax.set_xlabel("Frequency (Hz)")
+    ax.set_ylabel(f"Amplitude ({unit})" if unit else "Amplitude")
+    ax.grid(True, alpha=0.3)
+    if marks or labels is not None:
+        ax.legend(loc="upper right", fontsize="small", framealpha=0.85)
+    return ax
+
+
+def kurtogram(result, *, ax=None, colorbar: bool = True):
+    """Plot a fast-kurtogram heat map with the selected band outlined.
+
+    Bands without content (power density below the result's ``floor_db``) are grey
+    and excluded from the colour scale; a dotted line separates the rows narrower
+    than ``min_bandwidth``, which the band choice skips.
+
+    Parameters
+    ----------
+    result : KurtogramResult
+        From :func:`ballpass.features.fast_kurtogram` of one signal.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on (default: a new figure).
+    colorbar : bool, optional
+        Add a colour bar (default True).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ballpass.features import fast_kurtogram
+    >>> from ballpass.plot import kurtogram
+    >>> res = fast_kurtogram(np.random.default_rng(0).standard_normal(4096), 1000.0)
+    >>> kurtogram(res).get_ylabel()
+    'Level (bandwidth)'
+    """
+    grid = np.asarray(result.kurtosis)
+    if grid.ndim != 2:
+        raise ValueError(
+            f"kurtogram plots one signal's result; got a kurtosis grid of shape {grid.shape}"
+        )
+    ax = _axes(ax)
+    n_rows = grid.shape[0]
+    content = np.asarray(result.density_db) >= result.floor_db
+    cmap = _pyplot().get_cmap("viridis").with_extremes(bad="0.8")
+    image = ax.imshow(
+        np.ma.masked_where(~content, grid),
+        aspect="auto",
+        cmap=cmap,
+        interpolation="nearest",
+        extent=(0.0, 0.5 * result.fs, n_rows - 0.5, -0.5),
+        vmin=min(0.0, float(grid[content].min())),
+        vmax=float(grid[content].max()),
+    )
+    ax.set_yticks(np.arange(n_rows))
+    ax.set_yticklabels(
+        [f"{lv:.1f} ({_hz(bw)})" for lv, bw in zip(result.levels, result.bandwidths, strict=True)],
+        fontsize="x-small",
+    )
+    narrow = np.flatnonzero(result.bandwidths < result.min_bandwidth)
+    if narrow.size:
+        ax.axhline(narrow[0] - 0.5, color="white", ls=":", lw=1.2)
+    lo, hi = result.best_band
+    row = int(np.flatnonzero(np.isclose(result.levels, result.best_level))[0])
+    ax.add_patch(_rectangle((lo, row - 0.5), hi - lo, 1.0))
+    ax.set_xlabel("Frequency (Hz)")
+    ax.set_ylabel("Level (bandwidth)")
+    ax.set_title(
+        f"Kurtogram: best band {lo:.0f}–{hi:.0f} Hz, SK = {result.best_kurtosis:.2f}",
+        fontsize="medium",
+    )
+    if colorbar:
+        ax.figure.colorbar(image, ax=ax, label="Spectral kurtosis", pad=0.01)
+    return ax
+
+
+def _hz(value: float) -> str:
+    return f"{value / 1000:.3g} kHz" if value >= 1000 else f"{value:.3g} Hz"
+
+
+def _rectangle(xy, width, height):
+    from matplotlib.patches import Rectangle
+
+    return Rectangle(xy, width, height, fill=False, edgecolor="white", lw=1.8)
+
+
+def signal_overview(
+    x,
+    fs: float,
+    bearing=None,
+    shaft_hz: float | None = None,
+    path=None,
+    *,
+    channels=None,
+    band=None,
+    harmonics: int = 3,
+    title: str | None = None,
+    dpi: int = 120,
+):
+    """One figure: waveform, squared envelope spectrum with fault markers, kurtogram.
+
+    The demodulation band of each channel is chosen by the fast kurtogram unless
+    ``band`` is given; the kurtogram of the first channel is drawn.
+
+    Parameters
+    ----------
+    x : array_like, shape (n_samples,) or (n_channels, n_samples)
+        Acceleration, m/s^2.
+    fs : float
+        Sampling frequency, Hz.
+    bearing : str or Bearing, optional
+        Bearing whose fault frequencies are marked (needs ``shaft_hz``).
+    shaft_hz : float, optional
+        Shaft speed, Hz (rpm / 60).
+    path : str or os.PathLike, optional
+        Save the figure there (PNG, or any format matplotlib infers from the suffix).
+    channels : sequence of str, optional
+        Channel names.
+    band : (float, float), optional
+        Demodulation band, Hz, for every channel.
+    harmonics : int, optional
+        Harmonics of each fault line to mark (default 3).
+    title : str, optional
+        Figure title.
+    dpi : int, optional
+        Resolution of the saved image (default 120).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ballpass.plot import signal_overview
+    >>> x = np.random.default_rng(0).standard_normal(12_000)
+    >>> fig = signal_overview(x, 12_000.0, bearing="6205", shaft_hz=29.95)
+    >>> len(fig.axes)
+    4
+    """
+    from matplotlib.figure import Figure
+
+    from . import features
+    from .features.bands import _bearing  # catalogue name or Bearing -> Bearing
+
+    data = np.atleast_2d(np.asarray(x, dtype=float))
+    names = (
+        list(channels)
+        if channels is not None
+        else (["signal"] if len(data) == 1 else [f"ch{i}" for i in range(len(data))])
+    )
+    if (bearing is None) != (shaft_hz is None):
+        raise ValueError("bearing and shaft_hz go together: give both or neither")
+    bearing = _bearing(bearing) if bearing is not None else None
+    marks = bearing.frequencies(float(shaft_hz)) if bearing is not None else None
+    result = features.fast_kurtogram(data[0], fs)
+    bands = [band or features.fast_kurtogram(row, fs).best_band for row in data[1:]]
+    bands.insert(0, band or result.best_band)
+    spectra = [features.envelope_spectrum(row, fs, b) for row, b in zip(data, bands, strict=True)]
+
+    fig = Figure(figsize=(12, 7.5), layout="constrained")
+    grid = fig.add_gridspec(2, 2, height_ratios=(1, 1.35), width_ratios=(1.5, 1))
+    ax_wave = fig.add_subplot(grid[0, :])
+    waveform(data, fs, channels=names if len(data) > 1 else None, ax=ax_wave)
+    ax_wave.set_title("Waveform", fontsize="medium", loc="left")
+
+    ax_ses = fig.add_subplot(grid[1, 0])
+    envelope_spectrum(
+        spectra[0][0],
+        np.stack([s[1] for s in spectra]),
+        frequencies=marks,
+        harmonics=harmonics,
+        labels=names if len(data) > 1 else None,
+        ax=ax_ses,
+    )
+    band_text = ", ".join(f"{lo:.0f}–{hi:.0f} Hz" for lo, hi in bands)
+    ax_ses.set_title(
+        f"Squared envelope spectrum (band {band_text})", fontsize="medium", loc="left", pad=14
+    )
+
+    kurtogram(result, ax=fig.add_subplot(grid[1, 1]))
+    if title is None:
+        parts = [f"fs {fs:g} Hz, {data.shape[-1] / fs:g} s"]
+        if bearing is not None:
+            parts.insert(
+                0, f"bearing {bearing.name}, shaft {shaft_hz:.2f} Hz ({60 * shaft_hz:.0f} rpm)"
+            )
+        title = "  ·  ".join(parts)
+    fig.suptitle(title)
+    if path is not None:
+        path = Path(path)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fig.savefig(path, dpi=dpi)
+    return fig
