@@ -21,7 +21,16 @@ import pyarrow.parquet as pq
 import pytest
 
 from ballpass.cli import main
-from ballpass.datasets import dry_run, generate, info, load, read_grid, regenerate
+from ballpass.datasets import (
+    dry_run,
+    generate,
+    info,
+    load,
+    load_features,
+    read_grid,
+    regenerate,
+)
+from ballpass.datasets.generate import FEATURE_KEYS, feature_columns
 from ballpass.datasets.grid import run_seed
 
 GRID_TOML = """\
@@ -250,3 +259,25 @@ def test_dry_run_counts_and_writes_nothing(local_dataset, grid_file, tmp_path):
     assert est.time_s > 0 and est.size_bytes > N_ROWS * 600 * 4 * 0.5
     assert not (tmp_path / "none").exists()
     assert dry_run(grid_file, out_dir=local_dataset).shards_done == 14
+
+
+def test_feature_table(tmp_path):
+    """--features writes one feature row per signal, equal to the features of the stored
+    signals (exactly: the same float32 input through the same functions)."""
+    grid = tmp_path / "f.toml"
+    grid.write_text(GRID_TOML.replace('"ball"]', ']').replace("[0.2, 0.5]", "[0.5]")
+                    .replace("snr_db = [inf, 10]", "snr_db = [10]").replace("repeats = 2",
+                                                                             "repeats = 1"))
+    out = tmp_path / "ds"
+    assert main(["generate", str(grid), "--out", str(out), "--no-progress"]) == 0
+    assert not (out / "features").exists()
+    summary = generate(grid, out, features=True, progress=False)   # added to a finished dataset
+    assert summary.rows_written == 0 and summary.feature_shards_written == 2
+    X, meta = load(out)
+    table = load_features(out)
+    assert len(table) == len(meta) == 12
+    assert list(table.columns[: len(FEATURE_KEYS)]) == list(FEATURE_KEYS)
+    pd.testing.assert_frame_equal(table[list(FEATURE_KEYS)], meta[list(FEATURE_KEYS)])
+    for name, value in feature_columns(X, 12000.0, meta.bearing, meta.rpm).items():
+        assert np.array_equal(table[name].to_numpy(), value, equal_nan=True), name
+    assert info(out)["features"]

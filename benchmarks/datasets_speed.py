@@ -1,0 +1,107 @@
+"""Dataset generation speed: signals per second with 1 and 2 local jobs.
+
+Generates ``--count`` one-second signals of a 6205 (healthy, outer, inner and ball
+faults in turn, one loaded-zone sensor) at 12 kHz and at 48 kHz with
+:func:`ballpass.datasets.generate`, once per job count, and reports signals/s over
+the whole call (worker start-up and Parquet writing included; the numba cache is
+warmed first so compilation is not timed). Writes
+``benchmarks/results/datasets_speed.md`` and ``datasets_speed.png``.
+
+    python benchmarks/datasets_speed.py                 # 1000 signals per setting
+    python benchmarks/datasets_speed.py --count 40      # a quick run
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import platform
+import tempfile
+import time
+from pathlib import Path
+
+from ballpass import __version__
+from ballpass.datasets import generate
+
+RESULTS = Path(__file__).parent / "results"
+#: sampling rate (Hz) -> resonance inside its band (Hz)
+SETTINGS = {12_000: 3_000.0, 48_000: 15_000.0}
+FAULTS = ["healthy", "outer", "inner", "ball"]
+
+
+def grid(fs: int, count: int) -> dict:
+    """``count`` one-second runs (rounded up to a multiple of 4 labels) at ``fs`` Hz."""
+    return {
+        "dataset": {"duration_s": 1.0, "fs": fs, "repeats": -(-count // len(FAULTS)),
+                    "seed": 0},
+        "grid": {"bearing": ["6205"], "fault": FAULTS, "fault_width_mm": [0.53],
+                 "rpm": [1797], "resonance_hz": [SETTINGS[fs]], "sensor": ["loaded"]},
+    }
+
+
+def run(count: int, jobs: list[int]) -> list[dict]:
+    """Time every (fs, jobs) setting; return one record per setting."""
+    records = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for fs in SETTINGS:
+            generate(grid(fs, 4), Path(tmp) / f"warm{fs}", progress=False)   # numba cache
+            for n_jobs in jobs:
+                summary = generate(grid(fs, count), Path(tmp) / f"{fs}_{n_jobs}",
+                                   n_jobs=n_jobs, progress=False)
+                records.append({"fs": fs, "jobs": n_jobs, "signals": summary.rows_written,
+                                "wall_s": summary.wall_time_s,
+                                "signals_per_s": summary.signals_per_s})
+                print(f"fs={fs} Hz, jobs={n_jobs}: {summary}", flush=True)
+    return records
+
+
+def write(records: list[dict], count: int) -> None:
+    """Markdown table and bar chart under benchmarks/results/."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    RESULTS.mkdir(exist_ok=True)
+    lines = [
+        "# Dataset generation speed",
+        "",
+        f"`python benchmarks/datasets_speed.py --count {count}` — ballpass {__version__}, "
+        f"{time.strftime('%Y-%m-%d')}, {platform.processor() or platform.machine()}, "
+        f"{os.cpu_count()} cores, Python {platform.python_version()}.",
+        "",
+        "One-second signals of a 6205 at 1797 rpm (healthy/outer/inner/ball, 0.53 mm, one "
+        "loaded-zone sensor, model `auto` = sr5, RK4), stored as Parquet. Signals/s is "
+        "measured over the whole `generate` call, worker start-up included, with a warm "
+        "numba cache.",
+        "",
+        "| fs (Hz) | jobs | signals | wall time (s) | signals/s |",
+        "|---:|---:|---:|---:|---:|",
+    ]
+    lines += [f"| {r['fs']} | {r['jobs']} | {r['signals']} | {r['wall_s']:.1f} | "
+              f"{r['signals_per_s']:.2f} |" for r in records]
+    (RESULTS / "datasets_speed.md").write_text("\n".join(lines) + "\n")
+
+    fig, ax = plt.subplots(figsize=(5, 3.2))
+    labels = [f"{r['fs'] // 1000} kHz\n{r['jobs']} job{'s' if r['jobs'] > 1 else ''}"
+              for r in records]
+    ax.bar(labels, [r["signals_per_s"] for r in records], color="tab:blue")
+    ax.set_ylabel("signals / s (1 s signals)")
+    ax.set_title(f"ballpass generate, {count} signals per setting")
+    fig.tight_layout()
+    fig.savefig(RESULTS / "datasets_speed.png", dpi=120)
+    plt.close(fig)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--count", type=int, default=1000,
+                        help="signals per setting (default 1000)")
+    parser.add_argument("--jobs", type=int, nargs="+", default=[1, 2],
+                        help="job counts to time (default 1 2)")
+    args = parser.parse_args()
+    write(run(args.count, args.jobs), args.count)
+
+
+if __name__ == "__main__":
+    main()
