@@ -152,9 +152,7 @@ def _sensor_value(where: str, v) -> str | dict:
             unknown = set(v) - _SENSOR_KEYS
             if unknown:
                 raise ValueError(f"unknown keys {sorted(unknown)}; allowed: {sorted(_SENSOR_KEYS)}")
-            s = Sensor(**v)
-            return {"name": s.name, "angle_deg": s.angle_deg,
-                    "attenuation_per_rad": s.attenuation_per_rad}
+            return asdict(Sensor(**v))
     except (TypeError, ValueError) as exc:
         raise ValueError(f"{where}: {exc}") from None
     raise ValueError(f'{where} must be "loaded", "unloaded" or a table with keys '
@@ -399,7 +397,7 @@ def read_grid(source) -> Grid:
     ``fault_width_mm``, ``fault_depth_mm``, ``fault_angle_deg`` (fault rows only),
     ``rpm`` (a value or a ``[start, end]`` ramp), ``radial_load_n`` (N), ``slip``,
     ``snr_db`` (dB; ``inf`` = noise-free), ``resonance_hz`` (Hz), ``model``, and
-    ``sensor`` ("loaded", "unloaded" or ``{angle_deg, name, attenuation_per_rad}``),
+    ``sensor`` ("loaded", "unloaded" or a table of :class:`~ballpass.Sensor` fields),
     the channels of each run. Axes left out take the :class:`~ballpass.Scene`
     defaults; ``bearing``, ``fault`` and ``rpm`` are required.
     """
