@@ -1,0 +1,297 @@
+"""Read and write signal files: acceleration channels with their sampling rate and metadata.
+
+Three formats, chosen by the file extension:
+
+``.npz``
+    NumPy archive with arrays ``accel`` (n_channels, n_samples), ``fs`` (Hz),
+    ``channels`` (str) and ``meta_json`` (a JSON string). Exact, compact, numpy only.
+``.csv``
+    Comment lines ``# fs=<Hz>`` and ``# meta=<JSON>``, then a header ``t_s,<channel>,...``
+    and one row per sample (9 significant digits: exact for float32). For spreadsheets
+    and other tools.
+``.parquet``
+    Columns ``t_s`` and one per channel; ``fs``, ``channels`` and ``meta`` as JSON under
+    the key ``ballpass`` of the Arrow schema metadata. Exact and columnar.
+
+Acceleration is in m/s^2 and time in s. Writes are atomic: the file is written under a
+temporary name in the target folder and renamed, so a reader never sees half a file.
+
+Examples
+--------
+>>> import numpy as np, tempfile, pathlib
+>>> from ballpass.signalio import read_signal, write_signal
+>>> path = pathlib.Path(tempfile.mkdtemp()) / "run.parquet"
+>>> _ = write_signal(path, np.zeros((2, 100)), 12_000.0, channels=["loaded", "unloaded"],
+...                  meta={"rpm": 1797.0})
+>>> sig = read_signal(path)
+>>> sig.accel.shape, sig.fs, sig.channels, sig.meta["rpm"]
+((2, 100), 12000.0, ('loaded', 'unloaded'), 1797.0)
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import numbers
+import os
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["SUFFIXES", "SignalFile", "read_signal", "write_signal"]
+
+#: File extensions understood by :func:`read_signal` and :func:`write_signal`.
+SUFFIXES = (".npz", ".csv", ".parquet")
+_TIME = "t_s"
+_ARROW_KEY = b"ballpass"
+
+
+@dataclass(frozen=True)
+class SignalFile:
+    """Contents of a signal file.
+
+    Attributes
+    ----------
+    accel : ndarray, shape (n_channels, n_samples)
+        Acceleration, m/s^2 (float32 or float64 as stored; float64 from CSV).
+    fs : float
+        Sampling frequency, Hz.
+    channels : tuple of str
+        Channel names, one per row of ``accel``.
+    meta : dict
+        Free-form metadata (JSON types), e.g. ``rpm``, ``bearing``, the scene.
+    """
+
+    accel: np.ndarray
+    fs: float
+    channels: tuple[str, ...]
+    meta: dict = field(default_factory=dict)
+
+    def channel(self, name: str) -> np.ndarray:
+        """The signal of one channel, shape (n_samples,)."""
+        if name not in self.channels:
+            raise ValueError(f"channel must be one of {self.channels}, got {name!r}")
+        return self.accel[self.channels.index(name)]
+
+
+def _suffix(path: Path) -> str:
+    suffix = path.suffix.lower()
+    if suffix not in SUFFIXES:
+        raise ValueError(f"path must end in one of {', '.join(SUFFIXES)}; got {path.name!r}")
+    return suffix
+
+
+def _json_default(value):
+    if isinstance(value, np.generic):
+        return value.item()
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, Path):
+        return str(value)
+    raise TypeError(f"meta values must be JSON-serialisable, got {type(value).__name__}")
+
+
+def _atomic_write(path: Path, write) -> None:
+    """Call ``write(tmp_path)`` and rename the result to ``path``."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    os.close(fd)
+    try:
+        write(Path(tmp))
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def write_signal(path, accel, fs: float, *, channels=None, meta=None) -> Path:
+    """Write acceleration channels, their sampling rate and metadata to a file.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        Target file; the extension (``.npz``, ``.csv``, ``.parquet``) selects the
+        format. Parent folders are created.
+    accel : array_like, shape (n_samples,) or (n_channels, n_samples)
+        Acceleration, m/s^2; float32 stays float32 in ``.npz`` and ``.parquet``.
+    fs : float
+        Sampling frequency, Hz, > 0.
+    channels : sequence of str, optional
+        Unique channel names (not ``"t_s"``); default ``["accel"]`` for one channel,
+        ``["accel_0", "accel_1", ...]`` for several.
+    meta : dict, optional
+        JSON-serialisable metadata (NumPy scalars and arrays are converted).
+
+    Returns
+    -------
+    pathlib.Path
+        The written file.
+
+    Raises
+    ------
+    ValueError
+        Unknown extension, bad shape, ``fs <= 0``, or bad channel names.
+
+    Examples
+    --------
+    >>> import numpy as np, tempfile, pathlib
+    >>> from ballpass.signalio import write_signal
+    >>> out = pathlib.Path(tempfile.mkdtemp()) / "sig.csv"
+    >>> write_signal(out, np.ones(4), 1000.0).read_text().splitlines()[:3]
+    ['# fs=1000.0', '# meta={}', 't_s,accel']
+    """
+    path = Path(path)
+    suffix = _suffix(path)
+    data = np.asarray(accel)
+    if not (np.issubdtype(data.dtype, np.floating) or np.issubdtype(data.dtype, np.integer)):
+        raise TypeError(f"accel must be a real numeric array, got dtype {data.dtype}")
+    if data.ndim == 1:
+        data = data[None, :]
+    if data.ndim != 2 or data.shape[1] == 0:
+        raise ValueError(
+            f"accel must have shape (n_samples,) or (n_channels, n_samples) with n_samples "
+            f">= 1, got {np.shape(accel)}"
+        )
+    if not np.issubdtype(data.dtype, np.floating):
+        data = data.astype(np.float64)
+    if (
+        isinstance(fs, bool)
+        or not isinstance(fs, numbers.Real)
+        or not (math.isfinite(fs) and fs > 0)
+    ):
+        raise ValueError(f"fs must be a finite number > 0 Hz, got {fs!r}")
+    fs = float(fs)
+    if channels is None:
+        channels = ["accel"] if len(data) == 1 else [f"accel_{i}" for i in range(len(data))]
+    channels = [str(c) for c in channels]
+    if len(channels) != len(data) or len(set(channels)) != len(channels) or _TIME in channels:
+        raise ValueError(
+            f"channels must be {len(data)} unique names other than {_TIME!r}, got {channels}"
+        )
+    meta_json = json.dumps(dict(meta or {}), default=_json_default)
+
+    if suffix == ".npz":
+
+        def write(tmp: Path) -> None:
+            with open(tmp, "wb") as fh:
+                np.savez(
+                    fh,
+                    accel=data,
+                    fs=np.float64(fs),
+                    channels=np.array(channels),
+                    meta_json=np.array(meta_json),
+                )
+
+    elif suffix == ".csv":
+        import pandas as pd
+
+        def write(tmp: Path) -> None:
+            frame = pd.DataFrame({_TIME: np.arange(data.shape[1]) / fs})
+            for name, row in zip(channels, data, strict=True):
+                frame[name] = row
+            with open(tmp, "w", newline="") as fh:
+                fh.write(f"# fs={fs!r}\n# meta={meta_json}\n")
+                frame.to_csv(fh, index=False, float_format="%.9g")
+
+    else:
+        import pyarrow as pa
+        import pyarrow.parquet as pq
+
+        def write(tmp: Path) -> None:
+            columns = {_TIME: pa.array(np.arange(data.shape[1]) / fs)}
+            columns.update({name: pa.array(row) for name, row in zip(channels, data, strict=True)})
+            info = json.dumps({"fs": fs, "channels": channels, "meta": json.loads(meta_json)})
+            table = pa.table(columns).replace_schema_metadata({_ARROW_KEY: info.encode()})
+            pq.write_table(table, tmp)
+
+    _atomic_write(path, write)
+    return path
+
+
+def _fs_from_time(t: np.ndarray, path: Path) -> float:
+    if t.size < 2:
+        raise ValueError(f"{path.name}: no fs recorded and fewer than 2 time stamps to infer it")
+    step = float(np.median(np.diff(t)))
+    if not step > 0:
+        raise ValueError(f"{path.name}: no fs recorded and the t_s column is not increasing")
+    return 1.0 / step
+
+
+def read_signal(path) -> SignalFile:
+    """Read a file written by :func:`write_signal` (or a compatible one).
+
+    CSV and Parquet files from other tools work if they have a ``t_s`` column (fs is
+    then inferred from its median step) or the ``# fs=`` comment / schema metadata;
+    every other column is a channel.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        ``.npz``, ``.csv`` or ``.parquet`` file.
+
+    Returns
+    -------
+    SignalFile
+        ``accel`` (n_channels, n_samples), ``fs`` (Hz), ``channels``, ``meta``.
+
+    Examples
+    --------
+    >>> import numpy as np, tempfile, pathlib
+    >>> from ballpass.signalio import read_signal, write_signal
+    >>> out = write_signal(pathlib.Path(tempfile.mkdtemp()) / "s.npz", np.ones(8), 100.0)
+    >>> read_signal(out).accel.shape
+    (1, 8)
+    """
+    path = Path(path)
+    suffix = _suffix(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"no such signal file: {path}")
+    if suffix == ".npz":
+        with np.load(path, allow_pickle=False) as archive:
+            missing = {"accel", "fs"} - set(archive.files)
+            if missing:
+                raise ValueError(f"{path.name}: not a ballpass .npz signal (no {sorted(missing)})")
+            accel = np.atleast_2d(archive["accel"])
+            channels = (
+                [str(c) for c in archive["channels"]]
+                if "channels" in archive.files
+                else [f"accel_{i}" for i in range(len(accel))]
+            )
+            meta = json.loads(str(archive["meta_json"])) if "meta_json" in archive.files else {}
+            return SignalFile(accel, float(archive["fs"]), tuple(channels), meta)
+
+    if suffix == ".csv":
+        import pandas as pd
+
+        header: dict[str, str] = {}
+        n_comments = 0
+        with open(path) as fh:
+            for line in fh:
+                if not line.startswith("#"):
+                    break
+                key, _, value = line[1:].strip().partition("=")
+                header[key.strip()] = value
+                n_comments += 1
+        frame = pd.read_csv(path, skiprows=n_comments)
+        meta = json.loads(header["meta"]) if "meta" in header else {}
+        fs = float(header["fs"]) if "fs" in header else None
+        names = [c for c in frame.columns if c != _TIME]
+        accel = frame[names].to_numpy(dtype=np.float64).T
+        time = frame[_TIME].to_numpy(dtype=float) if _TIME in frame.columns else None
+    else:
+        import pyarrow.parquet as pq
+
+        table = pq.read_table(path)
+        info = json.loads((table.schema.metadata or {}).get(_ARROW_KEY, b"{}"))
+        meta = info.get("meta", {})
+        fs = info.get("fs")
+        names = info.get("channels") or [c for c in table.column_names if c != _TIME]
+        accel = np.stack([table.column(c).to_numpy() for c in names])
+        time = table.column(_TIME).to_numpy() if _TIME in table.column_names else None
+    if fs is None:
+        if time is None:
+            raise ValueError(f"{path.name}: neither fs metadata nor a {_TIME!r} column")
+        fs = _fs_from_time(time, path)
+    return SignalFile(accel, float(fs), tuple(str(n) for n in names), meta)
