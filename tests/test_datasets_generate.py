@@ -140,14 +140,14 @@ def test_segments_share_the_run_group(tmp_path):
     assert np.array_equal(regenerate(meta.iloc[1]), X[1])
 
 
-def test_dask_local_cluster_gives_the_same_rows(local_dataset, grid_file, tmp_path):
+def test_dask_local_cluster_gives_the_same_rows(local_dataset, grid_file, tmp_path, capsys):
+    """``--scheduler ADDRESS`` runs the shards on a Dask cluster through its executor."""
     distributed = pytest.importorskip("distributed")
     with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True,
-                                  dashboard_address=None) as cluster, \
-            distributed.Client(cluster) as client:
-        summary = generate(grid_file, tmp_path / "dask", executor=client.get_executor(),
-                           progress=False)
-    assert summary.rows_written == N_ROWS
+                                  dashboard_address=None) as cluster:
+        assert main(["generate", str(grid_file), "--out", str(tmp_path / "dask"),
+                     "--scheduler", cluster.scheduler_address, "--no-progress"]) == 0
+    assert f"{N_ROWS} rows; wrote {N_ROWS} rows" in capsys.readouterr().out
     X_local, meta_local = load(local_dataset)
     X_dask, meta_dask = load(tmp_path / "dask")
     assert np.array_equal(X_local, X_dask)
@@ -200,6 +200,8 @@ def test_kill_and_resume(tmp_path):
     (GRID_TOML.replace("repeats = 2", 'repeats = "2"'), "dataset.repeats"),
     (GRID_TOML.replace("resonance_hz = [3000]", 'resonance_hz = ["3 kHz"]'), "grid.resonance_hz"),
     (GRID_TOML.replace("[grid]", "[grid"), "not a valid TOML grid file"),
+    (GRID_TOML.replace("seed = 3", 'seed = 3\nsolver = "euler"'), "dataset.solver must be"),
+    (GRID_TOML.replace("seed = 3", 'seed = 3\nmodel = "sr9"'), "model 'sr9'"),
 ])
 def test_bad_grid_refused_before_any_work(tmp_path, capsys, text, key):
     grid = tmp_path / "bad.toml"

@@ -189,8 +189,15 @@ def run_shard(spec: ShardSpec) -> dict:
     report = {"index": spec.index, "n_rows": spec.n_rows, "models": Counter(),
               "simulated": spec.simulate, "bytes": 0, "features_bytes": 0}
     if spec.simulate:
-        parts = [_simulate_run(run, spec.solver, spec.signal_length, spec.n_segments)
-                 for run in spec.runs]
+        parts = []
+        for run in spec.runs:
+            try:
+                parts.append(_simulate_run(run, spec.solver, spec.signal_length,
+                                           spec.n_segments))
+            except Exception as exc:
+                exc.add_note(f"in dataset run {run.run_id} (shard {spec.index}); complete "
+                             "shards are kept, run generate again to resume")
+                raise
         signals = np.concatenate([p[0] for p in parts])
         columns = {k: [v for p in parts for v in p[1][k]] for k in parts[0][1]}
         report["models"] = Counter(p[1]["model"][0] for p in parts)
@@ -269,8 +276,13 @@ def _dispatch(specs: list[ShardSpec], n_jobs: int, executor):
 
 # ----------------------------------------------------------------------------- planning
 def _resolved_models(grid: Grid) -> list[tuple[str, Run]]:
-    """(resolved model, first run) per grid point, in order; unknown models raise here."""
-    from ..simulate import resolve_model
+    """(resolved model, first run) per grid point, in order; unknown models and solvers
+    raise here."""
+    from ..simulate import SOLVERS, resolve_model
+
+    if grid.dataset["solver"] not in ("auto", *SOLVERS):
+        raise ValueError(f"dataset.solver must be 'auto' or one of {sorted(SOLVERS)}, "
+                         f"got {grid.dataset['solver']!r}")
 
     repeats = grid.dataset["repeats"]
     out = []
