@@ -1,0 +1,148 @@
+"""Integrators against an independent reference, convergence order, determinism,
+and failure modes."""
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+import ballpass as bp
+from ballpass.simulate import SimulationUnstableError, build, integrate
+
+FS = 12_000.0
+H_OUT = 1.0 / (4 * FS)  # the internal grid simulate() uses at 12 kHz
+
+
+def short_scene(kind="outer", **kw):
+    base = dict(bearing="6205", rpm=1797.0, duration_s=0.02, fs=FS, resonance_hz=3000.0,
+                resonance_damping=0.02, fault=bp.Fault(kind, width_mm=0.5, depth_mm=0.1))
+    base.update(kw)
+    return bp.Scene(**base)
+
+
+def reference_output(bm, n_out, crossings):
+    """scipy DOP853 at rtol 1e-10 on the same right-hand side, restarted at every fault
+    edge (the ramped profile has a jump in its second derivative there)."""
+    t_grid = np.arange(n_out) * H_OUT
+    breaks = np.concatenate(([0.0], crossings, [t_grid[-1]]))
+    y = bm.y0.copy()
+    out = np.empty((n_out, len(bm.scene.sensors)))
+    for a, b in zip(breaks[:-1], breaks[1:], strict=True):
+        if b <= a:
+            continue
+        sel = (t_grid >= a) & (t_grid <= b)
+        sol = solve_ivp(bm.rhs, (a, b), y, method="DOP853", rtol=1e-10,
+                        atol=1e-10 * bm.scale, t_eval=t_grid[sel], dense_output=False)
+        assert sol.success
+        for k, t in zip(np.flatnonzero(sel), sol.t, strict=True):
+            out[k] = bm.sensor_output(t, sol.y[:, list(sol.t).index(t)])
+        y = solve_ivp(bm.rhs, (a, b), y, method="DOP853", rtol=1e-10,
+                      atol=1e-10 * bm.scale).y[:, -1]
+    return out
+
+
+@pytest.fixture(scope="module")
+def outer_reference():
+    bm = build(short_scene())
+    n_out = int(round(bm.scene.duration_s / H_OUT)) + 1
+    raw = integrate(bm, "rk4", h_out=H_OUT, n_out=n_out)
+    ref = reference_output(bm, n_out, raw.crossings.time_s)
+    return bm, n_out, ref
+
+
+def rel_l2(a, b):
+    return np.linalg.norm(a - b) / np.linalg.norm(b)
+
+
+def test_rk4_and_dopri5_agree_with_scipy_dop853(outer_reference):
+    bm, n_out, ref = outer_reference
+    rk4 = integrate(bm, "rk4", h_out=H_OUT, n_out=n_out).output
+    dp = integrate(bm, "dopri5", h_out=H_OUT, n_out=n_out, rtol=1e-9).output
+    # The reference is good to ~1e-9. RK4 at the default step (omega_max dt = 0.25)
+    # has a local error ~ (omega dt)^5 / 120 ~ 1e-5 per step, accumulating over the
+    # ~60 resonator periods of the run to ~1e-3 of the output: assert 5e-3.
+    assert rel_l2(rk4, ref) < 5e-3
+    # Dormand-Prince at rtol 1e-9 controls the local error to 1e-9 of the scales; the
+    # global output error stays below 1e-6 here (measured ~1e-8).
+    assert rel_l2(dp, ref) < 1e-6
+
+
+def test_rk4_converges_at_fourth_order(outer_reference):
+    bm, n_out, ref = outer_reference
+    errors = []
+    for n_sub in (2, 4, 8):
+        out = integrate(bm, "rk4", h_out=H_OUT, n_out=n_out, dt=H_OUT / n_sub).output
+        errors.append(rel_l2(out, ref))
+    ratios = np.array(errors[:-1]) / np.array(errors[1:])
+    # halving the step divides a 4th-order method's error by 16; the steps are split at
+    # the fault edges so the non-smooth profile does not spoil the order. Allow 10-24
+    # (round-off and the reference's own 1e-9 floor stay far below these errors).
+    assert np.all((ratios > 10.0) & (ratios < 24.0)), (errors, ratios)
+
+
+def test_dopri5_error_shrinks_with_tolerance(outer_reference):
+    bm, n_out, ref = outer_reference
+    errs = [rel_l2(integrate(bm, "dopri5", h_out=H_OUT, n_out=n_out, rtol=r).output, ref)
+            for r in (1e-4, 1e-6, 1e-8)]
+    # tolerance proportionality: 100x tighter rtol gives at least 10x smaller error
+    assert errs[1] < errs[0] / 10 and errs[2] < errs[1] / 10, errs
+
+
+def test_same_seed_is_bit_identical_and_another_seed_slips_differently():
+    sc = short_scene(duration_s=0.2, fs=FS)
+    a, b = bp.simulate(sc), bp.simulate(sc)
+    np.testing.assert_array_equal(a.accel, b.accel)
+    c = bp.simulate(sc.replace(seed=1))
+    ta, tc = a.truth.fault_crossings.entries(), c.truth.fault_crossings.entries()
+    n = min(len(ta), len(tc))
+    assert not np.allclose(ta[:n], tc[:n])
+    assert not np.array_equal(a.accel, c.accel)
+
+
+def test_noise_is_seeded_and_at_the_requested_snr():
+    sc = short_scene(duration_s=0.5, snr_db=0.0)
+    clean = bp.simulate(sc.replace(snr_db=None)).accel
+    noisy = bp.simulate(sc).accel
+    np.testing.assert_array_equal(noisy, bp.simulate(sc).accel)
+    noise = noisy - clean
+    # 0 dB: noise RMS equals signal RMS; 6000 samples estimate an RMS to ~1 %
+    assert np.std(noise) == pytest.approx(np.std(clean), rel=0.03)
+    absolute = bp.simulate(sc.replace(snr_db=None, noise_rms=2.0)).accel - clean
+    assert np.std(absolute) == pytest.approx(2.0, rel=0.03)
+
+
+def test_instability_raises_with_scene_and_step_instead_of_nan():
+    sc = short_scene(duration_s=0.05)
+    # a 0.1 g shaft on its 7.42e7 N/m support: omega = 8.6e5 rad/s; with a step of
+    # 1/12 kHz omega dt = 72, far beyond RK4's stability interval (2.8): it diverges
+    light = bp.simulate.SR5Parameters(shaft_mass=1e-4)
+    with pytest.raises(SimulationUnstableError, match=r"dt = 8\.33e-05 s.*Scene\(") as err:
+        bp.simulate(sc, solver="rk4", dt=1e-3, oversample=1, params=light)
+    assert "rk4" in str(err.value)
+
+
+def test_output_shape_units_and_info():
+    sc = short_scene(duration_s=0.1, sensors=("loaded", "unloaded"))
+    res = bp.simulate(sc)
+    assert res.accel.shape == (2, 1200)
+    assert res.t[1] == pytest.approx(1 / FS)
+    assert res.info["model"] == "sr5" and res.info["solver"] == "rk4"
+    assert res.info["n_steps"] > 0 and res.info["wall_time_s"] > 0
+    assert np.all(np.isfinite(res.accel))
+    # tachometer channel: the shaft turns rpm/60 revolutions per second
+    assert res.truth.shaft_angle[-1] == pytest.approx(2 * np.pi * 1797 / 60 * res.t[-1])
+    # AC-coupled sensors
+    np.testing.assert_allclose(res.accel.mean(axis=1), 0.0, atol=1e-9)
+
+
+def test_sr4_has_no_resonator_and_reads_the_housing():
+    sc = short_scene(duration_s=0.1)
+    sr4 = bp.simulate(sc, model="sr4")
+    sr5 = bp.simulate(sc, model="sr5")
+    assert sr4.info["model"] == "sr4"
+    assert bp.simulate.resolve_model(sc) == "sr5"
+    # the 3 kHz resonator amplifies the impacts' content near 3 kHz: sr5 carries more
+    # energy in 2-4 kHz than the bare housing (Q = 1/(2 zeta) = 25 at resonance)
+    from ballpass.features import bandpass
+    e4 = np.std(bandpass(sr4.accel, FS, (2000.0, 4000.0)))
+    e5 = np.std(bandpass(sr5.accel, FS, (2000.0, 4000.0)))
+    assert e5 > 3 * e4
