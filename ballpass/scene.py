@@ -378,7 +378,8 @@ class Scene:
             faults_t = tuple(faults)
             for f in faults_t:
                 if not isinstance(f, Fault):
-                    raise TypeError(f"fault must be a Fault, a sequence of Faults or None, got {f!r}")
+                    raise TypeError(
+                        f"fault must be a Fault, a sequence of Faults or None, got {f!r}")
         else:
             raise TypeError(f"fault must be a Fault, a sequence of Faults or None, got {faults!r}")
         for f in faults_t:

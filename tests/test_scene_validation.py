@@ -92,7 +92,8 @@ def test_simulate_arguments_are_checked_before_work():
 
 def test_scene_conventions():
     # angles wrap to [0, 360): 359.9 and -0.1 are the same defect position
-    assert bp.Fault("outer", angle_deg=-0.1).angle_deg == bp.Fault("outer", angle_deg=359.9).angle_deg
+    wrapped = bp.Fault("outer", angle_deg=-0.1).angle_deg
+    assert wrapped == bp.Fault("outer", angle_deg=359.9).angle_deg
     assert bp.Sensor(angle_deg=-180.0).name == "unloaded"
     s = make(fault=[bp.Fault("outer"), bp.Fault("inner")])
     assert s.label == "outer+inner" and len(s.faults) == 2
