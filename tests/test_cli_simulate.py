@@ -1,0 +1,44 @@
+"""``ballpass simulate`` end to end: file formats, metadata, plot."""
+
+import numpy as np
+import pytest
+
+import ballpass as bp
+from ballpass.cli import main
+from ballpass.signalio import read_signal
+
+ARGS = ["simulate", "--fault", "inner", "--rpm", "1500", "--duration", "0.2", "--fs", "12000",
+        "--resonance", "3000", "--seed", "4"]
+
+
+@pytest.mark.parametrize("suffix", [".npz", ".csv", ".parquet"])
+def test_simulate_writes_the_same_signal_as_the_api(tmp_path, suffix, capsys):
+    out = tmp_path / f"sig{suffix}"
+    assert main([*ARGS, "--out", str(out)]) == 0
+    assert "inner" in capsys.readouterr().out
+    sig = read_signal(out)
+    expected = bp.simulate(bp.Scene(bearing="6205", rpm=1500.0, fault=bp.Fault("inner"),
+                                    duration_s=0.2, fs=12_000.0, resonance_hz=3000.0, seed=4))
+    assert sig.fs == 12_000.0
+    # .npz and .parquet keep float64 exactly; .csv is text with 9 significant digits
+    # (relative rounding 5e-9 of each value)
+    rtol = 1e-8 if suffix == ".csv" else 0.0
+    np.testing.assert_allclose(sig.accel[0], expected.accel, rtol=rtol, atol=0.0)
+
+
+def test_simulate_plot_and_two_sensors(tmp_path):
+    out, png = tmp_path / "s.npz", tmp_path / "s.png"
+    assert main([*ARGS, "--sensors", "loaded", "unloaded", "--out", str(out),
+                 "--plot", str(png)]) == 0
+    sig = read_signal(out)
+    assert sig.accel.shape == (2, 2400) and list(sig.channels) == ["loaded", "unloaded"]
+    assert sig.meta["label"] == "inner"
+    assert sig.meta["frequencies_hz"]["bpfi"] == pytest.approx(5.4152 * 25.0, rel=1e-4)
+    assert png.stat().st_size > 10_000  # a real figure, not an empty canvas
+
+
+def test_simulate_refuses_bad_input_with_the_argument_named(tmp_path, capsys):
+    code = main(["simulate", "--fs", "12000", "--out", str(tmp_path / "x.npz")])
+    assert code == 2
+    assert "resonance_hz=15000 lies above 0.45*fs" in capsys.readouterr().err
+    assert not (tmp_path / "x.npz").exists()
