@@ -1,0 +1,130 @@
+"""Fault-band features: levels of SES lines at the bearing's fault frequencies."""
+
+import numpy as np
+import pytest
+
+import ballpass as bp
+from ballpass import features as F
+
+DF = 0.5  # Hz per bin of the synthetic spectra (2 s records)
+FREQS = np.arange(4001) * DF  # 0 .. 2000 Hz
+RPM = 1797.0
+ORDERS = bp.Bearing.catalog("6205").frequencies(1.0)
+
+
+def spectrum_with_lines(lines, background=1.0, height=100.0):
+    """Flat SES of `background` with a `height` line on the bin nearest each frequency."""
+    ses = np.full(FREQS.size, background)
+    for f in lines:
+        ses[int(round(f / DF))] = height
+    return ses
+
+
+def test_names_and_order():
+    names = F.fault_band_names(3)
+    assert len(names) == 5 * 3 + 2 * 3
+    assert names[:3] == ["bpfo_1", "bpfo_2", "bpfo_3"]
+    assert names[-2:] == ["bpfi_3_lsb", "bpfi_3_usb"]
+    assert set(F.fault_band_levels(FREQS, np.ones(FREQS.size), "6205", RPM)) == set(names)
+
+
+def test_line_levels_against_flat_background():
+    """A line 100x the flat background reads 10 log10(100) = 20 dB (the SES is a power
+    quantity); lines absent read 0 dB. Exact arithmetic: atol 1e-9 dB."""
+    shaft = RPM / 60
+    bpfi = ORDERS.bpfi * shaft
+    ses = spectrum_with_lines([bpfi, 2 * bpfi, bpfi - shaft, bpfi + shaft])
+    lv = F.fault_band_levels(FREQS, ses, "6205", RPM)
+    for name in ("bpfi_1", "bpfi_2", "bpfi_1_lsb", "bpfi_1_usb"):
+        assert lv[name] == pytest.approx(20.0, abs=1e-9)
+    for name in ("bpfo_1", "bpfi_3", "bsf_1", "ball_defect_2", "ftf_1", "bpfi_2_usb"):
+        assert lv[name] == pytest.approx(0.0, abs=1e-9)
+
+
+def test_slip_tolerance():
+    """A BPFO line 0.8 % low (slip) is found with the default 1 % window, not with 0.3 %."""
+    bpfo = ORDERS.bpfo * RPM / 60
+    ses = spectrum_with_lines([bpfo * (1 - 0.008)])
+    assert F.fault_band_levels(FREQS, ses, "6205", RPM)["bpfo_1"] == pytest.approx(20.0)
+    assert F.fault_band_levels(FREQS, ses, "6205", RPM, tolerance=0.003)["bpfo_1"] < 1.0
+
+
+def test_background_is_local():
+    """The background is the median around each line: a sloping floor does not bias."""
+    bpfo = ORDERS.bpfo * RPM / 60
+    floor = 10.0 * np.exp(-FREQS / 300.0)
+    ses = floor.copy()
+    k = int(round(bpfo / DF))
+    ses[k] = 10 * floor[k]
+    # The median of a symmetric window on an exponential slope is the centre value up
+    # to second order: within 0.05 dB of 10 dB.
+    assert F.fault_band_levels(FREQS, ses, "6205", RPM)["bpfo_1"] == pytest.approx(10.0, abs=0.05)
+
+
+def test_per_row_rpm_and_lines_beyond_the_spectrum():
+    rpms = np.array([1500.0, 1797.0])
+    ses = np.stack([spectrum_with_lines([ORDERS.bpfo * r / 60]) for r in rpms])
+    lv = F.fault_band_levels(FREQS, ses, "6205", rpms)
+    np.testing.assert_allclose(lv["bpfo_1"], 20.0)
+    crossed = F.fault_band_levels(FREQS, ses, "6205", rpms[::-1])["bpfo_1"]
+    assert np.all(crossed < 1.0)
+    short = F.fault_band_levels(FREQS[:400], ses[:, :400], "6205", rpms)  # up to 199.5 Hz
+    assert np.isnan(short["bpfi_2"]).all() and np.isfinite(short["bpfo_1"]).all()
+
+
+def impacts(rate, fs=12_000.0, n=24_000, f_res=3_000.0, noise=0.1, seed=0):
+    t = np.arange(n) / fs
+    phase = (t * rate) % 1.0 / rate
+    x = np.exp(-600 * phase) * np.sin(2 * np.pi * f_res * phase)
+    return x + noise * np.random.default_rng(seed).standard_normal(n)
+
+
+def test_features_of_a_signal_batched_and_float32():
+    shaft = RPM / 60
+    X = np.stack([impacts(ORDERS.bpfo * shaft), impacts(ORDERS.bpfi * shaft, seed=1)])
+    feats = F.fault_band_features(X, 12_000.0, "6205", RPM)
+    assert feats["bpfo_1"][0] > 15 > feats["bpfo_1"][1]
+    assert feats["bpfi_1"][1] > 15 > feats["bpfi_1"][0]
+    for i, row in enumerate(X):
+        one = F.fault_band_features(row, 12_000.0, "6205", RPM)
+        for name in F.fault_band_names():
+            np.testing.assert_allclose(feats[name][i], one[name], rtol=1e-10)
+        # float32 input: spectra agree to ~1e-6 relative, i.e. ~1e-5 dB
+        single = F.fault_band_features(row.astype(np.float32), 12_000.0, "6205", RPM)
+        np.testing.assert_allclose(single["bpfo_1"], one["bpfo_1"], atol=1e-3)
+
+
+def test_custom_bearing_object():
+    b = bp.Bearing(name="test", n_elements=8, element_diameter_mm=8.0, pitch_diameter_mm=40.0)
+    bpfo = b.frequencies(RPM / 60).bpfo
+    lv = F.fault_band_levels(FREQS, spectrum_with_lines([bpfo]), b, RPM)
+    assert lv["bpfo_1"] == pytest.approx(20.0)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "error", "match"),
+    [
+        ({"rpm": 0.0}, ValueError, "^rpm"),
+        ({"rpm": [1797.0, 1797.0, 1797.0]}, ValueError, "^rpm"),
+        ({"rpm": "fast"}, TypeError, "^rpm"),
+        ({"bearing": "nonexistent"}, ValueError, "unknown bearing"),
+        ({"bearing": 6205}, TypeError, "^bearing"),
+        ({"harmonics": 0}, ValueError, "^harmonics"),
+        ({"tolerance": -0.01}, ValueError, "^tolerance"),
+        ({"freqs": FREQS[1:]}, ValueError, "^freqs"),
+    ],
+)
+def test_bad_input(kwargs, error, match):
+    args = {"freqs": FREQS, "ses": np.ones((2, FREQS.size)), "bearing": "6205", "rpm": RPM}
+    args |= kwargs
+    with pytest.raises(error, match=match):
+        F.fault_band_levels(
+            args.pop("freqs"), args.pop("ses"), args.pop("bearing"), args.pop("rpm"), **args
+        )
+
+
+def test_signal_bad_input():
+    with pytest.raises(ValueError, match="^x "):
+        F.fault_band_features(np.ones(1), 12_000.0, "6205", RPM)
+    with pytest.raises(ValueError, match="^fs "):
+        F.fault_band_features(np.ones(100), -1.0, "6205", RPM)

@@ -1,0 +1,155 @@
+"""Spectral kurtosis and the fast kurtogram."""
+
+import numpy as np
+import pytest
+import scipy.signal
+
+from ballpass import features as F
+
+FS = 48_000.0
+
+
+def impulses_in_noise(rng, n=48_000, fs=FS, f_res=9_000.0, rate=110.0, noise=0.5, zeta=0.02):
+    """Impulses every 1/rate s through a resonance (damping ratio zeta), in white noise."""
+    t = np.arange(n) / fs
+    pulses = np.zeros(n)
+    pulses[np.floor(np.arange(0, n / fs, 1 / rate) * fs).astype(int)] = 1.0
+    m = int(fs / (zeta * f_res))  # about six decay time constants
+    ring = np.exp(-2 * np.pi * zeta * f_res * t[:m]) * np.sin(2 * np.pi * f_res * t[:m])
+    return scipy.signal.fftconvolve(pulses, ring)[:n] + noise * rng.standard_normal(n)
+
+
+@pytest.mark.parametrize("f_res", [3_300.0, 9_500.0, 17_000.0])
+def test_best_band_contains_the_excited_resonance(f_res):
+    res = F.fast_kurtogram(impulses_in_noise(np.random.default_rng(0), f_res=f_res), FS)
+    lo, hi = res.best_band
+    assert lo <= f_res <= hi
+    # Impulsive: for Gaussian noise a band of level <= 5 reads 0 +- 2/sqrt(750) = 0.07.
+    assert res.best_kurtosis > 0.5
+
+
+def test_grid_structure():
+    """Antoni's 1/3-binary rows: levels 0, 1, log2 3, 2, 1 + log2 3, ..., nlevel."""
+    res = F.fast_kurtogram(np.random.default_rng(1).standard_normal(48_000), FS, nlevel=7)
+    assert res.kurtosis.shape == (14, 3 * 2**7)
+    np.testing.assert_allclose(res.levels[:5], [0, 1, np.log2(3), 2, 1 + np.log2(3)])
+    np.testing.assert_allclose(res.bandwidths, FS / 2 / 2**res.levels)
+    assert res.freqs[0] == pytest.approx(FS / 2 / 384 / 2)
+    assert res.density_db.shape == res.kurtosis.shape
+
+
+def test_gaussian_noise_kurtogram_near_zero():
+    """White Gaussian noise: every band's complex envelope is circular Gaussian, K = 0.
+
+    Each band of row l holds about n / 2**(l+1) independent complex samples, so its
+    estimate has standard deviation about 2 / sqrt(n / 2**(l+1)) (Antoni 2006);
+    5 standard deviations bound all 14 x up to 128 bands with margin.
+    """
+    n = 48_000
+    res = F.fast_kurtogram(np.random.default_rng(2).standard_normal(n), FS, nlevel=7)
+    sigma = 2.0 / np.sqrt(n / 2 ** (res.levels + 1))
+    assert np.all(np.abs(res.kurtosis) < 5 * sigma[:, None])
+
+
+def test_stft_spectral_kurtosis_of_gaussian_noise_within_confidence_bound():
+    """SK of Gaussian noise is 0 with standard deviation 2/sqrt(K) for K independent
+    segments (Antoni 2006, sec. 4). With 3-sigma bounds, 0.27 % of bins may exceed by
+    chance: allow 1 % (of 129 bins: 1). The mean over bins is 0 within 3 sigma/sqrt(bins).
+    """
+    k = 400
+    x = np.random.default_rng(3).standard_normal(256 * k)
+    f, sk = F.spectral_kurtosis(x, FS, nperseg=256, noverlap=0)
+    assert f.shape == sk.shape == (129,)
+    sigma = 2.0 / np.sqrt(k - 1)  # the STFT keeps only segments inside the signal
+    assert np.mean(np.abs(sk) > 3 * sigma) <= 0.01
+    assert abs(sk.mean()) < 3 * sigma / np.sqrt(f.size)
+
+
+def test_stft_spectral_kurtosis_peaks_at_the_resonance():
+    x = impulses_in_noise(np.random.default_rng(4), f_res=9_000.0)
+    f, sk = F.spectral_kurtosis(x, FS, nperseg=256)
+    assert abs(f[np.argmax(sk)] - 9_000.0) < 1_000.0  # within the resonance's half-power band
+
+
+def test_content_floor_skips_dead_bands_near_nyquist():
+    """Above an anti-aliasing cut-off the spectrum is ~60 dB down; a few spikes there
+    have enormous kurtosis (the CWRU 12 kHz files show this at 5.6-6 kHz). Such bands
+    must not be chosen; the impacts at 3 kHz must."""
+    rng = np.random.default_rng(5)
+    fs, n = 12_000.0, 24_000
+    x = impulses_in_noise(rng, n=n, fs=fs, f_res=3_000.0, rate=107.0, noise=0.2)
+    x = scipy.signal.sosfiltfilt(scipy.signal.butter(12, 5_400, fs=fs, output="sos"), x)
+    spikes = np.zeros(n)
+    spikes[rng.choice(n, 4, replace=False)] = 0.02
+    x += scipy.signal.sosfiltfilt(
+        scipy.signal.butter(4, (5_700, 5_950), "bandpass", fs=fs, output="sos"), spikes
+    )
+    unrestricted = F.fast_kurtogram(x, fs, floor_db=-200.0)
+    assert unrestricted.best_band[0] >= 5_000.0  # the artefact wins without the floor
+    lo, hi = F.fast_kurtogram(x, fs).best_band
+    assert lo <= 3_000.0 <= hi
+
+
+def test_min_bandwidth_is_respected():
+    x = impulses_in_noise(np.random.default_rng(6))
+    res = F.fast_kurtogram(x, FS, min_bandwidth=3_000.0)
+    assert res.best_band[1] - res.best_band[0] >= 3_000.0
+    narrow = F.fast_kurtogram(x, FS, min_bandwidth=0.0)
+    assert narrow.best_kurtosis >= res.best_kurtosis
+
+
+def test_batched_equals_loop_and_float32():
+    rng = np.random.default_rng(7)
+    X = np.stack([impulses_in_noise(rng, n=12_000, f_res=f) for f in (3_000.0, 12_000.0)])
+    batch = F.fast_kurtogram(X, FS)
+    assert batch.best_band.shape == (2, 2)
+    for i, row in enumerate(X):
+        one = F.fast_kurtogram(row, FS)
+        np.testing.assert_allclose(batch.kurtosis[i], one.kurtosis, rtol=1e-10, atol=1e-12)
+        assert tuple(batch.best_band[i]) == one.best_band
+        # float32 storage changes the input by ~1e-7 relative; the grid follows.
+        single = F.fast_kurtogram(row.astype(np.float32), FS)
+        np.testing.assert_allclose(single.kurtosis, one.kurtosis, atol=1e-4)
+        assert single.best_band == one.best_band
+
+
+def test_short_signals_fall_back_to_the_full_band():
+    res = F.fast_kurtogram(np.random.default_rng(8).standard_normal(100), FS)
+    assert res.levels.tolist() == [0.0]
+    assert res.best_band == (0.0, FS / 2)
+
+
+@pytest.mark.parametrize(
+    ("args", "kwargs", "name"),
+    [
+        ((np.array([]), FS), {}, "x"),
+        ((np.ones(1), FS), {}, "x"),
+        ((np.r_[np.ones(50), np.inf], FS), {}, "x"),
+        ((np.ones(100), 0.0), {}, "fs"),
+        ((np.ones(100), FS), {"nlevel": 6}, "nlevel"),
+        ((np.ones(100), FS), {"nlevel": -1}, "nlevel"),
+        ((np.ones(100), FS), {"min_bandwidth": -5.0}, "min_bandwidth"),
+    ],
+)
+def test_kurtogram_bad_input(args, kwargs, name):
+    with pytest.raises(ValueError, match=rf"^{name} "):
+        F.fast_kurtogram(*args, **kwargs)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "name"),
+    [({"nperseg": 1}, "nperseg"), ({"noverlap": 300}, "noverlap"), ({"nperseg": 1024}, "x")],
+)
+def test_spectral_kurtosis_bad_input(kwargs, name):
+    with pytest.raises(ValueError, match=rf"^{name} "):
+        F.spectral_kurtosis(np.ones(1000), FS, **kwargs)
+
+
+def test_plot_method(tmp_path):
+    res = F.fast_kurtogram(impulses_in_noise(np.random.default_rng(9), n=12_000), FS)
+    ax = res.plot()
+    assert ax.get_xlabel() == "Frequency (Hz)"
+    assert len(ax.patches) == 1  # the best band is outlined
+    ax.figure.savefig(tmp_path / "k.png")
+    with pytest.raises(ValueError, match="one signal"):
+        F.fast_kurtogram(np.ones((2, 1000)), FS).plot()
