@@ -247,3 +247,20 @@ def test_slip_sets_the_spread_of_impact_intervals():
     # the cage keeps its mean speed: the mean interval is the nominal period within
     # 3 sigma of a random walk's drift over the run (0.02 * sqrt(214) periods / 214)
     assert np.mean(d) == pytest.approx(1.0 / sc.frequencies.bpfo, rel=3 * 0.02 / np.sqrt(214))
+
+
+def test_run_up_follows_the_speed_profile():
+    sc = scene("outer", rpm=(600.0, 1800.0), slip=0.0, duration_s=1.0)
+    res = bp.simulate(sc)
+    entries = res.truth.fault_crossings.entries()
+    mid = 0.5 * (entries[1:] + entries[:-1])
+    rpm_mid = sc.speed.rpm_at(mid, sc.duration_s)
+    bpfo_order = sc.bearing.frequencies(1.0).bpfo
+    # each ball-pass interval is 1 / BPFO at the speed of that moment; the speed changes
+    # by < 2 % within one interval, so the midpoint speed predicts it to 1e-3
+    np.testing.assert_allclose(np.diff(entries), 60.0 / (rpm_mid * bpfo_order), rtol=1e-3)
+    # the tachometer channel integrates the ramp: 2 pi / 60 (600 t + 1200 t^2 / 2)
+    t_end = res.t[-1]
+    expected = 2 * np.pi / 60.0 * (600.0 * t_end + 600.0 * t_end**2)
+    assert res.truth.shaft_angle[-1] == pytest.approx(expected, rel=1e-12)
+    assert res.truth.rpm[0] == 600.0 and res.truth.rpm[-1] == pytest.approx(1800.0, rel=1e-3)
