@@ -1,0 +1,334 @@
+"""``ballpass features INPUT...``: a feature table for signal files, CWRU .mat files or datasets."""
+
+from __future__ import annotations
+
+import argparse
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+EXAMPLE = """\
+examples:
+  ballpass simulate --fault outer --out outer.npz && ballpass features outer.npz
+  ballpass features 12k_DE_IR007_0.mat 12k_DE_OR007@6_0.mat --segment 1 --out cwru.csv
+  ballpass features Normal_0_48k.mat --plot figs/      # fs 48 kHz from the file name
+  ballpass features out/quick --out quick_features.parquet
+
+inputs:
+  .npz/.csv/.parquet  signal files written by `ballpass simulate` (one row per channel;
+                      --bearing/--rpm default to the file's metadata)
+  .mat                CWRU Bearing Data Center files. Values are stored in g and are
+                      converted to m/s^2 (x 9.80665). fs comes from the file name: 12k_*
+                      files are 12 kHz, 48k_* files AND the normal baseline (Normal_*,
+                      records 97-100) are 48 kHz -- not 12 kHz; pass --fs when a name does
+                      not tell. rpm comes from the file; the bearing defaults to the rig's
+                      (DE: 6205, FE: 6203).
+  DIR                 a dataset folder with manifest.json (`ballpass generate`)
+
+columns: source, channel, segment, start_s, fs, bearing, rpm, label (when known), the
+demodulation band chosen by the kurtogram (band_lo_hz, band_hi_hz, kurtogram_sk), the
+statistical indicators, and the fault-band SES levels in dB (bpfo_1 ... bpfi_3_usb)."""
+
+#: Columns copied from a dataset's metadata when present.
+_DATASET_COLUMNS = (
+    "label",
+    "group",
+    "run_id",
+    "sensor",
+    "segment",
+    "start_s",
+    "fault_width_mm",
+    "radial_load_n",
+    "snr_db",
+)
+
+
+@dataclass
+class Signal:
+    """One signal to analyse: samples (m/s^2), its rate and what is known about it."""
+
+    name: str
+    x: object  # ndarray (n_samples,)
+    fs: float
+    bearing: object = None  # catalogue name or Bearing
+    rpm: float | None = None
+    columns: dict = field(default_factory=dict)
+
+
+def add_input_arguments(p: argparse.ArgumentParser) -> None:
+    """Options shared by ``features`` and ``plot``: inputs and what they lack."""
+    p.add_argument(
+        "inputs",
+        nargs="+",
+        metavar="INPUT",
+        help="signal file (.npz/.csv/.parquet), CWRU .mat file or dataset folder",
+    )
+    p.add_argument(
+        "--fs",
+        type=float,
+        default=None,
+        help="sampling rate of .mat files, Hz (default: from the file name)",
+    )
+    p.add_argument(
+        "--bearing", default=None, help="bearing for the fault frequencies (default: from the file)"
+    )
+    p.add_argument(
+        "--rpm", type=float, default=None, help="shaft speed, rpm (default: from the file)"
+    )
+    p.add_argument(
+        "--channel",
+        default="DE",
+        choices=["DE", "FE", "BA"],
+        help="accelerometer of .mat files (default DE)",
+    )
+    p.add_argument(
+        "--band",
+        type=float,
+        nargs=2,
+        default=None,
+        metavar=("LO", "HI"),
+        help="demodulation band, Hz (default: chosen by the fast kurtogram)",
+    )
+    p.add_argument(
+        "--segment",
+        type=float,
+        default=None,
+        metavar="SECONDS",
+        help="cut each signal into segments of this length, one row each",
+    )
+
+
+def add_parser(subparsers) -> argparse.ArgumentParser:
+    """Register ``features`` on the ``ballpass`` command."""
+    p = subparsers.add_parser(
+        "features",
+        help="feature table (indicators, kurtogram band, fault-band levels) of signals",
+        description="Compute statistical indicators, the kurtogram demodulation band and "
+        "the squared-envelope-spectrum levels at the bearing's fault frequencies for every "
+        "signal of the inputs, and write them as a table.",
+        epilog=EXAMPLE,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    add_input_arguments(p)
+    p.add_argument(
+        "--out",
+        "-o",
+        default=None,
+        metavar="TABLE",
+        help="write the table to TABLE.csv or TABLE.parquet (default: CSV on stdout)",
+    )
+    p.add_argument(
+        "--plot",
+        default=None,
+        metavar="DIR",
+        help="also draw one overview figure (PNG) per signal into DIR",
+    )
+    p.set_defaults(func=run)
+    return p
+
+
+def _known(value) -> bool:
+    return value is not None and not (isinstance(value, float) and math.isnan(value))
+
+
+def _from_signal_file(path: Path, args) -> list[Signal]:
+    from ..signalio import read_signal
+
+    sig = read_signal(path)
+    bearing = args.bearing or sig.meta.get("bearing")
+    rpm = args.rpm if args.rpm is not None else sig.meta.get("rpm")
+    label = sig.meta.get("label")
+    return [
+        Signal(
+            f"{path.stem}_{name}" if len(sig.channels) > 1 else path.stem,
+            row,
+            sig.fs,
+            bearing,
+            rpm,
+            {"channel": name} | ({"label": label} if label else {}),
+        )
+        for name, row in zip(sig.channels, sig.accel, strict=True)
+    ]
+
+
+def _from_mat(path: Path, args) -> list[Signal]:
+    from ..datasets.real import load_cwru_mat
+
+    rec = load_cwru_mat(path, channel=args.channel, fs=args.fs)
+    columns = {
+        "channel": rec.channel,
+        "label": rec.label,
+        "fault_width_mm": rec.fault_width_mm,
+        "load_hp": rec.load_hp,
+    }
+    rpm = args.rpm if args.rpm is not None else rec.rpm
+    return [
+        Signal(
+            f"{path.stem}_{rec.channel}",
+            rec.accel,
+            rec.fs,
+            args.bearing or rec.bearing,
+            rpm,
+            columns,
+        )
+    ]
+
+
+def _from_dataset(folder: Path, args) -> list[Signal]:
+    import importlib
+
+    load = getattr(importlib.import_module("ballpass.datasets"), "load", None)
+    if load is None:
+        raise ValueError(
+            f"{folder} is a dataset folder, but this build of ballpass has no "
+            "ballpass.datasets.load to read it"
+        )
+    X, meta = load(folder)
+    if "fs" not in meta.columns:
+        raise ValueError(f"{folder}: the dataset metadata has no 'fs' column")
+    signals = []
+    for i, row in enumerate(meta.to_dict("records")):
+        columns = {k: row[k] for k in _DATASET_COLUMNS if k in row}
+        rpm = args.rpm if args.rpm is not None else row.get("rpm")
+        signals.append(
+            Signal(
+                f"{folder.name}_{i:06d}",
+                X[i],
+                float(row["fs"]),
+                args.bearing or row.get("bearing"),
+                rpm,
+                columns,
+            )
+        )
+    return signals
+
+
+def load_inputs(args) -> list[Signal]:
+    """Every signal of ``args.inputs`` (segmented with ``--segment``), in input order."""
+    import numpy as np
+
+    from ..signalio import SUFFIXES
+
+    signals: list[Signal] = []
+    for raw in args.inputs:
+        path = Path(raw)
+        if path.is_dir():
+            if not (path / "manifest.json").is_file():
+                raise ValueError(f"{path} is a folder without manifest.json: not a dataset")
+            signals += _from_dataset(path, args)
+        elif not path.exists():
+            raise FileNotFoundError(f"no such file or folder: {path}")
+        elif path.suffix.lower() == ".mat":
+            signals += _from_mat(path, args)
+        elif path.suffix.lower() in SUFFIXES:
+            signals += _from_signal_file(path, args)
+        else:
+            raise ValueError(
+                f"{path.name}: INPUT must be a {', '.join(SUFFIXES)} or .mat file "
+                "or a dataset folder"
+            )
+    if args.segment is None:
+        return signals
+    if not args.segment > 0:
+        raise ValueError(f"--segment must be > 0 s, got {args.segment}")
+    out = []
+    for sig in signals:
+        length = round(args.segment * sig.fs)
+        n = len(sig.x) // length
+        if n == 0:
+            raise ValueError(f"{sig.name}: shorter than one --segment of {args.segment} s")
+        for k, piece in enumerate(np.reshape(sig.x[: n * length], (n, length))):
+            columns = sig.columns | {"segment": k, "start_s": k * length / sig.fs}
+            out.append(
+                Signal(f"{sig.name}_seg{k:03d}", piece, sig.fs, sig.bearing, sig.rpm, columns)
+            )
+    return out
+
+
+def feature_rows(signals: list[Signal], band=None, progress: bool = True) -> list[dict]:
+    """One dict of columns per signal: identity, kurtogram band, indicators, fault bands."""
+    import numpy as np
+    from tqdm import tqdm
+
+    from .. import features as F
+    from ..features._validation import check_band
+
+    rows = []
+    for sig in tqdm(signals, desc="features", unit="signal", disable=not progress, leave=False):
+        x = np.asarray(sig.x, dtype=np.float64)
+        kg = F.fast_kurtogram(x, sig.fs)
+        lo, hi = check_band(band, sig.fs) if band is not None else kg.best_band
+        row = {
+            "source": sig.name,
+            **sig.columns,
+            "fs": sig.fs,
+            "n_samples": x.size,
+            "bearing": getattr(sig.bearing, "name", sig.bearing),
+            "rpm": sig.rpm,
+            "band_lo_hz": lo,
+            "band_hi_hz": hi,
+            "kurtogram_sk": kg.best_kurtosis,
+        }
+        row.update({k: float(v) for k, v in F.indicators(x).items()})
+        if _known(sig.bearing) and _known(sig.rpm):
+            levels = F.fault_band_features(x, sig.fs, sig.bearing, float(sig.rpm), band=(lo, hi))
+            row.update({k: float(v) for k, v in levels.items()})
+        else:
+            row.update(dict.fromkeys(F.fault_band_names(), np.nan))
+        rows.append(row)
+    return rows
+
+
+def _write_table(frame, out: Path) -> None:
+    from ..signalio import _atomic_write
+
+    suffix = out.suffix.lower()
+    if suffix == ".csv":
+        _atomic_write(out, lambda tmp: frame.to_csv(tmp, index=False))
+    elif suffix == ".parquet":
+        _atomic_write(out, lambda tmp: frame.to_parquet(tmp, index=False))
+    else:
+        raise ValueError(f"--out must end in .csv or .parquet, got {out.name!r}")
+
+
+def plot_signals(signals: list[Signal], folder: Path, band=None) -> list[Path]:
+    """One overview PNG per signal in ``folder``; returns the paths."""
+    from ..features.bands import _bearing
+    from ..plot import signal_overview
+
+    paths = []
+    for sig in signals:
+        known = _known(sig.bearing) and _known(sig.rpm)
+        bearing = _bearing(sig.bearing) if known else None
+        shaft_hz = float(sig.rpm) / 60.0 if known else None
+        label = sig.columns.get("label")
+        title = " · ".join(
+            str(p) for p in (sig.name, label, f"{sig.rpm:g} rpm" if known else None) if p
+        )
+        path = folder / f"{sig.name}.png"
+        fig = signal_overview(
+            sig.x, sig.fs, bearing=bearing, shaft_hz=shaft_hz, path=path, band=band, title=title
+        )
+        fig.clear()
+        paths.append(path)
+    return paths
+
+
+def run(args) -> int:
+    """Compute the feature table; write it (and figures); returns the exit code."""
+    import sys
+
+    import pandas as pd
+
+    signals = load_inputs(args)
+    band = tuple(args.band) if args.band is not None else None
+    frame = pd.DataFrame(feature_rows(signals, band, progress=sys.stderr.isatty()))
+    if args.out is None:
+        frame.to_csv(sys.stdout, index=False)
+    else:
+        _write_table(frame, Path(args.out))
+        print(f"{len(frame)} signal(s) x {frame.shape[1]} columns -> {args.out}")
+    if args.plot is not None:
+        paths = plot_signals(signals, Path(args.plot), band)
+        print(f"{len(paths)} figure(s) -> {args.plot}")
+    return 0
