@@ -46,11 +46,13 @@ def run(count: int, jobs: list[int]) -> list[dict]:
         for fs in SETTINGS:
             generate(grid(fs, 4), Path(tmp) / f"warm{fs}", progress=False)   # numba cache
             for n_jobs in jobs:
+                load_before = os.getloadavg()[0]
                 summary = generate(grid(fs, count), Path(tmp) / f"{fs}_{n_jobs}",
                                    n_jobs=n_jobs, progress=False)
                 records.append({"fs": fs, "jobs": n_jobs, "signals": summary.rows_written,
                                 "wall_s": summary.wall_time_s,
-                                "signals_per_s": summary.signals_per_s})
+                                "signals_per_s": summary.signals_per_s,
+                                "load": load_before})
                 print(f"fs={fs} Hz, jobs={n_jobs}: {summary}", flush=True)
     return records
 
@@ -73,13 +75,14 @@ def write(records: list[dict], count: int) -> None:
         "One-second signals of a 6205 at 1797 rpm (healthy/outer/inner/ball, 0.53 mm, one "
         "loaded-zone sensor, model `auto` = sr5, RK4), stored as Parquet. Signals/s is "
         "measured over the whole `generate` call, worker start-up included, with a warm "
-        "numba cache.",
+        "numba cache. The last column is the 1-minute load average just before the "
+        "setting started: other processes sharing the cores slow the run down.",
         "",
-        "| fs (Hz) | jobs | signals | wall time (s) | signals/s |",
-        "|---:|---:|---:|---:|---:|",
+        "| fs (Hz) | jobs | signals | wall time (s) | signals/s | load before |",
+        "|---:|---:|---:|---:|---:|---:|",
     ]
     lines += [f"| {r['fs']} | {r['jobs']} | {r['signals']} | {r['wall_s']:.1f} | "
-              f"{r['signals_per_s']:.2f} |" for r in records]
+              f"{r['signals_per_s']:.2f} | {r['load']:.2f} |" for r in records]
     (RESULTS / "datasets_speed.md").write_text("\n".join(lines) + "\n")
 
     fig, ax = plt.subplots(figsize=(5, 3.2))

@@ -13,6 +13,7 @@ info          what a dataset folder holds (counts per label and condition, fs, s
 Real recordings
 ---------------
 load_cwru     Case Western Reserve University bearing data (.mat) in the same shape
+load_cwru_mat one CWRU .mat recording
 
 Importing this package loads numpy only; numba, pyarrow and pandas load on first use.
 """
@@ -37,12 +38,13 @@ __all__ = [
     "regenerate",
     "info",
     "load_cwru",
+    "load_cwru_mat",
 ]
 
 
 def __getattr__(name: str):
-    if name == "load_cwru":  # scipy.io and friends load only for real recordings
-        return importlib.import_module(".real", __name__).load_cwru
+    if name in ("load_cwru", "load_cwru_mat"):  # scipy.io loads only for real recordings
+        return getattr(importlib.import_module(".real", __name__), name)
     raise AttributeError(f"module 'ballpass.datasets' has no attribute {name!r}")
 
 

@@ -185,6 +185,9 @@ def _filter_expression(filters):
 def _read(files: list[Path], columns, filters):
     import pyarrow.dataset as ds
 
+    if not files:
+        raise ValueError("the dataset has no complete shards (yet): run `ballpass generate` "
+                         "to write them")
     dataset = ds.dataset([str(f) for f in files], format="parquet")
     if columns is not None:
         columns = list(dict.fromkeys(columns))
