@@ -23,6 +23,7 @@ Examples
 
 from __future__ import annotations
 
+import numbers
 import os
 import sys
 from pathlib import Path
@@ -100,12 +101,11 @@ def waveform(x, fs_or_t, *, channels=None, unit="m/s²", ax=None):
         )
     n = data.shape[-1]
     if np.ndim(fs_or_t) == 0:
-        fs = float(fs_or_t)
-        if not (np.isfinite(fs) and fs > 0):
+        if not (np.isfinite(fs_or_t) and fs_or_t > 0):
             raise ValueError(
                 f"fs_or_t must be a sampling frequency > 0 Hz or times, got {fs_or_t!r}"
             )
-        t = np.arange(n) / fs
+        t = np.arange(n) / float(fs_or_t)
     else:
         t = np.asarray(fs_or_t, dtype=float)
         if t.shape != (n,):
@@ -203,7 +203,7 @@ def envelope_spectrum(
             f"amp must have shape (n_bins,) or (n, n_bins) with n_bins = len(freqs) = "
             f"{freqs.size}, got {spectra.shape}"
         )
-    if isinstance(harmonics, bool) or not isinstance(harmonics, int) or harmonics < 1:
+    if isinstance(harmonics, bool) or not isinstance(harmonics, numbers.Integral) or harmonics < 1:
         raise ValueError(f"harmonics must be an int >= 1, got {harmonics!r}")
     marks = _fault_lines(frequencies, lines)
     if fmax is None:
@@ -393,7 +393,7 @@ def signal_overview(
     from matplotlib.figure import Figure
 
     from . import features
-    from .features.bands import _bearing  # catalogue name or Bearing -> Bearing
+    from .features.bands import as_bearing
 
     data = np.atleast_2d(np.asarray(x, dtype=float))
     names = (
@@ -403,11 +403,13 @@ def signal_overview(
     )
     if (bearing is None) != (shaft_hz is None):
         raise ValueError("bearing and shaft_hz go together: give both or neither")
-    bearing = _bearing(bearing) if bearing is not None else None
+    bearing = as_bearing(bearing) if bearing is not None else None
     marks = bearing.frequencies(float(shaft_hz)) if bearing is not None else None
     result = features.fast_kurtogram(data[0], fs)
-    bands = [band or features.fast_kurtogram(row, fs).best_band for row in data[1:]]
-    bands.insert(0, band or result.best_band)
+    if band is None:
+        bands = [result.best_band] + [features.fast_kurtogram(r, fs).best_band for r in data[1:]]
+    else:
+        bands = [tuple(band)] * len(data)
     spectra = [features.envelope_spectrum(row, fs, b) for row, b in zip(data, bands, strict=True)]
 
     fig = Figure(figsize=(12, 7.5), layout="constrained")

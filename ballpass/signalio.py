@@ -31,8 +31,6 @@ Examples
 from __future__ import annotations
 
 import json
-import math
-import numbers
 import os
 import tempfile
 from dataclasses import dataclass, field
@@ -40,7 +38,7 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["SUFFIXES", "SignalFile", "read_signal", "write_signal"]
+__all__ = ["SUFFIXES", "SignalFile", "atomic_write", "read_signal", "write_signal"]
 
 #: File extensions understood by :func:`read_signal` and :func:`write_signal`.
 SUFFIXES = (".npz", ".csv", ".parquet")
@@ -93,8 +91,18 @@ def _json_default(value):
     raise TypeError(f"meta values must be JSON-serialisable, got {type(value).__name__}")
 
 
-def _atomic_write(path: Path, write) -> None:
-    """Call ``write(tmp_path)`` and rename the result to ``path``."""
+def atomic_write(path, write) -> None:
+    """Write a file atomically: ``write(tmp_path)`` into the target folder, then rename.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        Final file name; parent folders are created.
+    write : callable
+        Called with the temporary :class:`pathlib.Path` to fill. If it raises, the
+        temporary file is removed and ``path`` is left as it was.
+    """
+    path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     os.close(fd)
@@ -142,6 +150,8 @@ def write_signal(path, accel, fs: float, *, channels=None, meta=None) -> Path:
     >>> write_signal(out, np.ones(4), 1000.0).read_text().splitlines()[:3]
     ['# fs=1000.0', '# meta={}', 't_s,accel']
     """
+    from .features._validation import check_fs
+
     path = Path(path)
     suffix = _suffix(path)
     data = np.asarray(accel)
@@ -156,13 +166,7 @@ def write_signal(path, accel, fs: float, *, channels=None, meta=None) -> Path:
         )
     if not np.issubdtype(data.dtype, np.floating):
         data = data.astype(np.float64)
-    if (
-        isinstance(fs, bool)
-        or not isinstance(fs, numbers.Real)
-        or not (math.isfinite(fs) and fs > 0)
-    ):
-        raise ValueError(f"fs must be a finite number > 0 Hz, got {fs!r}")
-    fs = float(fs)
+    fs = check_fs(fs)
     if channels is None:
         channels = ["accel"] if len(data) == 1 else [f"accel_{i}" for i in range(len(data))]
     channels = [str(c) for c in channels]
@@ -206,7 +210,7 @@ def write_signal(path, accel, fs: float, *, channels=None, meta=None) -> Path:
             table = pa.table(columns).replace_schema_metadata({_ARROW_KEY: info.encode()})
             pq.write_table(table, tmp)
 
-    _atomic_write(path, write)
+    atomic_write(path, write)
     return path
 
 

@@ -280,26 +280,26 @@ def feature_rows(signals: list[Signal], band=None, progress: bool = True) -> lis
 
 
 def _write_table(frame, out: Path) -> None:
-    from ..signalio import _atomic_write
+    from ..signalio import atomic_write
 
     suffix = out.suffix.lower()
     if suffix == ".csv":
-        _atomic_write(out, lambda tmp: frame.to_csv(tmp, index=False))
+        atomic_write(out, lambda tmp: frame.to_csv(tmp, index=False))
     elif suffix == ".parquet":
-        _atomic_write(out, lambda tmp: frame.to_parquet(tmp, index=False))
+        atomic_write(out, lambda tmp: frame.to_parquet(tmp, index=False))
     else:
         raise ValueError(f"--out must end in .csv or .parquet, got {out.name!r}")
 
 
 def plot_signals(signals: list[Signal], folder: Path, band=None) -> list[Path]:
     """One overview PNG per signal in ``folder``; returns the paths."""
-    from ..features.bands import _bearing
+    from ..features.bands import as_bearing
     from ..plot import signal_overview
 
     paths = []
     for sig in signals:
         known = _known(sig.bearing) and _known(sig.rpm)
-        bearing = _bearing(sig.bearing) if known else None
+        bearing = as_bearing(sig.bearing) if known else None
         shaft_hz = float(sig.rpm) / 60.0 if known else None
         label = sig.columns.get("label")
         title = " · ".join(

@@ -35,6 +35,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..features._validation import check_fs
+
 __all__ = ["STANDARD_GRAVITY", "CWRU_BEARINGS", "CwruRecord", "load_cwru_mat", "load_cwru"]
 
 #: m/s^2 per g (CWRU records acceleration in g).
@@ -178,15 +180,13 @@ def load_cwru_mat(path, channel: str = "DE", fs: float | None = None) -> CwruRec
                 "fault files are 12000 or 48000, the normal baseline 48000"
             )
         fs = info["fs"]
-    elif isinstance(fs, bool) or not (
-        isinstance(fs, (int, float)) and math.isfinite(fs) and fs > 0
-    ):
-        raise ValueError(f"fs must be a finite number > 0 Hz, got {fs!r}")
-    elif info["fs"] is not None and float(fs) != info["fs"]:
-        warnings.warn(
-            f"{path.name}: fs={fs:g} Hz given but the file name says {info['fs']:g} Hz",
-            stacklevel=2,
-        )
+    else:
+        fs = check_fs(fs)
+        if info["fs"] is not None and fs != info["fs"]:
+            warnings.warn(
+                f"{path.name}: fs={fs:g} Hz given but the file name says {info['fs']:g} Hz",
+                stacklevel=2,
+            )
     data = scipy.io.loadmat(path)
     signals = sorted(k for k in data if k.endswith(f"_{channel}_time"))
     speeds = sorted(k for k in data if k.endswith("RPM"))
@@ -266,8 +266,7 @@ def load_cwru(paths, fs: float = 12_000.0, segment_s: float = 1.0, channel: str 
     import pandas as pd
     import scipy.signal
 
-    if isinstance(fs, bool) or not (isinstance(fs, (int, float)) and math.isfinite(fs) and fs > 0):
-        raise ValueError(f"fs must be a finite number > 0 Hz, got {fs!r}")
+    fs = check_fs(fs)
     if not (isinstance(segment_s, (int, float)) and math.isfinite(segment_s) and segment_s > 0):
         raise ValueError(f"segment_s must be a finite number > 0 s, got {segment_s!r}")
     length = round(segment_s * fs)

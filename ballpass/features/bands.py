@@ -19,7 +19,13 @@ from ..bearing import Bearing
 from ._validation import check_nonnegative, check_positive_int
 from .envelope import envelope_spectrum
 
-__all__ = ["FAULT_LINES", "fault_band_names", "fault_band_levels", "fault_band_features"]
+__all__ = [
+    "FAULT_LINES",
+    "as_bearing",
+    "fault_band_names",
+    "fault_band_levels",
+    "fault_band_features",
+]
 
 #: Fault lines, in the order of the features: attribute names of BearingFrequencies.
 FAULT_LINES = ("bpfo", "bpfi", "bsf", "ball_defect", "ftf")
@@ -49,7 +55,8 @@ def fault_band_names(harmonics: int = 3) -> list[str]:
     return names
 
 
-def _bearing(bearing) -> Bearing:
+def as_bearing(bearing) -> Bearing:
+    """A :class:`ballpass.Bearing` from a catalogue name or a Bearing (returned as is)."""
     if isinstance(bearing, Bearing):
         return bearing
     if isinstance(bearing, str):
@@ -149,7 +156,7 @@ def fault_band_levels(
             "freqs must be the 1-D uniform grid from 0 Hz of the spectrum (length of ses's "
             f"last axis), got freqs shape {freqs.shape} and ses shape {ses.shape}"
         )
-    bearing = _bearing(bearing)
+    bearing = as_bearing(bearing)
     harmonics = check_positive_int("harmonics", harmonics, 1)
     tolerance = check_nonnegative("tolerance", tolerance)
     background_hz = check_nonnegative("background_hz", background_hz)

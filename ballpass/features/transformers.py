@@ -150,7 +150,7 @@ class FaultBandTransformer(TransformerMixin, BaseEstimator):
     def fit(self, X, y=None):
         """Validate ``X`` (n_signals, n_samples) and the parameters; returns self."""
         X = _signals(self, X, reset=True)
-        self._features(X[:1], None)
+        self._features(X[:1], None)  # validates every parameter where it is used (one row)
         return self
 
     def _features(self, X: np.ndarray, rpm) -> np.ndarray:
