@@ -427,7 +427,8 @@ def signal_overview(
         labels=names if len(data) > 1 else None,
         ax=ax_ses,
     )
-    band_text = ", ".join(f"{lo:.0f}–{hi:.0f} Hz" for lo, hi in bands)
+    distinct = list(dict.fromkeys((float(lo), float(hi)) for lo, hi in bands))
+    band_text = ", ".join(f"{lo:.0f}–{hi:.0f} Hz" for lo, hi in distinct)
     ax_ses.set_title(
         f"Squared envelope spectrum (band {band_text})", fontsize="medium", loc="left", pad=14
     )
