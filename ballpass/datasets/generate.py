@@ -555,6 +555,8 @@ class Estimate:
         Shards already complete in ``out_dir`` (resume), 0 without one.
     signal_length : int
         Samples per row.
+    n_jobs : int
+        Workers assumed for ``time_s``.
     seconds_per_run : dict
         Measured wall time of one run per resolved model, s (warm, in this process).
     time_s : float
@@ -571,20 +573,24 @@ class Estimate:
     n_shards: int
     shards_done: int
     signal_length: int
+    n_jobs: int
     seconds_per_run: dict
     time_s: float
     size_bytes: float
     models: dict
 
     def __str__(self) -> str:
-        per_run = ", ".join(f"{m}: {t * 1e3:.0f} ms" for m, t in self.seconds_per_run.items())
-        models = ", ".join(f"{m}: {n}" for m, n in self.models.items())
-        return (f"{self.n_rows} rows ({self.n_runs} runs x {self.n_rows // self.n_runs} "
-                f"rows per run) of "
-                f"{self.signal_length} samples in {self.n_shards} shards "
-                f"({self.shards_done} already complete); runs per model: {models}; "
-                f"one run takes {per_run}; estimated time {self.time_s:.0f} s, "
-                f"disk {human_bytes(self.size_bytes)}")
+        per_run = self.n_rows // self.n_runs
+        models = ", ".join(f"{m}: {self.models[m]} runs at {t * 1e3:.0f} ms per run"
+                           for m, t in self.seconds_per_run.items())
+        return "\n".join([
+            f"rows      {self.n_rows} ({self.n_runs} runs x {per_run} rows per run), "
+            f"{self.signal_length} samples each",
+            f"shards    {self.n_shards} ({self.shards_done} already complete)",
+            f"models    {models}",
+            f"estimate  {self.time_s:.0f} s with {self.n_jobs} job(s), "
+            f"{human_bytes(self.size_bytes)} on disk",
+        ])
 
 
 def dry_run(grid, out_dir=None, n_jobs: int = 1) -> Estimate:
@@ -634,7 +640,7 @@ def dry_run(grid, out_dir=None, n_jobs: int = 1) -> Estimate:
     workers = min(n_jobs, max(1, grid.n_shards - done))
     return Estimate(
         n_rows=grid.n_rows, n_runs=grid.n_runs, n_shards=grid.n_shards, shards_done=done,
-        signal_length=grid.signal_length, seconds_per_run=seconds,
+        signal_length=grid.signal_length, n_jobs=n_jobs, seconds_per_run=seconds,
         time_s=work / workers,
         size_bytes=sum(row_bytes[m] * n * grid.rows_per_run for m, n in runs_per_model.items()),
         models=dict(runs_per_model))
