@@ -3,6 +3,7 @@
 Layout::
 
     DIR/manifest.json            grid, package version, root seed, units, shard list, status
+    DIR/.lock                    held (flock) by the process generating the dataset
     DIR/part-00000.parquet       one signal per row + label and parameter columns
     DIR/part-00001.parquet       ...
     DIR/features/part-00000.parquet   optional feature table, same rows and keys
@@ -32,6 +33,7 @@ __all__ = ["load", "info", "read_manifest", "MANIFEST", "UNITS"]
 
 MANIFEST = "manifest.json"
 FEATURES_DIR = "features"
+LOCK_FILE = ".lock"
 FORMAT_VERSION = 1
 
 #: units of the stored columns
