@@ -65,13 +65,15 @@ def test_segments_and_shards():
 
 
 def test_as_dict_round_trips_through_json():
-    g = read_grid(with_("grid", snr_db=[math.inf, 10], sensor=["loaded", {"angle_deg": 90}]))
+    g = read_grid(with_("grid", snr_db=[math.inf, 10], sensor=["loaded", {"angle_deg": 90}],
+                        model=["sr5", "sr4"]))
     d = json.loads(json.dumps(g.as_dict(), allow_nan=False))
     assert d["grid"]["snr_db"] == ["inf", 10.0]
     g2 = read_grid(d)
     assert g2 == g and g2.runs == g.runs
     assert g.runs[0].build_scene().snr_db is None        # inf = noise-free
     assert [s.name for s in g.runs[0].build_scene().sensors] == ["loaded", "sensor_90deg"]
+    assert [r.model for r in g.runs[:4]] == ["sr5", "sr5", "sr4", "sr4"]
 
 
 def test_toml_file(tmp_path):

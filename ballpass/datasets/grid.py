@@ -264,8 +264,8 @@ class Grid:
     ----------
     dataset : dict
         The [dataset] settings with defaults filled: ``duration_s`` (s), ``fs`` (Hz),
-        ``repeats``, ``seed`` (root seed), ``model``, ``solver``, ``shard_size`` (runs
-        per shard) and optionally ``segment_s`` (s).
+        ``repeats``, ``seed`` (root seed), ``model`` (unless the grid has a model axis),
+        ``solver``, ``shard_size`` (runs per shard) and optionally ``segment_s`` (s).
     axes : dict
         The [grid] axes as lists of normalized values (ranges expanded).
     """
@@ -418,8 +418,11 @@ def read_grid(source) -> Grid:
     missing = [k for k in REQUIRED_AXES if k not in grid_raw]
     if missing:
         raise ValueError(f"grid is missing required axis/axes {missing}")
-    if "model" in grid_raw and "model" in raw.get("dataset", {}):
-        raise ValueError("give the model either as [dataset] model or as the grid.model axis")
+    if "model" in grid_raw:
+        if "model" in raw.get("dataset", {}):
+            raise ValueError("give the model either as [dataset] model or as the grid.model "
+                             "axis")
+        del dataset["model"]
     axes = {k: _axis_values(k, grid_raw[k]) for k in AXES if k in grid_raw}
 
     points = _expand(dataset, axes)
@@ -451,5 +454,5 @@ def _expand(dataset: dict, axes: dict) -> tuple:
             except (TypeError, ValueError) as exc:
                 point = ", ".join(f"{k}={v!r}" for k, v in values_f.items())
                 raise ValueError(f"grid point ({point}): {exc}") from None
-            points.append((values_f.get("model", dataset["model"]), scene))
+            points.append((values_f.get("model") or dataset["model"], scene))
     return tuple(points)
