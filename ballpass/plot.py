@@ -261,8 +261,8 @@ def kurtogram(result, *, ax=None, colorbar: bool = True):
     """Plot a fast-kurtogram heat map with the selected band outlined.
 
     Bands without content (power density below the result's ``floor_db``) are grey
-    and excluded from the colour scale; a dotted line separates the rows narrower
-    than ``min_bandwidth``, which the band choice skips.
+    and excluded from the colour scale; the other bands the automatic choice skips
+    (too narrow, or reaching fs/2) are drawn faded.
 
     Parameters
     ----------
@@ -295,23 +295,24 @@ def kurtogram(result, *, ax=None, colorbar: bool = True):
     n_rows = grid.shape[0]
     content = np.asarray(result.density_db) >= result.floor_db
     cmap = _pyplot().get_cmap("viridis").with_extremes(bad="0.8")
+    extent = (0.0, 0.5 * result.fs, n_rows - 0.5, -0.5)
     image = ax.imshow(
         np.ma.masked_where(~content, grid),
         aspect="auto",
         cmap=cmap,
         interpolation="nearest",
-        extent=(0.0, 0.5 * result.fs, n_rows - 0.5, -0.5),
+        extent=extent,
         vmin=min(0.0, float(grid[content].min())),
         vmax=float(grid[content].max()),
     )
+    faded = np.zeros(grid.shape + (4,))
+    faded[content & ~np.asarray(result.admissible)] = (1.0, 1.0, 1.0, 0.55)
+    ax.imshow(faded, aspect="auto", interpolation="nearest", extent=extent)
     ax.set_yticks(np.arange(n_rows))
     ax.set_yticklabels(
         [f"{lv:.1f} ({_hz(bw)})" for lv, bw in zip(result.levels, result.bandwidths, strict=True)],
         fontsize="x-small",
     )
-    narrow = np.flatnonzero(result.bandwidths < result.min_bandwidth)
-    if narrow.size:
-        ax.axhline(narrow[0] - 0.5, color="white", ls=":", lw=1.2)
     lo, hi = result.best_band
     row = int(np.flatnonzero(np.isclose(result.levels, result.best_level))[0])
     ax.add_patch(_rectangle((lo, row - 0.5), hi - lo, 1.0))

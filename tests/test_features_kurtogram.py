@@ -71,23 +71,39 @@ def test_stft_spectral_kurtosis_peaks_at_the_resonance():
     assert abs(f[np.argmax(sk)] - 9_000.0) < 1_000.0  # within the resonance's half-power band
 
 
-def test_content_floor_skips_dead_bands_near_nyquist():
+def cut_off_with_spikes(rng, cutoff, spike_band, spike_height):
+    """12 kHz impacts at 3 kHz, low-passed at `cutoff` (an anti-aliasing filter), plus a
+    few band-limited spikes in `spike_band` (Hz)."""
+    fs, n = 12_000.0, 24_000
+    x = impulses_in_noise(rng, n=n, fs=fs, f_res=3_000.0, rate=107.0, noise=0.2)
+    x = scipy.signal.sosfiltfilt(scipy.signal.butter(12, cutoff, fs=fs, output="sos"), x)
+    spikes = np.zeros(n)
+    spikes[rng.choice(n, 4, replace=False)] = spike_height
+    sos = scipy.signal.butter(4, spike_band, "bandpass", fs=fs, output="sos")
+    return x + scipy.signal.sosfiltfilt(sos, spikes), fs
+
+
+def test_content_floor_skips_dead_bands():
     """Above an anti-aliasing cut-off the spectrum is ~60 dB down; a few spikes there
     have enormous kurtosis (the CWRU 12 kHz files show this at 5.6-6 kHz). Such bands
     must not be chosen; the impacts at 3 kHz must."""
-    rng = np.random.default_rng(5)
-    fs, n = 12_000.0, 24_000
-    x = impulses_in_noise(rng, n=n, fs=fs, f_res=3_000.0, rate=107.0, noise=0.2)
-    x = scipy.signal.sosfiltfilt(scipy.signal.butter(12, 5_400, fs=fs, output="sos"), x)
-    spikes = np.zeros(n)
-    spikes[rng.choice(n, 4, replace=False)] = 0.02
-    x += scipy.signal.sosfiltfilt(
-        scipy.signal.butter(4, (5_700, 5_950), "bandpass", fs=fs, output="sos"), spikes
-    )
+    x, fs = cut_off_with_spikes(np.random.default_rng(5), 4_500, (4_950, 5_200), 0.02)
     unrestricted = F.fast_kurtogram(x, fs, floor_db=-200.0)
-    assert unrestricted.best_band[0] >= 5_000.0  # the artefact wins without the floor
-    lo, hi = F.fast_kurtogram(x, fs).best_band
-    assert lo <= 3_000.0 <= hi
+    assert unrestricted.best_band[0] >= 4_500.0  # the artefact wins without the floor
+    res = F.fast_kurtogram(x, fs)
+    assert res.best_band[0] <= 3_000.0 <= res.best_band[1]
+    assert not res.admissible[res.density_db < -20].any()
+
+
+def test_bands_reaching_nyquist_are_not_chosen():
+    """Clicks just below fs/2 strong enough to count as content (not 20 dB down) still
+    do not win: the band hugging Nyquist holds anti-aliasing artefacts."""
+    x, fs = cut_off_with_spikes(np.random.default_rng(6), 5_900, (5_500, 5_950), 10.0)
+    res = F.fast_kurtogram(x, fs)
+    top = res.kurtosis[:, -1].argmax()
+    assert res.kurtosis[top, -1] > 3 * res.best_kurtosis  # the clicks are the most impulsive
+    assert res.density_db[top, -1] > res.floor_db
+    assert res.best_band[1] < fs / 2 and res.best_band[0] <= 3_000.0 <= res.best_band[1]
 
 
 def test_min_bandwidth_is_respected():

@@ -65,11 +65,10 @@ class KurtogramResult:
         ones (see :func:`fast_kurtogram`); an array for batched input.
     best_level, best_kurtosis : float or ndarray, shape (...)
         Level and kurtosis of that band.
-    min_bandwidth : float
-        Narrowest band admitted for ``best_band``, Hz.
+    admissible : ndarray of bool, shape (..., n_rows, n_cols)
+        Bands among which ``best_band`` was chosen (see :func:`fast_kurtogram`).
     floor_db : float
-        Content threshold for ``best_band``: bands with ``density_db < floor_db`` were
-        not admitted.
+        Content threshold: bands with ``density_db < floor_db`` hold no content.
     """
 
     kurtosis: np.ndarray
@@ -81,7 +80,7 @@ class KurtogramResult:
     best_band: tuple[float, float] | np.ndarray
     best_level: float | np.ndarray
     best_kurtosis: float | np.ndarray
-    min_bandwidth: float
+    admissible: np.ndarray
     floor_db: float
 
     def plot(self, ax=None):
@@ -160,12 +159,21 @@ def fast_kurtogram(
     at a cost of one FFT-length of work per row.
 
     The band returned as ``best_band`` maximises the kurtosis among *admissible*
-    bands: at least ``min_bandwidth`` wide (narrower bands cannot carry the fault
-    modulation sidebands) and with content, i.e. a mean power density no more than
-    ``-floor_db`` dB below the signal's average density. The latter excludes the dead
-    bands above an anti-aliasing filter, where a few spikes give enormous kurtosis
-    (on the CWRU 12 kHz recordings the 5.6-6 kHz band reaches kurtosis > 100). The
-    full band (level 0) is always admissible.
+    bands, those where the signal has content:
+
+    * at least ``min_bandwidth`` wide: narrower bands cannot carry the fault
+      modulation sidebands;
+    * a mean power density no more than ``-floor_db`` dB below the signal's average
+      density: this excludes the dead bands above an anti-aliasing filter, where a
+      few spikes give enormous kurtosis (on the CWRU 12 kHz recordings the
+      5.6-6 kHz band reaches kurtosis > 100);
+    * not reaching ``fs/2``: the band hugging Nyquist holds the transition band of
+      the recorder's (or a simulator's) anti-aliasing filter. On simulated signals its
+      sharp broadband clicks reach high kurtosis while the resonance band gives a
+      squared envelope spectrum with a fault line 9 dB stronger.
+
+    The full band (level 0) is always admissible. Pass ``band`` explicitly to the
+    envelope functions to demodulate anywhere else.
 
     Parameters
     ----------
@@ -248,7 +256,9 @@ def fast_kurtogram(
         dens[..., r, :] = np.repeat(10 * np.log10(np.maximum(ratio, 1e-300)), reps, axis=-1)
 
     bandwidths = 0.5 * fs / n_bands
-    ok = (dens >= floor_db) & (bandwidths >= min(min_bandwidth, 0.5 * fs))[:, None]
+    # Grid columns of each row's last band, the one that reaches fs/2.
+    nyquist_band = np.arange(n_cols) >= n_cols - n_cols // n_bands[:, None]
+    ok = (dens >= floor_db) & ((bandwidths >= min_bandwidth)[:, None] & ~nyquist_band)
     ok[..., 0, :] = True
     flat = np.where(ok, kurt, -np.inf).reshape(x.shape[:-1] + (-1,))
     best = np.argmax(flat, axis=-1)
@@ -272,7 +282,7 @@ def fast_kurtogram(
         best_band=best_band,
         best_level=best_level,
         best_kurtosis=best_k,
-        min_bandwidth=min_bandwidth,
+        admissible=ok,
         floor_db=float(floor_db),
     )
 
