@@ -6,6 +6,21 @@ EnvelopeDiagnoser     scikit-learn classifier from the squared-envelope-spectrum
 envelope_evidence     evidence of each fault family (BPFO, BPFI +- fr, 2xBSF +- FTF), dB
 Explanation           which lines carried a decision, and how far above the background
 
+Learned
+-------
+make_pipeline         signal features + scaling + a classifier, ready for scikit-learn
+make_features         the (stateless) feature step alone
+make_classifier       the bare classifier of a pipeline
+CLASSIFIERS           names of the ready-made classifiers
+FEATURE_SETS          names of the feature sets
+
+Benchmarks
+----------
+run_benchmark         cross-validate models over leakage-free splits -> BenchmarkResult
+split_indices         the train/test row indices of one split (groups never straddle)
+write_report          Markdown/CSV table and confusion-matrix figures of a BenchmarkResult
+SPLITS, MODELS        the splits (what each measures) and the models
+
 Importing this package is cheap; scikit-learn loads on first use of a name.
 """
 
@@ -20,6 +35,18 @@ _NAMES = {
     "EnvelopeEvidence": "rules",
     "Explanation": "rules",
     "envelope_evidence": "rules",
+    "CLASSIFIERS": "pipelines",
+    "FEATURE_SETS": "pipelines",
+    "make_classifier": "pipelines",
+    "make_features": "pipelines",
+    "make_pipeline": "pipelines",
+    "SPLITS": "benchmark",
+    "MODELS": "benchmark",
+    "BenchmarkResult": "benchmark",
+    "run_benchmark": "benchmark",
+    "split_indices": "benchmark",
+    "write_report": "report",
+    "plot_confusion": "report",
 }
 
 __all__ = sorted(_NAMES)

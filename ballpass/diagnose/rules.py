@@ -37,7 +37,6 @@ import scipy.ndimage
 from sklearn.base import BaseEstimator, ClassifierMixin
 from sklearn.utils.validation import check_array
 
-from ..bearing import Bearing
 from ..features import envelope_spectrum, fast_kurtogram
 from ..features._validation import (
     check_band,
@@ -46,6 +45,8 @@ from ..features._validation import (
     check_positive_int,
     check_signal,
 )
+from ..features.bands import _rpm as _broadcast_rpm
+from ..features.bands import as_bearing
 
 __all__ = [
     "LABELS",
@@ -79,31 +80,6 @@ def _family_lines(fault: str, harmonics: int) -> list[tuple[str, int, int]]:
             lines.append((f"{h}x{_SYMBOL[carrier]}-{_SYMBOL[modulation]}", h, -1))
             lines.append((f"{h}x{_SYMBOL[carrier]}+{_SYMBOL[modulation]}", h, +1))
     return lines
-
-
-def _bearing(bearing) -> Bearing:
-    if isinstance(bearing, Bearing):
-        return bearing
-    if isinstance(bearing, str):
-        return Bearing.catalog(bearing)
-    raise TypeError(
-        f"bearing must be a catalogue name (str) or a Bearing, got {type(bearing).__name__}"
-    )
-
-
-def _rpm(rpm, n: int) -> np.ndarray:
-    """``rpm`` as a float array of shape (n,): one per signal."""
-    try:
-        arr = np.asarray(rpm, dtype=float)
-    except (TypeError, ValueError):
-        raise TypeError(f"rpm must be a number or an array of numbers, got {rpm!r}") from None
-    if arr.ndim > 1 or (arr.ndim == 1 and arr.size != n):
-        raise ValueError(
-            f"rpm must be a scalar or have one value per signal ({n}), got shape {arr.shape}"
-        )
-    if not (np.isfinite(arr).all() and (arr > 0).all()):
-        raise ValueError(f"rpm must be finite and > 0 (rev/min), got {rpm!r}")
-    return np.broadcast_to(arr, (n,)).copy()
 
 
 @dataclass(frozen=True, eq=False)
@@ -234,13 +210,13 @@ def envelope_evidence(
     if xv.ndim > 2:
         raise ValueError(f"x must be (n_signals, n_samples) or (n_samples,), got {xv.shape}")
     xv = np.atleast_2d(xv)
-    bearing = _bearing(bearing)
+    bearing = as_bearing(bearing)
     harmonics = check_positive_int("harmonics", harmonics, 1)
     slip = check_nonnegative("slip", slip)
     if slip > 0.2:
         raise ValueError(f"slip must be in [0, 0.2], got {slip!r}")
     background_hz = check_nonnegative("background_hz", background_hz)
-    shaft_hz = _rpm(rpm, len(xv)) / 60.0
+    shaft_hz = _broadcast_rpm(rpm, (len(xv),)) / 60.0
     prewhiten = bool(prewhiten)
 
     freqs, ses, bands = _ses_per_band(xv, fs, band, prewhiten)
@@ -503,7 +479,7 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
         if not healthy.any():
             raise ValueError("fit needs at least one healthy signal (y == 'healthy') to "
                              "calibrate the thresholds; without fit the defaults apply")
-        rpm = None if rpm is None else _rpm(rpm, len(X))[healthy]
+        rpm = None if rpm is None else _broadcast_rpm(rpm, (len(X),))[healthy]
         ev = self._evidence(X[healthy], rpm)
         margin = float(check_nonnegative("margin_db", self.margin_db))
         self.thresholds_ = {
@@ -578,7 +554,7 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
 
         ev = self._evidence(X, rpm)
         labels = self.classes_[self._decision(ev).argmax(axis=1)]
-        speeds = _rpm(self.rpm if rpm is None else rpm, len(labels))
+        speeds = _broadcast_rpm(self.rpm if rpm is None else rpm, (len(labels),))
         thresholds = self._thresholds()
         out = []
         for i, label in enumerate(labels):

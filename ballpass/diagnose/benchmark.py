@@ -1,0 +1,385 @@
+"""Classifier benchmarks without leakage between training and test data.
+
+Segments cut from one simulation run (or one recording) share its fault, its speed,
+its random slip and noise: a classifier that saw some of them in training recognises
+the others by those shared details, not by the fault. Every split here therefore keeps
+the rows of a ``group`` (a run, or a recording) on one side. What each split measures:
+
+``run``
+    Stratified group k-fold over runs: new runs of conditions seen in training.
+``speed``, ``load``, ``fault_size``
+    Leave one shaft speed / load / fault size out: generalisation to an unseen operating
+    point or defect size. For ``fault_size`` the healthy runs, which have no size, are
+    spread over the folds by group.
+``sensor``
+    Train on the loaded-zone sensor of some runs, test on the unloaded-zone sensor of
+    the other runs: a change of transfer path.
+``random``
+    **Optimistic**: k-fold over rows, ignoring groups, so segments of one run sit on both
+    sides. Reported only next to the honest splits, to show how much leakage inflates
+    a score.
+``sim2real``
+    Train on every simulated row, test on real recordings.
+
+The feature step of the pipelines is stateless (each row's features depend on that row
+alone), so it is computed once per dataset and only the classifier is refitted per fold;
+the physics-based :class:`~ballpass.diagnose.EnvelopeDiagnoser` is calibrated on the
+healthy training rows of each fold (:meth:`~ballpass.diagnose.EnvelopeDiagnoser.fit`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import pandas as pd
+import sklearn
+from sklearn.base import clone
+from sklearn.metrics import accuracy_score, confusion_matrix, f1_score, recall_score
+from sklearn.model_selection import StratifiedGroupKFold, StratifiedKFold
+
+from .pipelines import CLASSIFIERS, make_features, make_pipeline
+from .rules import LABELS, EnvelopeDiagnoser
+
+__all__ = ["SPLITS", "MODELS", "BenchmarkResult", "split_indices", "run_benchmark"]
+
+#: split name -> what it measures (the ``random`` split is optimistic)
+SPLITS = {
+    "run": "stratified group k-fold over runs (segments of a run stay together)",
+    "speed": "leave one shaft speed out",
+    "load": "leave one load out",
+    "fault_size": "leave one fault size out (healthy runs spread over the folds by group)",
+    "sensor": "train on loaded-zone rows, test on unloaded-zone rows of other runs",
+    "random": "OPTIMISTIC: k-fold over rows, segments of one run on both sides",
+    "sim2real": "train on all simulated rows, test on the real recordings",
+}
+#: model name -> description: the physics-based diagnoser and the learned pipelines
+MODELS = {"envelope": "EnvelopeDiagnoser (physics, thresholds calibrated on healthy "
+                      "training rows)", **CLASSIFIERS}
+_OPTIMISTIC = {"random"}
+
+
+@dataclass
+class BenchmarkResult:
+    """Scores of every model on every split.
+
+    Attributes
+    ----------
+    table : pandas.DataFrame
+        One row per (split, model): ``split``, ``model``, ``optimistic``, ``folds``,
+        ``n_test``, ``accuracy``, ``macro_f1`` (over the classes present in the test
+        rows) and ``recall_<label>`` for each of :data:`~ballpass.diagnose.LABELS`
+        (NaN when the class is absent from the test rows). Scores pool the
+        out-of-fold predictions of all folds.
+    confusion : dict of (str, str) to ndarray of int, shape (4, 4)
+        Confusion matrix per (split, model); rows true, columns predicted, in the order
+        of :data:`~ballpass.diagnose.LABELS`.
+    predictions : pandas.DataFrame
+        Every out-of-fold prediction: ``split``, ``model``, ``fold``, ``row`` (index in
+        the test dataset: the real one for ``sim2real``), ``group``, ``y_true``,
+        ``y_pred``.
+    skipped : dict of str to str
+        Splits that could not be formed on this dataset, with the reason.
+    info : dict
+        Dataset and settings: rows, groups, features, bearing, fs, ...
+    """
+
+    table: pd.DataFrame
+    confusion: dict
+    predictions: pd.DataFrame
+    skipped: dict = field(default_factory=dict)
+    info: dict = field(default_factory=dict)
+
+
+def _check_meta(meta: pd.DataFrame, n: int, name: str) -> None:
+    if not isinstance(meta, pd.DataFrame):
+        raise TypeError(f"{name} must be a pandas DataFrame, got {type(meta).__name__}")
+    if len(meta) != n:
+        raise ValueError(f"{name} has {len(meta)} rows but X has {n}")
+    missing = {"label", "group", "rpm"} - set(meta.columns)
+    if missing:
+        raise ValueError(f"{name} lacks column(s) {sorted(missing)}")
+    unknown = set(meta["label"]) - set(LABELS)
+    if unknown:
+        raise ValueError(f"{name}.label holds {sorted(unknown)}; allowed: {LABELS}")
+
+
+def _load_column(meta: pd.DataFrame) -> str | None:
+    for col in ("radial_load_n", "load_hp"):
+        if col in meta.columns and meta[col].nunique() > 1:
+            return col
+    return None
+
+
+def _stratified_group_folds(y, groups, n_splits: int, random_state) -> list:
+    """Group k-fold, stratified on the label; fewer folds when groups are few."""
+    counts = pd.Series(groups).groupby(np.asarray(y)).nunique()
+    k = int(min(n_splits, counts.max()))
+    if k < 2:
+        return []
+    cv = StratifiedGroupKFold(n_splits=k, shuffle=True, random_state=random_state)
+    return list(cv.split(np.zeros(len(y)), y, groups))
+
+
+def _leave_one_value_out(values: np.ndarray) -> list:
+    out = []
+    for v in np.unique(values):
+        test = np.flatnonzero(values == v)
+        out.append((np.flatnonzero(values != v), test))
+    return out
+
+
+def split_indices(meta: pd.DataFrame, split: str, *, n_splits: int = 5,
+                  random_state=0) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Train/test row indices of one split of a dataset.
+
+    Parameters
+    ----------
+    meta : pandas.DataFrame
+        Row metadata as :func:`ballpass.datasets.load` returns it: at least ``label``,
+        ``group`` and ``rpm``; ``radial_load_n`` or ``load_hp`` for ``load``,
+        ``fault_width_mm`` for ``fault_size``, ``sensor`` for ``sensor``.
+    split : str
+        One of :data:`SPLITS` except ``"sim2real"`` (which needs two datasets).
+    n_splits : int, optional
+        Folds of the k-fold splits (``run``, ``sensor``, ``random``; default 5), fewer
+        when the classes have fewer groups.
+    random_state : int or None, optional
+        Shuffling seed of the k-fold splits (default 0).
+
+    Returns
+    -------
+    list of (ndarray, ndarray)
+        ``(train, test)`` positional indices per fold; empty when the dataset cannot
+        form the split (one speed only, no unloaded sensor, ...). Except for
+        ``random``, no ``group`` has rows on both sides of any fold.
+
+    Examples
+    --------
+    >>> import pandas as pd
+    >>> from ballpass.diagnose import split_indices
+    >>> meta = pd.DataFrame({"label": ["healthy", "outer"] * 4, "group": [0, 1, 2, 3] * 2,
+    ...                      "rpm": [1730, 1730, 1797, 1797] * 2})
+    >>> [(list(tr), list(te)) for tr, te in split_indices(meta, "speed")]
+    [([2, 3, 6, 7], [0, 1, 4, 5]), ([0, 1, 4, 5], [2, 3, 6, 7])]
+    """
+    _check_meta(meta, len(meta), "meta")
+    y = meta["label"].to_numpy()
+    groups = meta["group"].to_numpy()
+    if split == "run":
+        return _stratified_group_folds(y, groups, n_splits, random_state)
+    if split == "speed":
+        folds = _leave_one_value_out(np.round(meta["rpm"].to_numpy(float)))
+    elif split == "load":
+        col = _load_column(meta)
+        folds = [] if col is None else _leave_one_value_out(meta[col].to_numpy())
+    elif split == "fault_size":
+        width = meta["fault_width_mm"].to_numpy(float) if "fault_width_mm" in meta else None
+        sizes = [] if width is None else np.unique(width[np.isfinite(width)])
+        if len(sizes) < 2:
+            return []
+        # Healthy runs have no size: deal their groups round-robin over the folds.
+        healthy = y == "healthy"
+        order = np.random.default_rng(random_state).permutation(np.unique(groups[healthy]))
+        fold_of = {g: k % len(sizes) for k, g in enumerate(order)}
+        healthy_fold = np.array([fold_of.get(g, -1) for g in groups])
+        folds = []
+        for k, size in enumerate(sizes):
+            test = np.flatnonzero((width == size) | (healthy & (healthy_fold == k)))
+            folds.append((np.setdiff1d(np.arange(len(y)), test), test))
+    elif split == "sensor":
+        sensor = meta["sensor"].to_numpy() if "sensor" in meta else np.array([])
+        loaded, unloaded = sensor == "loaded", sensor == "unloaded"
+        if not (loaded.any() and unloaded.any()):
+            return []
+        rows = np.flatnonzero(loaded)
+        folds = []
+        for tr, te in _stratified_group_folds(y[rows], groups[rows], n_splits, random_state):
+            test_groups = set(groups[rows[te]])
+            folds.append((rows[tr], np.flatnonzero(unloaded & np.isin(groups,
+                                                                       list(test_groups)))))
+    elif split == "random":
+        k = int(min(n_splits, pd.Series(y).value_counts().min()))
+        if k < 2:
+            return []
+        cv = StratifiedKFold(n_splits=k, shuffle=True, random_state=random_state)
+        return list(cv.split(np.zeros(len(y)), y))
+    else:
+        raise ValueError(f"split must be one of {sorted(set(SPLITS) - {'sim2real'})}, "
+                         f"got {split!r}")
+    # A split of one value only (one speed, ...) is no split.
+    return [(tr, te) for tr, te in folds if len(tr) and len(te)] if len(folds) > 1 else []
+
+
+def _disjoint(groups: np.ndarray, train: np.ndarray, test: np.ndarray) -> bool:
+    return not set(groups[train]) & set(groups[test])
+
+
+def _scores(y_true, y_pred) -> dict:
+    present = [c for c in LABELS if c in set(y_true)]
+    recall = recall_score(y_true, y_pred, labels=list(LABELS), average=None,
+                          zero_division=np.nan)
+    row = {
+        "n_test": len(y_true),
+        "accuracy": accuracy_score(y_true, y_pred),
+        "macro_f1": f1_score(y_true, y_pred, labels=present, average="macro",
+                             zero_division=0.0),
+    }
+    row.update({f"recall_{c}": (r if c in present else np.nan)
+                for c, r in zip(LABELS, recall, strict=True)})
+    return row
+
+
+def _single(meta: pd.DataFrame, column: str, name: str):
+    values = meta[column].dropna().unique() if column in meta else []
+    if len(values) != 1:
+        raise ValueError(f"{name}.{column} must hold one value for the whole dataset, "
+                         f"got {list(values)}")
+    return values[0]
+
+
+def run_benchmark(
+    X,
+    meta: pd.DataFrame,
+    *,
+    real=None,
+    splits=None,
+    models=None,
+    features: str = "dimensionless",
+    n_splits: int = 5,
+    band=None,
+    harmonics: int = 3,
+    random_state=0,
+) -> BenchmarkResult:
+    """Cross-validate the envelope diagnoser and the classifier pipelines.
+
+    Parameters
+    ----------
+    X : array_like, shape (n_rows, n_samples)
+        Signals, e.g. from :func:`ballpass.datasets.load`, m/s^2.
+    meta : pandas.DataFrame
+        Their metadata (``label``, ``group``, ``rpm``, ``bearing``, ``fs``, and the
+        columns the splits use; see :func:`split_indices`).
+    real : (array_like, pandas.DataFrame), optional
+        Real recordings in the same form (e.g. :func:`ballpass.datasets.load_cwru`,
+        same bearing and fs): adds the ``sim2real`` split, trained on all of ``X``.
+    splits : sequence of str, optional
+        Names from :data:`SPLITS`; default all that the data can form.
+    models : sequence of str, optional
+        Names from :data:`MODELS`; default all.
+    features : str, optional
+        Feature set of the pipelines (default ``"dimensionless"``; see
+        :func:`ballpass.diagnose.make_features`).
+    n_splits : int, optional
+        Folds of the k-fold splits (default 5).
+    band : (float, float) or None, optional
+        Demodulation band, Hz, for the fault bands and the diagnoser; ``None`` (default)
+        picks it per row with the kurtogram.
+    harmonics : int, optional
+        Harmonics of each fault line (default 3).
+    random_state : int or None, optional
+        Seed of the fold shuffling and the randomised classifiers (default 0).
+
+    Returns
+    -------
+    BenchmarkResult
+        Write it out with :func:`ballpass.diagnose.write_report`.
+
+    Raises
+    ------
+    ValueError
+        Unknown split or model names, a dataset mixing bearings or sampling rates, or
+        real recordings of another bearing or rate.
+    """
+    X = np.asarray(X)
+    _check_meta(meta, len(X), "meta")
+    meta = meta.reset_index(drop=True)
+    bearing = str(_single(meta, "bearing", "meta"))
+    fs = float(_single(meta, "fs", "meta"))
+    splits = [s for s in SPLITS if s != "sim2real" or real is not None] if splits is None \
+        else list(splits)
+    models = list(MODELS) if models is None else list(models)
+    for name, allowed, given in (("splits", SPLITS, splits), ("models", MODELS, models)):
+        unknown = set(given) - set(allowed)
+        if unknown or not given:
+            raise ValueError(f"{name} must be a non-empty subset of {list(allowed)}, "
+                             f"got {given!r}")
+    if "sim2real" in splits and real is None:
+        raise ValueError("the sim2real split needs real recordings (real=(X_real, meta_real))")
+
+    datasets = {"sim": (X, meta)}
+    if real is not None:
+        Xr, meta_r = np.asarray(real[0]), real[1].reset_index(drop=True)
+        _check_meta(meta_r, len(Xr), "real meta")
+        for column, value in (("bearing", bearing), ("fs", fs)):
+            other = _single(meta_r, column, "real meta")
+            if (float(other) != value) if column == "fs" else (str(other) != value):
+                raise ValueError(f"real recordings have {column}={other!r}, the simulated "
+                                 f"dataset {value!r}")
+        datasets["real"] = (Xr, meta_r)
+
+    learned = [m for m in models if m != "envelope"]
+    feats = {}
+    if learned:
+        union = make_features(features, bearing=bearing, fs=fs, band=band, harmonics=harmonics)
+        with sklearn.config_context(enable_metadata_routing=True):
+            feats = {k: union.transform(x, rpm=m["rpm"].to_numpy(float))
+                     for k, (x, m) in datasets.items()}
+
+    def fit_predict(model, train, test, test_set):
+        x_tr, m_tr = datasets["sim"][0][train], meta.iloc[train]
+        x_te, m_te = datasets[test_set][0][test], datasets[test_set][1].iloc[test]
+        y_tr = m_tr["label"].to_numpy()
+        if model == "envelope":
+            est = EnvelopeDiagnoser(bearing, fs=fs, band=band, harmonics=harmonics)
+            if (y_tr == "healthy").any():
+                est.fit(x_tr, y_tr, rpm=m_tr["rpm"].to_numpy(float))
+            return est.predict(x_te, rpm=m_te["rpm"].to_numpy(float))
+        est = clone(make_pipeline(model, features=features, random_state=random_state)[1:])
+        return est.fit(feats["sim"][train], y_tr).predict(feats[test_set][test])
+
+    rows, confusion, predictions, skipped = [], {}, [], {}
+    groups = meta["group"].to_numpy()
+    for split in splits:
+        if split == "sim2real":
+            folds, test_set = [(np.arange(len(X)), np.arange(len(datasets["real"][0])))], "real"
+        else:
+            folds = split_indices(meta, split, n_splits=n_splits, random_state=random_state)
+            test_set = "sim"
+            if not folds:
+                skipped[split] = "the dataset has a single value of this factor"
+                continue
+            if split not in _OPTIMISTIC and not all(_disjoint(groups, tr, te)
+                                                    for tr, te in folds):
+                raise RuntimeError(f"split {split!r} put one group on both sides")
+        test_meta = datasets[test_set][1]
+        for model in models:
+            parts = []
+            for k, (train, test) in enumerate(folds):
+                parts.append(pd.DataFrame({
+                    "split": split, "model": model, "fold": k, "row": test,
+                    "group": test_meta["group"].to_numpy()[test],
+                    "y_true": test_meta["label"].to_numpy()[test],
+                    "y_pred": fit_predict(model, train, test, test_set),
+                }))
+            pred = pd.concat(parts, ignore_index=True)
+            predictions.append(pred)
+            confusion[split, model] = confusion_matrix(pred["y_true"], pred["y_pred"],
+                                                       labels=list(LABELS))
+            rows.append({"split": split, "model": model, "optimistic": split in _OPTIMISTIC,
+                         "folds": len(folds), **_scores(pred["y_true"], pred["y_pred"])})
+    info = {
+        "rows": len(X), "groups": int(meta["group"].nunique()), "bearing": bearing, "fs": fs,
+        "samples_per_row": int(X.shape[1]), "features": features, "n_splits": n_splits,
+        "labels": meta["label"].value_counts().to_dict(),
+    }
+    if real is not None:
+        info["real_rows"] = len(datasets["real"][0])
+        info["real_groups"] = int(datasets["real"][1]["group"].nunique())
+    return BenchmarkResult(
+        table=pd.DataFrame(rows),
+        confusion=confusion,
+        predictions=pd.concat(predictions, ignore_index=True) if predictions else pd.DataFrame(),
+        skipped=skipped,
+        info=info,
+    )

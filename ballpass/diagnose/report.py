@@ -1,0 +1,150 @@
+"""Benchmark reports: a Markdown and CSV table and one confusion-matrix figure per split.
+
+Figures are built with :class:`matplotlib.figure.Figure` (no pyplot, no global state),
+so reports can be written from scripts, servers and loops.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from .benchmark import MODELS, SPLITS, BenchmarkResult
+from .rules import LABELS
+
+__all__ = ["plot_confusion", "markdown_table", "write_report"]
+
+_COLUMNS = ["split", "model", "folds", "n_test", "accuracy", "macro_f1",
+            *(f"recall_{c}" for c in LABELS)]
+
+
+def plot_confusion(matrix, *, labels=LABELS, title: str | None = None, ax=None):
+    """Draw a confusion matrix: colour = recall (row-normalised), text = counts.
+
+    Parameters
+    ----------
+    matrix : array_like of int, shape (n_labels, n_labels)
+        Counts; rows true, columns predicted.
+    labels : sequence of str, optional
+        Class names in the order of the rows (default :data:`~ballpass.diagnose.LABELS`).
+    title : str, optional
+        Axes title.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on; a new figure (without pyplot) when omitted.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    if ax is None:
+        from matplotlib.figure import Figure
+
+        ax = Figure(figsize=(3.2, 3.0)).add_subplot()
+    m = np.asarray(matrix, dtype=float)
+    totals = m.sum(axis=1, keepdims=True)
+    recall = np.divide(m, totals, out=np.zeros_like(m), where=totals > 0)
+    ax.imshow(recall, vmin=0.0, vmax=1.0, cmap="Blues")
+    for i, j in np.ndindex(m.shape):
+        ax.text(j, i, f"{int(m[i, j])}", ha="center", va="center", fontsize=8,
+                color="white" if recall[i, j] > 0.6 else "black")
+    ticks = np.arange(len(labels))
+    ax.set_xticks(ticks, labels, rotation=45, ha="right", fontsize=8)
+    ax.set_yticks(ticks, labels, fontsize=8)
+    ax.set_xlabel("predicted")
+    ax.set_ylabel("true")
+    if title:
+        ax.set_title(title, fontsize=9)
+    return ax
+
+
+def _cell(value) -> str:
+    if isinstance(value, float | np.floating):
+        return "–" if math.isnan(value) else f"{value:.3f}"
+    return str(value)
+
+
+def markdown_table(frame) -> str:
+    """A pandas DataFrame as a GitHub-flavoured Markdown table (floats to 3 decimals)."""
+    head = "| " + " | ".join(map(str, frame.columns)) + " |"
+    rule = "|" + "|".join("---" for _ in frame.columns) + "|"
+    body = ["| " + " | ".join(_cell(v) for v in row) + " |"
+            for row in frame.itertuples(index=False)]
+    return "\n".join([head, rule, *body])
+
+
+def _figure(result: BenchmarkResult, split: str, path: Path) -> None:
+    from matplotlib.figure import Figure
+
+    models = [m for (s, m) in result.confusion if s == split]
+    cols = min(3, len(models))
+    rows = -(-len(models) // cols)
+    fig = Figure(figsize=(3.3 * cols, 3.2 * rows), layout="constrained")
+    axes = fig.subplots(rows, cols, squeeze=False).ravel()
+    for ax, model in zip(axes, models, strict=False):
+        plot_confusion(result.confusion[split, model], title=model, ax=ax)
+    for ax in axes[len(models):]:
+        ax.set_visible(False)
+    tag = " (optimistic)" if split == "random" else ""
+    fig.suptitle(f"{split}{tag}: {SPLITS[split]}", fontsize=9)
+    fig.savefig(path, dpi=110)
+
+
+def write_report(result: BenchmarkResult, out_dir, *, title: str = "Classifier benchmark"
+                 ) -> dict[str, Path]:
+    """Write a benchmark as ``results.md``, ``results.csv``, ``predictions.csv`` and PNGs.
+
+    Parameters
+    ----------
+    result : BenchmarkResult
+        From :func:`ballpass.diagnose.run_benchmark`.
+    out_dir : str or os.PathLike
+        Folder (created).
+    title : str, optional
+        Heading of the Markdown report.
+
+    Returns
+    -------
+    dict of str to pathlib.Path
+        ``"markdown"``, ``"csv"``, ``"predictions"`` and ``"confusion_<split>"`` per split.
+    """
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    paths = {"markdown": out / "results.md", "csv": out / "results.csv",
+             "predictions": out / "predictions.csv"}
+    table = result.table
+    table.to_csv(paths["csv"], index=False)
+    result.predictions.to_csv(paths["predictions"], index=False)
+
+    info = result.info
+    lines = [f"# {title}", ""]
+    lines.append(
+        f"{info['rows']} rows in {info['groups']} groups (runs or recordings), bearing "
+        f"{info['bearing']}, fs {info['fs']:g} Hz, {info['samples_per_row']} samples per row; "
+        f"labels {info['labels']}. Learned models use the `{info['features']}` feature set."
+    )
+    if "real_rows" in info:
+        lines.append(f"Real recordings: {info['real_rows']} rows in {info['real_groups']} "
+                     "groups (test set of `sim2real` only).")
+    lines += ["", "Scores pool the out-of-fold predictions of all folds; macro F1 averages "
+              "over the classes present in the test rows; recall is NaN (–) for an absent "
+              "class. Groups never straddle train and test, except in the `random` split, "
+              "which is **optimistic** (segments of one run on both sides) and shown only "
+              "for comparison.", ""]
+    for split in dict.fromkeys(table["split"]) if len(table) else []:
+        part = table[table["split"] == split]
+        tag = " — OPTIMISTIC, not an estimate of real performance" if split == "random" else ""
+        lines += [f"## `{split}`{tag}", "", SPLITS[split] + ".", "",
+                  markdown_table(part[_COLUMNS[1:]]), ""]
+        png = out / f"confusion_{split}.png"
+        _figure(result, split, png)
+        paths[f"confusion_{split}"] = png
+        lines += [f"![confusion matrices, {split}]({png.name})", ""]
+    if result.skipped:
+        lines += ["## Splits not formed", ""]
+        lines += [f"* `{s}`: {why}" for s, why in result.skipped.items()]
+        lines.append("")
+    lines += ["## Models", ""] + [f"* `{m}`: {MODELS[m]}" for m in dict.fromkeys(table["model"])]
+    paths["markdown"].write_text("\n".join(lines) + "\n")
+    return paths
