@@ -30,18 +30,18 @@ import importlib
 
 #: public name -> defining submodule
 _NAMES = {
-    "LABELS": "rules",
+    "LABELS": "_names",
     "EnvelopeDiagnoser": "rules",
     "EnvelopeEvidence": "rules",
     "Explanation": "rules",
     "envelope_evidence": "rules",
-    "CLASSIFIERS": "pipelines",
-    "FEATURE_SETS": "pipelines",
+    "CLASSIFIERS": "_names",
+    "FEATURE_SETS": "_names",
     "make_classifier": "pipelines",
     "make_features": "pipelines",
     "make_pipeline": "pipelines",
-    "SPLITS": "benchmark",
-    "MODELS": "benchmark",
+    "SPLITS": "_names",
+    "MODELS": "_names",
     "BenchmarkResult": "benchmark",
     "run_benchmark": "benchmark",
     "split_indices": "benchmark",

@@ -38,24 +38,12 @@ from sklearn.base import clone
 from sklearn.metrics import accuracy_score, confusion_matrix, f1_score, recall_score
 from sklearn.model_selection import StratifiedGroupKFold, StratifiedKFold
 
-from .pipelines import CLASSIFIERS, make_features, make_pipeline
-from .rules import LABELS, EnvelopeDiagnoser
+from ._names import LABELS, MODELS, SPLITS
+from .pipelines import make_features, make_pipeline
+from .rules import EnvelopeDiagnoser
 
 __all__ = ["SPLITS", "MODELS", "BenchmarkResult", "split_indices", "run_benchmark"]
 
-#: split name -> what it measures (the ``random`` split is optimistic)
-SPLITS = {
-    "run": "stratified group k-fold over runs (segments of a run stay together)",
-    "speed": "leave one shaft speed out",
-    "load": "leave one load out",
-    "fault_size": "leave one fault size out (healthy runs spread over the folds by group)",
-    "sensor": "train on loaded-zone rows, test on unloaded-zone rows of other runs",
-    "random": "OPTIMISTIC: k-fold over rows, segments of one run on both sides",
-    "sim2real": "train on all simulated rows, test on the real recordings",
-}
-#: model name -> description: the physics-based diagnoser and the learned pipelines
-MODELS = {"envelope": "EnvelopeDiagnoser (physics, thresholds calibrated on healthy "
-                      "training rows)", **CLASSIFIERS}
 _OPTIMISTIC = {"random"}
 
 

@@ -38,27 +38,19 @@ from sklearn.svm import SVC
 
 from ..features import INDICATORS
 from ..features.transformers import FaultBandTransformer, IndicatorTransformer
+from ._names import CLASSIFIERS, FEATURE_SETS
 
 __all__ = ["CLASSIFIERS", "FEATURE_SETS", "make_classifier", "make_features", "make_pipeline"]
 
 #: Indicators without a unit: they do not change with sensor sensitivity or gain.
 _DIMENSIONLESS = tuple(n for n in INDICATORS if n not in ("rms", "peak", "peak_to_peak"))
 
-#: Feature set name -> (indicators or None for none, fault bands?)
-FEATURE_SETS = {
+#: Feature set name -> (indicators, or None for none; fault bands?)
+_CONTENT = {
     "dimensionless": (_DIMENSIONLESS, True),
     "all": (INDICATORS, True),
     "bands": (None, True),
     "indicators": (INDICATORS, False),
-}
-
-#: Classifier name -> one-line description.
-CLASSIFIERS = {
-    "random_forest": "random forest, 300 trees",
-    "gradient_boosting": "histogram gradient boosting",
-    "svm": "support-vector machine, RBF kernel",
-    "knn": "k nearest neighbours, k = 5",
-    "logistic": "multinomial logistic regression",
 }
 
 
@@ -130,7 +122,7 @@ def make_features(
     """
     if features not in FEATURE_SETS:
         raise ValueError(f"features must be one of {sorted(FEATURE_SETS)}, got {features!r}")
-    indicators, bands = FEATURE_SETS[features]
+    indicators, bands = _CONTENT[features]
     parts = []
     if indicators is not None:
         parts.append(("indicators", IndicatorTransformer(indicators=list(indicators))))

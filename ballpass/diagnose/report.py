@@ -11,8 +11,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .benchmark import MODELS, SPLITS, BenchmarkResult
-from .rules import LABELS
+from ._names import LABELS, MODELS, SPLITS
+from .benchmark import BenchmarkResult
 
 __all__ = ["plot_confusion", "markdown_table", "write_report"]
 

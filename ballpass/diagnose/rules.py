@@ -47,6 +47,7 @@ from ..features._validation import (
 )
 from ..features.bands import _rpm as _broadcast_rpm
 from ..features.bands import as_bearing
+from ._names import LABELS
 
 __all__ = [
     "LABELS",
@@ -57,8 +58,6 @@ __all__ = [
     "EnvelopeDiagnoser",
 ]
 
-#: Labels the diagnoser predicts.
-LABELS = ("healthy", "outer", "inner", "ball")
 #: fault -> (carrier line, modulating line or None), as BearingFrequencies attributes.
 FAULT_FAMILIES = {
     "outer": ("bpfo", None),

@@ -1,0 +1,43 @@
+"""Names and one-line descriptions of labels, models, feature sets and splits.
+
+Plain data, no imports: the command line builds its help from these without loading
+scikit-learn.
+"""
+
+#: Labels the diagnosers predict, in report order.
+LABELS = ("healthy", "outer", "inner", "ball")
+
+#: Classifier name -> description (see :func:`ballpass.diagnose.make_classifier`).
+CLASSIFIERS = {
+    "random_forest": "random forest, 300 trees",
+    "gradient_boosting": "histogram gradient boosting",
+    "svm": "support-vector machine, RBF kernel, C = 10",
+    "knn": "k nearest neighbours, k = 5",
+    "logistic": "multinomial logistic regression",
+}
+
+#: Feature set name -> description (see :func:`ballpass.diagnose.make_features`).
+FEATURE_SETS = {
+    "dimensionless": "shape indicators (crest, kurtosis, skewness, shape, impulse, clearance) "
+                     "and fault-band SES levels (dB): nothing scales with the sensor gain",
+    "all": "every indicator (also RMS, peak, peak-to-peak in m/s^2) and the fault bands",
+    "bands": "fault-band SES levels only (dB)",
+    "indicators": "statistical indicators only",
+}
+
+#: Model name -> description: the physics-based diagnoser and the learned pipelines.
+MODELS = {
+    "envelope": "EnvelopeDiagnoser (physics; thresholds calibrated on healthy training rows)",
+    **CLASSIFIERS,
+}
+
+#: Split name -> what it measures (``random`` is optimistic).
+SPLITS = {
+    "run": "stratified group k-fold over runs (segments of a run stay together)",
+    "speed": "leave one shaft speed out",
+    "load": "leave one load out",
+    "fault_size": "leave one fault size out (healthy runs dealt over the folds by group)",
+    "sensor": "train on loaded-zone rows, test on unloaded-zone rows of other runs",
+    "random": "OPTIMISTIC: k-fold over rows, segments of one run on both sides",
+    "sim2real": "train on all simulated rows, test on the real recordings",
+}
