@@ -34,6 +34,8 @@ import math
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
 
+from ._validation import check_number
+
 if TYPE_CHECKING:  # pragma: no cover
     import numpy as np
 
@@ -90,13 +92,6 @@ class BearingFrequencies:
             "bpfo": self.bpfo,
             "bpfi": self.bpfi,
         }
-
-
-def _require_positive(name: str, value: float) -> None:
-    if not isinstance(value, (int, float)) or isinstance(value, bool):
-        raise TypeError(f"{name} must be a number, got {type(value).__name__}")
-    if not math.isfinite(value) or value <= 0:
-        raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
 
 
 @dataclass(frozen=True)
@@ -160,8 +155,8 @@ class Bearing:
             raise TypeError(f"n_elements must be an int, got {type(self.n_elements).__name__}")
         if self.n_elements < 3:
             raise ValueError(f"n_elements must be >= 3, got {self.n_elements}")
-        _require_positive("element_diameter_mm", self.element_diameter_mm)
-        _require_positive("pitch_diameter_mm", self.pitch_diameter_mm)
+        check_number("element_diameter_mm", self.element_diameter_mm, 0.0, lo_open=True)
+        check_number("pitch_diameter_mm", self.pitch_diameter_mm, 0.0, lo_open=True)
         if self.element_diameter_mm >= self.pitch_diameter_mm:
             raise ValueError(
                 "element_diameter_mm must be < pitch_diameter_mm (got "
@@ -195,8 +190,8 @@ class Bearing:
         if self.element == "roller":
             if self.roller_length_mm is None:
                 raise ValueError("roller_length_mm is required when element='roller'")
-            _require_positive("roller_length_mm", self.roller_length_mm)
-        _require_positive("youngs_modulus_pa", self.youngs_modulus_pa)
+            check_number("roller_length_mm", self.roller_length_mm, 0.0, lo_open=True)
+        check_number("youngs_modulus_pa", self.youngs_modulus_pa, 0.0, lo_open=True)
         if not (0.0 <= self.poisson_ratio < 0.5):
             raise ValueError(f"poisson_ratio must be in [0, 0.5), got {self.poisson_ratio!r}")
 
@@ -293,7 +288,7 @@ class Bearing:
         BearingFrequencies
             ``.ftf .bsf .ball_defect .bpfo .bpfi`` in Hz.
         """
-        _require_positive("shaft_hz", shaft_hz)
+        check_number("shaft_hz", shaft_hz, 0.0, lo_open=True, unit="Hz")
         r = self.diameter_ratio
         z = self.n_elements
         ftf = 0.5 * shaft_hz * (1.0 - r)
@@ -496,14 +491,14 @@ class Bearing:
         """
         import numpy as np
 
-        f_r = _finite("radial_load_n", radial_load_n, lo=0.0, unit="N")
-        k = self.hertz_stiffness() if stiffness is None else _finite(
-            "stiffness", stiffness, lo=0.0, lo_open=True, unit="N/m^n"
+        f_r = check_number("radial_load_n", radial_load_n, 0.0, unit="N")
+        k = self.hertz_stiffness() if stiffness is None else check_number(
+            "stiffness", stiffness, 0.0, lo_open=True, unit="N/m^n"
         )
-        c = self.radial_clearance_m if clearance_m is None else _finite(
+        c = self.radial_clearance_m if clearance_m is None else check_number(
             "clearance_m", clearance_m, unit="m"
         )
-        cage = _finite("cage_angle_deg", cage_angle_deg, unit="deg")
+        cage = check_number("cage_angle_deg", cage_angle_deg, unit="deg")
         n = self.load_exponent
         z = self.n_elements
         cos_a = math.cos(self.contact_angle_rad)
@@ -615,34 +610,6 @@ _CATALOG: dict[str, dict] = {
 
 
 # ---------------------------------------------------------------------- helpers
-def _finite(
-    name: str,
-    value,
-    *,
-    lo: float | None = None,
-    lo_open: bool = False,
-    unit: str = "",
-) -> float:
-    """Validate a finite real number (optionally bounded below) and return it as float."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        try:
-            import numpy as np
-        except ImportError:  # pragma: no cover
-            np = None
-        if np is None or not isinstance(value, np.number) or isinstance(value, np.complexfloating):
-            raise TypeError(f"{name} must be a real number, got {type(value).__name__}")
-    value = float(value)
-    where = f" ({unit})" if unit else ""
-    if lo is None:
-        if not math.isfinite(value):
-            raise ValueError(f"{name} must be a finite number{where}, got {value!r}")
-        return value
-    op = ">" if lo_open else ">="
-    if not math.isfinite(value) or value < lo or (lo_open and value == lo):
-        raise ValueError(f"{name} must be a finite number {op} {lo:g}{where}, got {value!r}")
-    return value
-
-
 def _monotone_root(func, scale: float) -> float:
     """Root of a continuous non-decreasing ``func`` by bracketing and Brent's method.
 
@@ -737,7 +704,7 @@ def hertz_factors(curvature_difference: float) -> HertzFactors:
     from scipy.optimize import brentq
     from scipy.special import ellipe, ellipkm1, elliprd
 
-    f = _finite("curvature_difference", curvature_difference, lo=0.0)
+    f = check_number("curvature_difference", curvature_difference, 0.0)
     if f >= 1.0:
         raise ValueError(
             f"curvature_difference must be in [0, 1) (1 is a line contact), got {f!r}"
@@ -810,9 +777,9 @@ def point_contact_stiffness(
     >>> round(k / (4 / 3 * e_star * 0.005**0.5), 12)
     1.0
     """
-    s = _finite("curvature_sum_per_m", curvature_sum_per_m, lo=0.0, lo_open=True, unit="1/m")
-    e = _finite("youngs_modulus_pa", youngs_modulus_pa, lo=0.0, lo_open=True, unit="Pa")
-    nu = _finite("poisson_ratio", poisson_ratio, lo=0.0)
+    s = check_number("curvature_sum_per_m", curvature_sum_per_m, 0.0, lo_open=True, unit="1/m")
+    e = check_number("youngs_modulus_pa", youngs_modulus_pa, 0.0, lo_open=True, unit="Pa")
+    nu = check_number("poisson_ratio", poisson_ratio, 0.0)
     if nu >= 0.5:
         raise ValueError(f"poisson_ratio must be in [0, 0.5), got {nu!r}")
     delta_star = hertz_factors(curvature_difference).delta_star
@@ -846,7 +813,7 @@ def line_contact_stiffness(length_m: float) -> float:
     >>> f"{line_contact_stiffness(0.011):.3e}"
     '1.463e+09'
     """
-    length_mm = _finite("length_m", length_m, lo=0.0, lo_open=True, unit="m") * 1e3
+    length_mm = check_number("length_m", length_m, 0.0, lo_open=True, unit="m") * 1e3
     n = 10.0 / 9.0
     k_mm = (length_mm**0.8 / PALMGREN_COEFFICIENT) ** n
     return k_mm * 1e3**n
@@ -876,9 +843,9 @@ def series_stiffness(k_inner: float, k_outer: float, load_exponent: float) -> fl
     >>> series_stiffness(1.0, 1.0, 1.5) == 2.0 ** -1.5
     True
     """
-    ki = _finite("k_inner", k_inner, lo=0.0, lo_open=True, unit="N/m^n")
-    ko = _finite("k_outer", k_outer, lo=0.0, lo_open=True, unit="N/m^n")
-    n = _finite("load_exponent", load_exponent, lo=0.0, lo_open=True)
+    ki = check_number("k_inner", k_inner, 0.0, lo_open=True, unit="N/m^n")
+    ko = check_number("k_outer", k_outer, 0.0, lo_open=True, unit="N/m^n")
+    n = check_number("load_exponent", load_exponent, 0.0, lo_open=True)
     return (1.0 / (ki ** (-1.0 / n) + ko ** (-1.0 / n))) ** n
 
 
@@ -913,8 +880,8 @@ def stribeck_integral(epsilon: float, load_exponent: float = 1.5) -> float:
     """
     from scipy.integrate import quad
 
-    eps = _finite("epsilon", epsilon, lo=0.0, lo_open=True)
-    n = _finite("load_exponent", load_exponent, lo=0.0, lo_open=True)
+    eps = check_number("epsilon", epsilon, 0.0, lo_open=True)
+    n = check_number("load_exponent", load_exponent, 0.0, lo_open=True)
     limit = math.pi if eps >= 1.0 else math.acos(1.0 - 2.0 * eps)
 
     def integrand(psi: float) -> float:
@@ -972,10 +939,10 @@ def stribeck_qmax(
     >>> round(stribeck_qmax(1000.0, 9), 1)       # 4.37 * 1000 / 9
     485.6
     """
-    f_r = _finite("radial_load_n", radial_load_n, lo=0.0, unit="N")
+    f_r = check_number("radial_load_n", radial_load_n, 0.0, unit="N")
     if isinstance(n_elements, bool) or not isinstance(n_elements, int) or n_elements < 1:
         raise ValueError(f"n_elements must be an int >= 1, got {n_elements!r}")
-    alpha = _finite("contact_angle_deg", contact_angle_deg, lo=0.0, unit="deg")
+    alpha = check_number("contact_angle_deg", contact_angle_deg, 0.0, unit="deg")
     if alpha >= 90.0:
         raise ValueError(f"contact_angle_deg must be in [0, 90), got {alpha!r}")
     j_r = stribeck_integral(epsilon, load_exponent)

@@ -18,6 +18,7 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 
+from ._validation import check_number as _number
 from .bearing import Bearing, BearingFrequencies
 
 __all__ = ["Fault", "Sensor", "SpeedProfile", "Scene", "wrap_deg"]
@@ -33,20 +34,6 @@ def wrap_deg(angle: float) -> float:
     if wrapped < 0.0:
         wrapped += 360.0
     return 0.0 if wrapped == 360.0 else wrapped
-
-
-def _number(name: str, value, lo: float, hi: float, *, lo_open=False, hi_open=False) -> float:
-    """Validate a real number in a range and return it as float."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise TypeError(f"{name} must be a number, got {type(value).__name__} ({value!r})")
-    value = float(value)
-    lo_ok = value > lo if lo_open else value >= lo
-    hi_ok = value < hi if hi_open else value <= hi
-    if not (math.isfinite(value) and lo_ok and hi_ok):
-        lb = "(" if lo_open else "["
-        rb = ")" if hi_open else "]"
-        raise ValueError(f"{name} must be a finite number in {lb}{lo:g}, {hi:g}{rb}, got {value!r}")
-    return value
 
 
 @dataclass(frozen=True)
