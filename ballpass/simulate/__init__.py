@@ -60,6 +60,8 @@ SOLVERS = {
 
 #: internal output rate = OVERSAMPLE * fs before the anti-alias decimation
 OVERSAMPLE = 4
+#: default RK4 step = DT_DEFAULT_OMEGA / omega_contact (see :func:`simulate`)
+DT_DEFAULT_OMEGA = 0.25
 
 
 class SimulationUnstableError(RuntimeError):
@@ -95,21 +97,34 @@ def build(scene: Scene, model: str = "auto", params: SR5Parameters | None = None
     return build_model(scene, params, resonator=(name == "sr5"))
 
 
-def _characteristic_omega(bm: BearingModel) -> float:
-    """Highest natural angular frequency the step must resolve, rad/s."""
+def _core_omega(bm: BearingModel) -> float:
+    """Linearised contact natural frequency of the core (shaft on its contacts), rad/s:
+    the fastest mode the Runge-Kutta step must resolve (the resonators are integrated
+    exactly and do not constrain it)."""
     nd = 4 + bm.n_res
-    w_contact = bm.scale[nd] / bm.scale[0]
-    w_res = bm.m[0][_K.P_WR] if bm.n_res else 0.0
-    return max(w_contact, w_res)
+    return float(bm.scale[nd] / bm.scale[0])
 
 
-def _events(bm: BearingModel, h_out: float, n_out: int):
+def _events(bm: BearingModel, t_end: float):
+    """Fault-edge crossings in [0, t_end]: brackets, fault, element and level indices."""
     if bm.levels.shape[0] == 0:
         empty = np.empty(0)
         e = np.empty(0, dtype=np.int64)
         return empty, empty.copy(), e, e.copy(), e.copy()
-    grid = np.arange(n_out, dtype=np.float64) * h_out
-    return _K.find_crossings(bm.m, grid, bm.levels)
+    # Scan so that every offset moves by at most 0.5 rad per interval: each offset is
+    # monotone in time and the levels lie within 1 rad of the fault centre (a race
+    # fault is narrower than the element spacing, a ball fault than the ball), so a
+    # sign change against a level is never missed and a wrap at +-pi never mistaken
+    # for one. The fastest offset: the cage (with its steepest slip increment), the
+    # inner race relative to it (< shaft speed) or the ball spin.
+    p, walk = bm.p, bm.walk
+    z = p[_K.P_Z]
+    w_max = max(p[_K.P_W0], p[_K.P_W1])
+    slope = float(np.max(np.abs(np.diff(walk)))) * z / (2.0 * math.pi) if walk.size > 1 else 0.0
+    cage = p[_K.P_CAGE] * w_max * (1.0 + slope)
+    rate = max(w_max, cage, p[_K.P_SPIN] * cage)
+    n_scan = max(2, math.ceil(t_end * rate / 0.5) + 1)
+    return _K.find_crossings(p, walk, bm.faults, np.linspace(0.0, t_end, n_scan), bm.levels)
 
 
 def _edge_names(bm: BearingModel, fault: np.ndarray, level: np.ndarray) -> np.ndarray:
@@ -189,31 +204,48 @@ def integrate(bm: BearingModel, solver: str, *, h_out: float, n_out: int,
     if solver == "auto":
         solver = "rk4"
     t_wall = time.perf_counter()
-    ev_before, ev_after, ev_fault, ev_elem, ev_level = _events(bm, h_out, n_out)
+    t_end = (n_out - 1) * h_out
+    ev_before, ev_after, ev_fault, ev_elem, ev_level = _events(bm, t_end)
+    # the integrators also split their steps where the slip walk bends the cage angle
+    knot_before, knot_after = _K.find_knots(bm.p, t_end)
+    split_before = np.concatenate((ev_before, knot_before))
+    order = np.argsort(split_before, kind="stable")
+    split_before = split_before[order]
+    split_after = np.concatenate((ev_after, knot_after))[order]
     out = np.empty((n_out, len(scene.sensors)))
     states = np.empty((n_out if keep_states else 0, bm.n_state))
     nd = 4 + bm.n_res
     bound = np.empty(bm.n_state)
     bound[:nd] = 1e4 * np.maximum(bm.scale[:nd], 1e-6)
     bound[nd:] = 1e4 * bm.scale[nd:] + 1e3
-    omega = _characteristic_omega(bm)
+    omega = _core_omega(bm)
     info = {"solver": solver, "internal_fs": 1.0 / h_out, "n_events": int(ev_before.shape[0])}
     if solver == "rk4":
-        dt_req = dt if dt is not None else 0.25 / omega
-        n_sub = max(1, math.ceil(h_out / dt_req - 1e-9))
-        status, n_steps, t_fail = _I.rk4(bm.y0, bm.m, bm.n_res, bm.work(), h_out, n_sub, n_out,
-                                         ev_before, ev_after, bound, out, states)
-        step = h_out / n_sub
+        dt_req = dt if dt is not None else DT_DEFAULT_OMEGA / omega
+        # step ends on the output grid: a multiple or a divisor of h_out (1e-9: a dt
+        # meant as an exact multiple/divisor must not round the other way)
+        if dt_req >= h_out:
+            mult, n_sub = math.floor(dt_req / h_out + 1e-9), 1
+        else:
+            mult, n_sub = 1, math.ceil(h_out / dt_req - 1e-9)
+        status, n_steps, t_fail = _I.rk4(bm.y0, *bm.model, bm.n_res, h_out, mult, n_sub, n_out,
+                                         split_before, split_after, bound, out, states)
+        step = h_out * mult / n_sub
         info.update(n_steps=int(n_steps), n_rejected=0, dt_s=step)
         step_text = f"dt = {step:.3g} s"
     else:
         rtol_v = 1e-6 if rtol is None else float(rtol)
-        atol_v = rtol_v * (1.0 if atol is None else float(atol)) * bm.scale
-        h_max = 0.5 * math.pi / omega  # at least 4 steps per period of the fastest mode
-        max_steps = int(50 * n_out + 100 * ev_before.shape[0] + 10_000)
+        core_scale = np.concatenate((bm.scale[:4], bm.scale[nd:nd + 4]))
+        atol_v = rtol_v * (1.0 if atol is None else float(atol)) * core_scale
+        # the resonator excitation's scale: the resonator deflection scale times w_r^2
+        w_r = bm.p[_K.P_WR]
+        atol_in = rtol_v * (1.0 if atol is None else float(atol)) * (
+            bm.scale[4] * w_r**2 if bm.n_res else 1.0)
+        h_max = 0.5 * math.pi / omega  # at least 4 steps per period of the contact mode
+        max_steps = int(50 * n_out + 100 * split_before.shape[0] + 10_000)
         status, n_acc, n_rej, h_min, t_fail = _I.dopri5(
-            bm.y0, bm.m, bm.n_res, bm.work(), h_out, n_out, ev_before, ev_after, bound, rtol_v,
-            atol_v, h_max, max_steps, out, states)
+            bm.y0, *bm.model, bm.n_res, h_out, n_out, split_before, split_after, bound, rtol_v,
+            atol_v, atol_in, h_max, max_steps, out, states)
         info.update(n_steps=int(n_acc), n_rejected=int(n_rej), dt_min_s=float(h_min),
                     rtol=rtol_v)
         step_text = f"rtol = {rtol_v:g}, smallest step {h_min:.3g} s"
@@ -317,8 +349,8 @@ def simulate(scene: Scene, model: str = "auto", solver: str = "auto", *, dt: flo
     forces = angles = displacement = None
     if return_forces:
         idx = np.arange(n_samples) * oversample
-        forces = _K.contact_loads_many(idx * h_out, states[idx], bm.m).T.copy()
-        angles = _K.element_angles_many(idx * h_out, bm.m[0], bm.m[1],
+        forces = _K.contact_loads_many(idx * h_out, states[idx], *bm.model[:3]).T.copy()
+        angles = _K.element_angles_many(idx * h_out, bm.p, bm.walk,
                                         scene.bearing.n_elements).T.copy()
         displacement = states[idx][:, :4].T.copy()
     truth = GroundTruth(

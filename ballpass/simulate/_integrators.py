@@ -1,5 +1,19 @@
 """Numba integrators for the bearing models: fixed-step RK4 and adaptive
-Dormand-Prince 5(4), both aware of the fault-edge events.
+Dormand-Prince 5(4) on the nonlinear core, exact propagation of the sensor resonators.
+
+Splitting. The sr5 resonators are linear, time-invariant and one-way coupled: the
+housing excites them, they do not act back. Only the 4-DOF core (shaft and pedestal
+with Hertz contacts, state layout ``yc`` of :mod:`._kernels`) goes through the
+Runge-Kutta method, at the step its own dynamics (contact modes of a few kHz) and the
+fault events need; the 15 kHz resonators no longer bound the step. Over each core step
+[t0, t1] the excitation s''(t) of every resonator is the cubic Hermite interpolant of
+its values and exact time derivatives at t0 and t1 (4th order, like the core method),
+and the resonator z'' + 2 zeta w z' + w^2 z = -s''(t) is advanced exactly for that
+cubic input: x(t + tau) = Phi(tau) x(t) + sum_m c_m g_m(tau), with Phi the matrix
+exponential and g_m the exact integrals against s^m (:func:`lti_propagator`).
+This is an exponential integrator of the whole sr5 system: the full-state equations of
+``BearingModel.rhs`` and the integrated ones are the same; only their discretisation
+differs.
 
 Both integrators
 
@@ -8,9 +22,21 @@ Both integrators
   with the right-hand side re-evaluated there. The fault profile is a known function
   of time (rigid kinematics), so the discontinuities of a sharp-edged defect always
   fall on step boundaries and the methods keep their order through them;
-* record the sensor output on a uniform internal grid ``k * h_out``;
+* record the sensor output on a uniform internal grid ``k * h_out``, independent of the
+  step: the resonators are propagated exactly from grid point to grid point; the core
+  state between steps is the cubic Hermite interpolant of the step's end states and
+  derivatives (for sr4 output and for ``states``);
 * stop with a status code as soon as the state is not finite or leaves a bound,
   so the caller can raise a clear error (no NaN ever leaves the simulator).
+
+Speed notes. numba reference-counts the array arguments of a function unless its
+refcount-pruning pass can prove the counts balanced, which fails as soon as the
+function calls another looping kernel (the call's error branch leaves them
+unbalanced). The per-stage kernels are therefore leaves (they call only loop-free
+helpers) and the per-segment output routine :func:`_emit` takes few arrays: the
+segment's vectors are rows of one workspace ``seg`` (rows ``R_*``), the resonator
+states and input coefficients one array ``res`` (columns ``X_Z, X_DZ, X_C``), the
+propagators one array ``prop``.
 
 Status codes: 0 ok, 1 non-finite or unbounded state, 2 step size underflow
 (adaptive), 3 too many steps (adaptive).
@@ -23,7 +49,19 @@ import math
 import numpy as np
 from numba import njit
 
-from ._kernels import rhs, sensor_output
+from ._kernels import (
+    K_DEPTH,
+    N_CORE,
+    N_KIN,
+    P_WR,
+    P_Z,
+    P_ZETA,
+    contact_loads,
+    core_forces,
+    element_angles,
+    fault_depths,
+    housing_accel,
+)
 
 STATUS_OK, STATUS_NONFINITE, STATUS_UNDERFLOW, STATUS_MAX_STEPS = 0, 1, 2, 3
 
@@ -39,147 +77,474 @@ E1, E3, E4, E5, E6, E7 = (
     71 / 57600, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 525, -1 / 40,
 )
 
+# rows of the segment workspace: core state and derivative at both ends and
+# interpolated; resonator excitation and rate at both ends, at the current and the
+# next refinement point
+R_Y0, R_F0, R_Y1, R_F1, R_YI, R_FI = 0, 1, 2, 3, 4, 5
+R_A0, R_DA0, R_A1, R_DA1, R_AC, R_DAC, R_AK, R_DAK = 6, 7, 8, 9, 10, 11, 12, 13
+N_SEG = 14
+# columns of the resonator array: z, z' and the input cubic's coefficients c0..c3
+X_Z, X_DZ, X_C = 0, 1, 2
+# propagator slots in prop (2, 6, 2): rows 0-1 Phi, rows 2-5 g_0..g_3
+PROP_H, PROP_TMP = 0, 1
 
-@njit(cache=True)
-def _finite_and_bounded(y, bound):
-    for i in range(y.shape[0]):
-        v = y[i]
-        if not (abs(v) <= bound[i]):
+#: a grid point within this fraction of h_out of a segment end belongs to that segment
+#: (step ends are computed in floating point; 1e-9 h_out is far below any step)
+GRID_TOL = 1e-9
+
+
+@njit(cache=True, error_model="numpy")
+def lti_propagator(tau, w, zeta, prop, slot):
+    """Exact propagator of the resonator x = (z, z') over tau with polynomial input,
+    into ``prop[slot]`` (rows 0-1: Phi, rows 2-5: g_0..g_3).
+
+    For z'' + 2 zeta w z' + w^2 z = -u(s), i.e. x' = A x + B u with
+    A = [[0, 1], [-w^2, -2 zeta w]], B = (0, -1), and u(s) = sum_m c_m s^m (m <= 3):
+    x(tau) = Phi x(0) + sum_m c_m g_m, Phi = exp(A tau) and
+    g_m = int_0^tau exp(A (tau - s)) B s^m ds = m! tau^(m+1) sum_k (A tau)^k B k!/(k+m+1)!.
+
+    Both from the Taylor series of exp(A tau), summed until the terms fall below
+    1e-17 of the leading ones: |eigenvalues| tau = w tau <= 2 pi 0.45 fs h_out <= 2.9
+    here (resonance below 0.45 fs, pieces no longer than one output interval of at
+    most 1/fs), where the series converges without cancellation trouble (largest
+    term < e^(3 w tau) / sqrt(2 pi k) < 1e4 times the sum, so 1e-12 of rounding at
+    worst, 1e-15 at the default 4x oversampling).
+
+    Parameters
+    ----------
+    tau : float
+        Interval, s.
+    w, zeta : float
+        Natural angular frequency (rad/s) and damping ratio.
+    prop : ndarray (2, 6, 2)
+        Written at ``prop[slot]``.
+    slot : int
+    """
+    a10 = -w * w * tau
+    a11 = -2.0 * zeta * w * tau
+    # column 0: u = (A tau)^k e0 / k!; column 1: v = (A tau)^k e1 / k!
+    u0, u1 = 1.0, 0.0
+    v0, v1 = 0.0, 1.0
+    for r in range(6):
+        prop[slot, r, 0] = 0.0
+        prop[slot, r, 1] = 0.0
+    for k in range(200):
+        prop[slot, 0, 0] += u0
+        prop[slot, 1, 0] += u1
+        prop[slot, 0, 1] += v0
+        prop[slot, 1, 1] += v1
+        # g_m = -tau^(m+1) sum_k v_k m! / ((k+1)...(k+m+1))
+        c = 1.0 / (k + 1)
+        for mm in range(4):
+            prop[slot, 2 + mm, 0] -= c * v0
+            prop[slot, 2 + mm, 1] -= c * v1
+            c *= (mm + 1.0) / (k + mm + 2.0)
+        if k > 2 and abs(u0) + abs(u1) / w + abs(v0) * w + abs(v1) < 1e-17:
+            break
+        u0, u1 = u1 * tau / (k + 1), (a10 * u0 + a11 * u1) / (k + 1)
+        v0, v1 = v1 * tau / (k + 1), (a10 * v0 + a11 * v1) / (k + 1)
+    tp = tau
+    for mm in range(4):
+        prop[slot, 2 + mm, 0] *= tp
+        prop[slot, 2 + mm, 1] *= tp
+        tp *= tau
+
+
+@njit(cache=True, error_model="numpy")
+def _hermite_input(t0, t1, seg, r_a0, r_da0, r_a1, r_da1, res):
+    """Cubic u(s) = sum_m res[i, X_C + m] s^m, s = t - t0, through the excitation and
+    its rate in rows (r_a0, r_da0) of ``seg`` at t0 and (r_a1, r_da1) at t1."""
+    tau = t1 - t0
+    for i in range(res.shape[0]):
+        a0 = seg[r_a0, i]
+        da0 = seg[r_da0, i]
+        da1 = seg[r_da1, i]
+        slope = (seg[r_a1, i] - a0) / tau
+        res[i, X_C] = a0
+        res[i, X_C + 1] = da0
+        res[i, X_C + 2] = (3.0 * slope - 2.0 * da0 - da1) / tau
+        res[i, X_C + 3] = (-2.0 * slope + da0 + da1) / (tau * tau)
+
+
+@njit(cache=True, error_model="numpy")
+def _propagate(res, s0, prop, slot):
+    """Advance each resonator (z, z') in ``res`` over one piece starting at s = s0 of
+    its input cubic (re-expanded about s0), with the propagator ``prop[slot]``."""
+    for i in range(res.shape[0]):
+        b0 = res[i, X_C]
+        b1 = res[i, X_C + 1]
+        b2 = res[i, X_C + 2]
+        c3 = res[i, X_C + 3]
+        c2 = b2 + 3.0 * c3 * s0
+        c1 = b1 + s0 * (2.0 * b2 + 3.0 * c3 * s0)
+        c0 = b0 + s0 * (b1 + s0 * (b2 + s0 * c3))
+        z = res[i, X_Z]
+        dz = res[i, X_DZ]
+        for r in range(2):
+            res[i, r] = (prop[slot, r, 0] * z + prop[slot, r, 1] * dz
+                         + c0 * prop[slot, 2, r] + c1 * prop[slot, 3, r]
+                         + c2 * prop[slot, 4, r] + c3 * prop[slot, 5, r])
+
+
+@njit(cache=True, error_model="numpy")
+def _resonator_output(res, w, zeta, out, k):
+    """Absolute acceleration of each resonator mass, -(2 zeta w z' + w^2 z), m/s^2, into
+    ``out[k]``."""
+    for i in range(res.shape[0]):
+        out[k, i] = -(2.0 * zeta * w * res[i, X_DZ] + w * w * res[i, X_Z])
+
+
+@njit(cache=True, error_model="numpy")
+def _store_state(states, k, seg, r_y, res):
+    """Row k of ``states`` in the full layout of :mod:`._kernels`: the core state in
+    row ``r_y`` of ``seg`` and the resonator states."""
+    n_res = res.shape[0]
+    nd = 4 + n_res
+    for i in range(4):
+        states[k, i] = seg[r_y, i]
+        states[k, nd + i] = seg[r_y, 4 + i]
+    for i in range(n_res):
+        states[k, 4 + i] = res[i, X_Z]
+        states[k, nd + 4 + i] = res[i, X_DZ]
+
+
+@njit(cache=True, error_model="numpy")
+def _ok(seg, r_y, res, bound):
+    """True when the core state in row ``r_y`` of ``seg`` and the resonator states are
+    finite and within ``bound`` (full layout)."""
+    n_res = res.shape[0]
+    nd = 4 + n_res
+    for i in range(4):
+        if not (abs(seg[r_y, i]) <= bound[i] and abs(seg[r_y, 4 + i]) <= bound[nd + i]):
+            return False
+    for i in range(n_res):
+        if not (abs(res[i, X_Z]) <= bound[4 + i] and abs(res[i, X_DZ]) <= bound[nd + 4 + i]):
             return False
     return True
 
 
-@njit(cache=True)
-def _rk4_step(t, y, h, m, n_res, work, k1, k2, k3, k4, tmp, y_out):
-    n = y.shape[0]
-    rhs(t, y, k1, m, n_res, work)
-    for i in range(n):
-        tmp[i] = y[i] + 0.5 * h * k1[i]
-    rhs(t + 0.5 * h, tmp, k2, m, n_res, work)
-    for i in range(n):
-        tmp[i] = y[i] + 0.5 * h * k2[i]
-    rhs(t + 0.5 * h, tmp, k3, m, n_res, work)
-    for i in range(n):
-        tmp[i] = y[i] + h * k3[i]
-    rhs(t + h, tmp, k4, m, n_res, work)
-    for i in range(n):
-        y_out[i] = y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
+@njit(cache=True, error_model="numpy")
+def _in_fault(kin):
+    """True when some element sits in a defect (non-zero depth) at the kinematics in
+    ``kin``. Segments are split at every fault edge, so one interior time decides for
+    the whole segment."""
+    for j in range(kin.shape[1]):
+        if kin[K_DEPTH, j] != 0.0:
+            return True
+    return False
 
 
-@njit(cache=True)
-def rk4(y0, m, n_res, work, h_out, n_sub, n_out, ev_before, ev_after, bound, out, states):
-    """Classical fixed-step RK4 on the grid ``h_out / n_sub``, split at events.
+@njit(cache=True, error_model="numpy")
+def _excitation(t, seg, r_y, r_f, r_a, r_da, p, walk, faults, sensors, kin):
+    """Core derivative (row ``r_f``) at time t and core state row ``r_y`` of ``seg``;
+    for sr5 also the resonator excitation and its rate (rows ``r_a``, ``r_da``)."""
+    y = seg[r_y]
+    f = seg[r_f]
+    rate = element_angles(t, p, walk, kin)
+    fault_depths(t, p, faults, kin, rate, True)
+    core_forces(y, p, kin, f)
+    n_s = sensors.shape[0]
+    housing_accel(y, f, p, sensors, kin, rate, seg[r_a, :n_s], seg[r_da, :n_s], True)
+
+
+@njit(cache=True, error_model="numpy")
+def _interpolate_core(t0, t1, tk, seg):
+    """Cubic Hermite interpolant of the core state at tk in [t0, t1] from rows R_Y0,
+    R_F0, R_Y1, R_F1 of ``seg``, into row R_YI."""
+    tau = t1 - t0
+    s = min(max((tk - t0) / tau, 0.0), 1.0)
+    h00 = (1.0 + 2.0 * s) * (1.0 - s) ** 2
+    h10 = s * (1.0 - s) ** 2 * tau
+    h01 = s * s * (3.0 - 2.0 * s)
+    h11 = s * s * (s - 1.0) * tau
+    for i in range(N_CORE):
+        seg[R_YI, i] = (h00 * seg[R_Y0, i] + h10 * seg[R_F0, i] + h01 * seg[R_Y1, i]
+                        + h11 * seg[R_F1, i])
+
+
+@njit(cache=True, error_model="numpy")
+def _input_error(t, h, seg, rtol, atol_in, p, walk, faults, sensors, kin):
+    """RMS error of the cubic Hermite resonator input at the middle of [t, t + h],
+    against the excitation of the interpolated core state, scaled by
+    ``atol_in + rtol |s''|``. Needs rows R_Y0, R_F0, R_A0, R_DA0 (start) and R_Y1,
+    R_F1, R_A1, R_DA1 (end) of ``seg``; overwrites R_YI, R_FI, R_AK, R_DAK."""
+    tm = t + 0.5 * h
+    _interpolate_core(t, t + h, tm, seg)
+    _excitation(tm, seg, R_YI, R_FI, R_AK, R_DAK, p, walk, faults, sensors, kin)
+    n_s = sensors.shape[0]
+    err = 0.0
+    for i in range(n_s):
+        # the cubic Hermite interpolant at mid-interval
+        mid = 0.5 * (seg[R_A0, i] + seg[R_A1, i]) + 0.125 * h * (seg[R_DA0, i] - seg[R_DA1, i])
+        exact = seg[R_AK, i]
+        err += ((mid - exact) / (atol_in + rtol * abs(exact))) ** 2
+    return math.sqrt(err / n_s)
+
+
+@njit(cache=True, error_model="numpy")
+def _emit(t0, t1, refine, k_next, h_out, seg, res, prop, p, walk, faults, sensors, kin, out,
+          states):
+    """Output of one core segment [t0, t1] on the grid points t_k = k h_out in (t0, t1].
+
+    Advances the resonators in ``res`` exactly from grid point to grid point and on
+    to t1 (``prop[PROP_H]``: the propagator of a full h_out piece), writes their output
+    (sr5) or the housing acceleration of the interpolated core state (sr4), and the
+    full state when ``states`` has rows. Returns the index of the next grid point.
+
+    The core state between t0 and t1 is the cubic Hermite interpolant of its values
+    and derivatives at both ends (rows R_Y0, R_F0, R_Y1, R_F1 of ``seg``). The
+    resonator input is the cubic Hermite interpolant of the excitation and its rate at
+    both ends (R_A0, R_DA0, R_A1, R_DA1), unless ``refine``: inside a defect the
+    excitation follows the known depth profile, which can change faster than the core
+    (a ramp lasts a fraction of the traversal); it is then evaluated exactly, with the
+    interpolated core state, at every grid point of a segment longer than h_out and
+    interpolated piece by piece.
+    """
+    w = p[P_WR]
+    zeta = p[P_ZETA]
+    n_res = res.shape[0]
+    n_out = out.shape[0]
+    keep = states.shape[0] > 0
+    tau_seg = t1 - t0
+    refine = refine and n_res > 0 and tau_seg > h_out * (1.0 + GRID_TOL)
+    if n_res > 0:
+        if refine:
+            for i in range(n_res):
+                seg[R_AC, i] = seg[R_A0, i]
+                seg[R_DAC, i] = seg[R_DA0, i]
+        else:
+            _hermite_input(t0, t1, seg, R_A0, R_DA0, R_A1, R_DA1, res)
+    tc = t0
+    while k_next < n_out:
+        tk = k_next * h_out
+        if tk > t1 + GRID_TOL * h_out:
+            break
+        if n_res == 0 or keep or refine:
+            _interpolate_core(t0, t1, tk, seg)
+        if n_res > 0:
+            tau = tk - tc
+            if tau > 0.0:
+                s0 = tc - t0
+                if refine:
+                    if tk >= t1 - GRID_TOL * h_out:
+                        for i in range(n_res):
+                            seg[R_AK, i] = seg[R_A1, i]
+                            seg[R_DAK, i] = seg[R_DA1, i]
+                    else:
+                        _excitation(tk, seg, R_YI, R_FI, R_AK, R_DAK, p, walk, faults, sensors,
+                                    kin)
+                    _hermite_input(tc, tk, seg, R_AC, R_DAC, R_AK, R_DAK, res)
+                    for i in range(n_res):
+                        seg[R_AC, i] = seg[R_AK, i]
+                        seg[R_DAC, i] = seg[R_DAK, i]
+                    s0 = 0.0
+                slot = PROP_H
+                if abs(tau - h_out) > GRID_TOL * h_out:
+                    slot = PROP_TMP
+                    lti_propagator(tau, w, zeta, prop, slot)
+                _propagate(res, s0, prop, slot)
+                tc = tk
+            _resonator_output(res, w, zeta, out, k_next)
+        else:
+            yi = seg[R_YI]
+            rate = element_angles(tk, p, walk, kin)
+            fault_depths(tk, p, faults, kin, rate, False)
+            contact_loads(yi, p, kin)
+            housing_accel(yi, yi, p, sensors, kin, 0.0, out[k_next], out[k_next], False)
+        if keep:
+            _store_state(states, k_next, seg, R_YI, res)
+        k_next += 1
+    if n_res > 0 and t1 > tc:
+        s0 = tc - t0
+        if refine:
+            _hermite_input(tc, t1, seg, R_AC, R_DAC, R_A1, R_DA1, res)
+            s0 = 0.0
+        lti_propagator(t1 - tc, w, zeta, prop, PROP_TMP)
+        _propagate(res, s0, prop, PROP_TMP)
+    return k_next
+
+
+@njit(cache=True, error_model="numpy")
+def _start(y0, p, walk, faults, sensors, n_res, h_out, out, states):
+    """Workspaces for a run, the initial state split into core (row R_Y0 of ``seg``)
+    and resonators, evaluated at t = 0; output row 0 written.
+
+    Returns (seg, res, prop, kin).
+    """
+    nd = 4 + n_res
+    n_s = sensors.shape[0]
+    seg = np.zeros((N_SEG, max(N_CORE, n_s)))
+    res = np.zeros((n_res, 6))
+    prop = np.zeros((2, 6, 2))
+    kin = np.empty((N_KIN, int(p[P_Z])))
+    for i in range(4):
+        seg[R_Y0, i] = y0[i]
+        seg[R_Y0, 4 + i] = y0[nd + i]
+    for i in range(n_res):
+        res[i, X_Z] = y0[4 + i]
+        res[i, X_DZ] = y0[nd + 4 + i]
+    _excitation(0.0, seg, R_Y0, R_F0, R_A0, R_DA0, p, walk, faults, sensors, kin)
+    if n_res > 0:
+        lti_propagator(h_out, p[P_WR], p[P_ZETA], prop, PROP_H)
+        _resonator_output(res, p[P_WR], p[P_ZETA], out, 0)
+    else:
+        for i in range(n_s):
+            out[0, i] = seg[R_A0, i]
+    if states.shape[0] > 0:
+        _store_state(states, 0, seg, R_Y0, res)
+    return seg, res, prop, kin
+
+
+@njit(cache=True, error_model="numpy")
+def _advance(seg, res):
+    """The segment's end becomes the next one's start: rows Y1, F1, A1, DA1 to Y0, F0,
+    A0, DA0."""
+    for i in range(N_CORE):
+        seg[R_Y0, i] = seg[R_Y1, i]
+        seg[R_F0, i] = seg[R_F1, i]
+    for i in range(res.shape[0]):
+        seg[R_A0, i] = seg[R_A1, i]
+        seg[R_DA0, i] = seg[R_DA1, i]
+
+
+@njit(cache=True, error_model="numpy")
+def rk4(y0, p, walk, faults, sensors, n_res, h_out, mult, n_sub, n_out, ev_before, ev_after,
+        bound, out, states):
+    """Classical RK4 on the core with a fixed step of ``mult * h_out / n_sub``, split at
+    events.
 
     Parameters
     ----------
     y0 : ndarray (n_state,)
-        Initial state.
-    m, n_res, work
-        Model tuple, number of resonators, scratch arrays (see :func:`.rhs`).
+        Initial full state.
+    p, walk, faults, sensors : ndarray
+        The model (see :mod:`._kernels`).
+    n_res : int
+        Number of resonators (sensors for sr5, 0 for sr4).
     h_out : float
         Internal output spacing, s.
-    n_sub : int
-        RK4 steps per output interval (step h = h_out / n_sub).
+    mult, n_sub : int
+        Step = ``mult * h_out / n_sub``, one of them 1: a step spans ``mult`` output
+        intervals or an output interval holds ``n_sub`` steps, so step ends fall on
+        the grid.
     n_out : int
         Number of internal output samples (t = 0 .. (n_out - 1) h_out).
     ev_before, ev_after : ndarray
         Sorted event brackets, s.
     bound : ndarray (n_state,)
-        Magnitude above which a state component counts as diverged.
+        Magnitude above which a full-state component counts as diverged.
     out : ndarray (n_out, n_sensors)
         Written with the sensor output at the grid times.
     states : ndarray (n_out, n_state) or (0, n_state)
-        Written with the state at the grid times when it has rows.
+        Written with the full state at the grid times when it has rows.
 
     Returns
     -------
     status, n_steps, t_fail
     """
-    n = y0.shape[0]
-    y = y0.copy()
-    y_new = np.empty(n)
-    k1 = np.empty(n)
-    k2 = np.empty(n)
-    k3 = np.empty(n)
-    k4 = np.empty(n)
-    tmp = np.empty(n)
-    row = np.empty(out.shape[1])
-    sensor_output(0.0, y, m, n_res, work, row)
-    out[0, :] = row
-    keep = states.shape[0] > 0
-    if keep:
-        states[0, :] = y
-    h = h_out / n_sub
+    seg, res, prop, kin = _start(y0, p, walk, faults, sensors, n_res, h_out, out, states)
+    y = seg[R_Y0]
+    f0 = seg[R_F0]
+    y1 = seg[R_Y1]
+    f1 = seg[R_F1]
+    k2 = np.empty(N_CORE)
+    k3 = np.empty(N_CORE)
+    k4 = np.empty(N_CORE)
+    tmp = np.empty(N_CORE)
+    t_end = (n_out - 1) * h_out
     n_ev = ev_before.shape[0]
     ev = 0
     n_steps = 0
+    k_next = 1
     t = 0.0
-    for k in range(1, n_out):
-        t_start = (k - 1) * h_out
-        for s in range(n_sub):
-            t_next = t_start + (s + 1) * h if s < n_sub - 1 else k * h_out
+    n = 0
+    while t < t_end:
+        n += 1
+        q, r = divmod(n, n_sub)
+        t_next = min(q * mult, n_out - 1) * h_out
+        if r > 0:
+            t_next += r * h_out / n_sub
+        while t < t_next:
             while ev < n_ev and ev_after[ev] <= t:
                 ev += 1
-            while ev < n_ev and ev_before[ev] < t_next:
-                if ev_before[ev] > t:
-                    _rk4_step(t, y, ev_before[ev] - t, m, n_res, work, k1, k2, k3, k4, tmp,
-                              y_new)
-                    y[:] = y_new
-                    n_steps += 1
-                t = max(t, ev_after[ev])
-                ev += 1
-            if t_next > t:
-                _rk4_step(t, y, t_next - t, m, n_res, work, k1, k2, k3, k4, tmp, y_new)
-                y[:] = y_new
+            te = t_next
+            hit = ev < n_ev and ev_before[ev] < t_next
+            if hit:
+                te = ev_before[ev]
+            if te > t:
+                h = te - t
+                for i in range(N_CORE):
+                    tmp[i] = y[i] + 0.5 * h * f0[i]
+                rate = element_angles(t + 0.5 * h, p, walk, kin)
+                fault_depths(t + 0.5 * h, p, faults, kin, rate, False)
+                refine = _in_fault(kin)
+                core_forces(tmp, p, kin, k2)
+                for i in range(N_CORE):
+                    tmp[i] = y[i] + 0.5 * h * k2[i]
+                core_forces(tmp, p, kin, k3)
+                for i in range(N_CORE):
+                    tmp[i] = y[i] + h * k3[i]
+                rate = element_angles(te, p, walk, kin)
+                fault_depths(te, p, faults, kin, rate, n_res > 0)
+                core_forces(tmp, p, kin, k4)
+                for i in range(N_CORE):
+                    y1[i] = y[i] + h / 6.0 * (f0[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
+                core_forces(y1, p, kin, f1)
+                if n_res > 0:
+                    housing_accel(y1, f1, p, sensors, kin, rate, seg[R_A1, :n_res],
+                                  seg[R_DA1, :n_res], True)
+                k_next = _emit(t, te, refine, k_next, h_out, seg, res, prop, p, walk, faults,
+                               sensors, kin, out, states)
                 n_steps += 1
-            t = t_next
-        if not _finite_and_bounded(y, bound):
-            return STATUS_NONFINITE, n_steps, t
-        sensor_output(t, y, m, n_res, work, row)
-        out[k, :] = row
-        if keep:
-            states[k, :] = y
+                if not _ok(seg, R_Y1, res, bound):
+                    return STATUS_NONFINITE, n_steps, te
+                _advance(seg, res)
+            if hit:
+                t = ev_after[ev]
+                ev += 1
+                _excitation(t, seg, R_Y0, R_F0, R_A0, R_DA0, p, walk, faults, sensors, kin)
+            else:
+                t = te
     return STATUS_OK, n_steps, t
 
 
-@njit(cache=True)
-def dopri5(y0, m, n_res, work, h_out, n_out, ev_before, ev_after, bound, rtol, atol,
-           h_max, max_steps, out, states):
-    """Adaptive Dormand-Prince 5(4) with error control, output on a uniform grid.
+@njit(cache=True, error_model="numpy")
+def dopri5(y0, p, walk, faults, sensors, n_res, h_out, n_out, ev_before, ev_after, bound,
+           rtol, atol, atol_in, h_max, max_steps, out, states):
+    """Adaptive Dormand-Prince 5(4) on the core with error control, output on a grid.
 
     The local error estimate of the embedded 4th-order solution is kept below 1 in the
-    RMS norm ``err_i / (atol_i + rtol * max(|y_i|, |y_new_i|))``; the step never exceeds
-    ``h_max`` nor crosses an event. Output between steps uses cubic Hermite interpolation
-    of the state (4th-order accurate), then the sensor output of the interpolated state.
+    RMS norm ``err_i / (atol_i + rtol * max(|y_i|, |y_new_i|))`` over the 8 core states
+    (``atol`` has length 8); the step never exceeds ``h_max`` nor crosses an event.
+    Resonators and output as in :func:`rk4`, from the accepted steps.
+
+    Inside a defect the resonator excitation follows the depth profile, which the core
+    error estimate does not see; there the step is also controlled by the error of the
+    cubic Hermite input at mid-step, against the excitation evaluated exactly with the
+    interpolated core state, in the norm ``err / (atol_in + rtol |s''|)`` (``atol_in``
+    in m/s^2). Other parameters as in :func:`rk4`.
 
     Returns
     -------
     status, n_accepted, n_rejected, h_min_used, t_fail
     """
-    n = y0.shape[0]
+    seg, res, prop, kin = _start(y0, p, walk, faults, sensors, n_res, h_out, out, states)
+    y = seg[R_Y0]
+    k1 = seg[R_F0]
+    y_new = seg[R_Y1]
+    k7 = seg[R_F1]
+    n = N_CORE
     t_end = (n_out - 1) * h_out
-    y = y0.copy()
-    k1 = np.empty(n)
     k2 = np.empty(n)
     k3 = np.empty(n)
     k4 = np.empty(n)
     k5 = np.empty(n)
     k6 = np.empty(n)
-    k7 = np.empty(n)
     tmp = np.empty(n)
-    y_new = np.empty(n)
-    yi = np.empty(n)
-    row = np.empty(out.shape[1])
-    sensor_output(0.0, y, m, n_res, work, row)
-    out[0, :] = row
-    keep = states.shape[0] > 0
-    if keep:
-        states[0, :] = y
-    k_out = 1
+    k_next = 1
     n_ev = ev_before.shape[0]
     ev = 0
     t = 0.0
-    rhs(t, y, k1, m, n_res, work)
     h = min(h_max, h_out)
     h_min_used = h
     n_acc = 0
@@ -200,29 +565,40 @@ def dopri5(y0, m, n_res, work, h_out, n_out, ev_before, ev_after, bound, rtol, a
                 # already at the event: jump over the zero-width bracket
                 t = ev_after[ev]
                 ev += 1
-                rhs(t, y, k1, m, n_res, work)
+                _excitation(t, seg, R_Y0, R_F0, R_A0, R_DA0, p, walk, faults, sensors, kin)
                 continue
             return STATUS_UNDERFLOW, n_acc, n_rej, h, t
         for i in range(n):
             tmp[i] = y[i] + h * A21 * k1[i]
-        rhs(t + C2 * h, tmp, k2, m, n_res, work)
+        rate = element_angles(t + C2 * h, p, walk, kin)
+        fault_depths(t + C2 * h, p, faults, kin, rate, False)
+        core_forces(tmp, p, kin, k2)
         for i in range(n):
             tmp[i] = y[i] + h * (A31 * k1[i] + A32 * k2[i])
-        rhs(t + C3 * h, tmp, k3, m, n_res, work)
+        rate = element_angles(t + C3 * h, p, walk, kin)
+        fault_depths(t + C3 * h, p, faults, kin, rate, False)
+        in_fault = n_res > 0 and _in_fault(kin)
+        core_forces(tmp, p, kin, k3)
         for i in range(n):
             tmp[i] = y[i] + h * (A41 * k1[i] + A42 * k2[i] + A43 * k3[i])
-        rhs(t + C4 * h, tmp, k4, m, n_res, work)
+        rate = element_angles(t + C4 * h, p, walk, kin)
+        fault_depths(t + C4 * h, p, faults, kin, rate, False)
+        core_forces(tmp, p, kin, k4)
         for i in range(n):
             tmp[i] = y[i] + h * (A51 * k1[i] + A52 * k2[i] + A53 * k3[i] + A54 * k4[i])
-        rhs(t + C5 * h, tmp, k5, m, n_res, work)
+        rate = element_angles(t + C5 * h, p, walk, kin)
+        fault_depths(t + C5 * h, p, faults, kin, rate, False)
+        core_forces(tmp, p, kin, k5)
         for i in range(n):
             tmp[i] = y[i] + h * (A61 * k1[i] + A62 * k2[i] + A63 * k3[i] + A64 * k4[i]
                                  + A65 * k5[i])
-        rhs(t + h, tmp, k6, m, n_res, work)
+        rate = element_angles(t + h, p, walk, kin)
+        fault_depths(t + h, p, faults, kin, rate, n_res > 0)
+        core_forces(tmp, p, kin, k6)
         for i in range(n):
             y_new[i] = y[i] + h * (B1 * k1[i] + B3 * k3[i] + B4 * k4[i] + B5 * k5[i]
                                    + B6 * k6[i])
-        rhs(t + h, y_new, k7, m, n_res, work)
+        core_forces(y_new, p, kin, k7)
         err = 0.0
         for i in range(n):
             e = h * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i]
@@ -230,30 +606,26 @@ def dopri5(y0, m, n_res, work, h_out, n_out, ev_before, ev_after, bound, rtol, a
             sc = atol[i] + rtol * max(abs(y[i]), abs(y_new[i]))
             err += (e / sc) ** 2
         err = math.sqrt(err / n)
+        if n_res > 0:
+            housing_accel(y_new, k7, p, sensors, kin, rate, seg[R_A1, :n_res],
+                          seg[R_DA1, :n_res], True)
+        if in_fault:
+            err = max(err, _input_error(t, h, seg, rtol, atol_in, p, walk, faults, sensors,
+                                        kin))
         if not (err == err):  # NaN: treat as a failed step with a much smaller h
             err = 1e10
         if err <= 1.0:
-            t_new = t + h
-            # output on the grid points in (t, t_new]
-            while k_out < n_out and k_out * h_out <= t_new + 1e-12 * h_out:
-                tg = k_out * h_out
-                s = (tg - t) / h
-                if s > 1.0:
-                    s = 1.0
-                h00 = (1.0 + 2.0 * s) * (1.0 - s) ** 2
-                h10 = s * (1.0 - s) ** 2
-                h01 = s * s * (3.0 - 2.0 * s)
-                h11 = s * s * (s - 1.0)
-                for i in range(n):
-                    yi[i] = h00 * y[i] + h10 * h * k1[i] + h01 * y_new[i] + h11 * h * k7[i]
-                sensor_output(tg, yi, m, n_res, work, row)
-                out[k_out, :] = row
-                if keep:
-                    states[k_out, :] = yi
-                k_out += 1
-            y[:] = y_new
-            if not _finite_and_bounded(y, bound):
+            if hits_event:
+                t_new = ev_before[ev]
+            elif h == t_end - t:
+                t_new = t_end
+            else:
+                t_new = t + h
+            k_next = _emit(t, t_new, False, k_next, h_out, seg, res, prop, p, walk, faults,
+                           sensors, kin, out, states)
+            if not _ok(seg, R_Y1, res, bound):
                 return STATUS_NONFINITE, n_acc, n_rej, h_min_used, t_new
+            _advance(seg, res)
             n_acc += 1
             if h < h_min_used:
                 h_min_used = h
@@ -261,19 +633,12 @@ def dopri5(y0, m, n_res, work, h_out, n_out, ev_before, ev_after, bound, rtol, a
             if hits_event:
                 t = ev_after[ev]
                 ev += 1
-                rhs(t, y, k1, m, n_res, work)
+                _excitation(t, seg, R_Y0, R_F0, R_A0, R_DA0, p, walk, faults, sensors, kin)
                 h = max(h * fac, h_wanted)  # the event, not the error, limited this step
             else:
                 t = t_new
-                k1[:] = k7
                 h = h * fac
         else:
             n_rej += 1
             h = h * max(0.1, 0.9 * err ** -0.25)
-    while k_out < n_out:  # t reached t_end exactly: the last grid point
-        sensor_output(k_out * h_out, y, m, n_res, work, row)
-        out[k_out, :] = row
-        if keep:
-            states[k_out, :] = y
-        k_out += 1
     return STATUS_OK, n_acc, n_rej, h_min_used, t

@@ -1,17 +1,30 @@
 """Numba kernels of the lumped-parameter bearing models: kinematics, fault profiles,
-contact law, right-hand side and sensor output. Kernels only: plain floats, ints and
-float64/int64 arrays in, no Python objects; validation happens in the callers.
+contact law, right-hand sides and sensor excitation. Kernels only: plain floats, ints
+and float64 arrays in, no Python objects; validation happens in the callers.
 
-State layout (``n_res`` sensor resonators; ``n_res = 0`` for ``sr4``)::
+Two state layouts. The *full* state (what ``BearingModel.rhs`` integrates, e.g. with
+scipy; ``n_res`` sensor resonators, ``n_res = 0`` for ``sr4``)::
 
     y = [u_s, v_s, u_p, v_p, z_1 .. z_nres,  du_s, dv_s, du_p, dv_p, dz_1 .. dz_nres]
+
+and the *core* state of the nonlinear 4-DOF part alone (what the ballpass integrators
+step; the resonators are linear and one-way coupled, so they are integrated exactly,
+see :mod:`._integrators`)::
+
+    yc = [u_s, v_s, u_p, v_p, du_s, dv_s, du_p, dv_p]
 
 u is along the load line (towards the centre of the load zone, angle 0), v is
 perpendicular to it in the direction of shaft rotation (angle +90 deg). s = shaft and
 inner ring, p = pedestal and outer ring, z_i = deflection of sensor i's resonator
 relative to the housing.
 
-Parameter vector ``p`` (indices below, SI units) is built by :mod:`.sr5`.
+The model is four arrays, built by :mod:`.sr5`: the parameter vector ``p`` (indices
+``P_*``), the cage's slip random walk ``walk`` (rad), one row per fault in ``faults``
+(columns ``F_*``) and one row per sensor in ``sensors`` (columns ``S_*``). Kernels take
+arrays one by one, never tuples of arrays: numba reference-counts every member of a
+tuple argument on each call, which cost more than the physics. Scratch: ``kin``
+(``N_KIN`` x Z) holds the element angles, their cos/sin, the fault depths and their
+rates and the contact loads (rows ``K_*``).
 """
 
 from __future__ import annotations
@@ -28,43 +41,66 @@ P_W0, P_W1, P_T = 11, 12, 13
 P_CAGE, P_SPIN, P_Z = 14, 15, 16
 P_WR, P_ZETA = 17, 18
 P_US0, P_VS0 = 19, 20
-N_PARAMS = 21
+P_COS_STEP, P_SIN_STEP = 21, 22
+N_PARAMS = 23
 
-# fault kinds (integer codes used in the kernels)
+# columns of the fault table: kind code, centre (rad), half extent (rad), depth (m),
+# ramp fraction, element (ball defects), initial angle of that element (rad)
+F_KIND, F_CENTRE, F_HALF, F_DEPTH, F_RAMP, F_ELEM, F_PSI0 = 0, 1, 2, 3, 4, 5, 6
+N_FCOLS = 7
+# columns of the sensor table: angle (rad), attenuation kappa, cos and sin of the angle
+S_ANG, S_ATT, S_COS, S_SIN = 0, 1, 2, 3
+N_SCOLS = 4
+# rows of the kinematics scratch
+K_PSI, K_COS, K_SIN, K_DEPTH, K_DDEPTH, K_Q = 0, 1, 2, 3, 4, 5
+N_KIN = 6
+
+# fault kinds (codes in the F_KIND column)
 KIND_OUTER, KIND_INNER, KIND_BALL = 0, 1, 2
 
+N_CORE = 8
 TWO_PI = 2.0 * math.pi
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def wrap_pi(a):
     """Wrap an angle (rad) to [-pi, pi)."""
     return a - TWO_PI * math.floor((a + math.pi) / TWO_PI)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def shaft_angle(t, p):
     """Shaft angle turned since t = 0 for a linear speed ramp, rad."""
     return p[P_W0] * t + 0.5 * (p[P_W1] - p[P_W0]) * t * t / p[P_T]
 
 
-@njit(cache=True)
-def element_angles(t, p, walk, psi, cpsi, spsi):
-    """Angular positions of the rolling elements at time t, rad, written into ``psi``.
+@njit(cache=True, error_model="numpy")
+def shaft_rate(t, p):
+    """Shaft angular speed at t, rad/s."""
+    return p[P_W0] + (p[P_W1] - p[P_W0]) * t / p[P_T]
+
+
+@njit(cache=True, error_model="numpy")
+def knot_position(t, p):
+    """Nominal cage angle at t in units of the element spacing: the slip walk has a
+    knot at every integer, where the cage speed jumps (see :func:`cage_angle`)."""
+    return p[P_CAGE] * shaft_angle(t, p) / (TWO_PI / p[P_Z])
+
+
+@njit(cache=True, error_model="numpy")
+def cage_angle(t, p, walk):
+    """Angle of element 0 (rad) and the cage's angular speed (rad/s) at time t.
 
     The cage turns at its kinematic rate plus a random walk ``walk`` (rad), sampled at
     every element spacing of nominal cage angle and interpolated linearly between:
     each interval between consecutive ball passes is stretched by an independent
     random fraction, so inter-impact periods vary with standard deviation ``slip`` of
     the nominal period and the cage keeps its mean speed (the random-slip model of
-    Randall & Antoni 2011). Elements keep their nominal spacing 2 pi / Z.
-    Also writes cos(psi) and sin(psi) into ``cpsi``, ``spsi``, advancing from element to
-    element by a rotation (four trigonometric calls in all, whatever Z).
+    Randall & Antoni 2011).
     """
-    z = psi.shape[0]
-    step = TWO_PI / z
-    cage = p[P_CAGE] * shaft_angle(t, p)
-    x = cage / step
+    step = TWO_PI / p[P_Z]
+    nominal = p[P_CAGE] * shaft_angle(t, p)
+    x = knot_position(t, p)
     k = math.floor(x)
     f = x - k
     kk = int(k)
@@ -73,19 +109,35 @@ def element_angles(t, p, walk, psi, cpsi, spsi):
         kk = 0
     if kk > n_knots - 2:
         kk = n_knots - 2
-    cage += walk[kk] * (1.0 - f) + walk[kk + 1] * f
+    angle = nominal + walk[kk] * (1.0 - f) + walk[kk + 1] * f
+    rate = p[P_CAGE] * shaft_rate(t, p) * (1.0 + (walk[kk + 1] - walk[kk]) / step)
+    return angle, rate
+
+
+@njit(cache=True, error_model="numpy")
+def element_angles(t, p, walk, kin):
+    """Angular positions of the rolling elements at time t (rad) into ``kin[K_PSI]``.
+
+    Elements keep their nominal spacing 2 pi / Z behind the cage angle of
+    :func:`cage_angle`. Also writes cos(psi) and sin(psi) into ``kin[K_COS]``,
+    ``kin[K_SIN]``, advancing from element to element by a rotation (two trigonometric
+    calls in all, whatever Z). Returns the cage's angular speed, rad/s.
+    """
+    step = TWO_PI / p[P_Z]
+    cage, rate = cage_angle(t, p, walk)
     c = math.cos(cage)
     sn = math.sin(cage)
-    cs = math.cos(step)
-    ss = math.sin(step)
-    for j in range(z):
-        psi[j] = cage + step * j
-        cpsi[j] = c
-        spsi[j] = sn
+    cs = p[P_COS_STEP]
+    ss = p[P_SIN_STEP]
+    for j in range(kin.shape[1]):
+        kin[K_PSI, j] = cage + step * j
+        kin[K_COS, j] = c
+        kin[K_SIN, j] = sn
         c, sn = c * cs - sn * ss, sn * cs + c * ss
+    return rate
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def profile(offset, half, depth, ramp):
     """Depth of a defect at angular offset ``offset`` from its centre, m.
 
@@ -103,123 +155,241 @@ def profile(offset, half, depth, ramp):
     return depth * 0.5 * (1.0 - math.cos(math.pi * x / ramp))
 
 
-@njit(cache=True)
-def fault_depths(t, m, psi, depth):
-    """Extra clearance opened by the defects for each element at time t, m.
+@njit(cache=True, error_model="numpy")
+def profile_slope(offset, half, depth, ramp):
+    """d(profile)/d(offset), m/rad: zero outside the ramps (a sharp notch's jumps are
+    events, handled by the integrators, not slopes)."""
+    a = abs(offset)
+    if a >= half or ramp <= 0.0:
+        return 0.0
+    x = (half - a) / (2.0 * half)
+    if x >= ramp:
+        return 0.0
+    dx = -0.5 / half if offset > 0.0 else 0.5 / half
+    return depth * 0.5 * math.sin(math.pi * x / ramp) * (math.pi / ramp) * dx
+
+
+@njit(cache=True, error_model="numpy")
+def path_offset(faults, i, p, psi_j, theta, face):
+    """Signed angular offset (rad, in [-pi, pi)) of a path from the centre of fault i.
+
+    ``psi_j`` is the angle of the element on the path (for a ball defect: of the
+    defective element), ``theta`` the shaft angle, ``face`` 0 or 1 for a ball defect
+    facing the outer (spin phase 0) or the inner race (phase pi). The single place
+    where offsets are computed, so event times found with it are exactly where the
+    kernels switch.
+    """
+    kind = int(faults[i, F_KIND])
+    if kind == KIND_BALL:
+        spin = faults[i, F_CENTRE] + p[P_SPIN] * (psi_j - faults[i, F_PSI0])
+        return wrap_pi(spin - math.pi * face)
+    centre = faults[i, F_CENTRE]
+    if kind == KIND_INNER:
+        centre += theta
+    return wrap_pi(psi_j - centre)
+
+
+@njit(cache=True, error_model="numpy")
+def path_rate(faults, i, p, cage_rate, shaft_w):
+    """d(offset)/dt of the paths of fault i, rad/s."""
+    kind = int(faults[i, F_KIND])
+    if kind == KIND_BALL:
+        return p[P_SPIN] * cage_rate
+    if kind == KIND_INNER:
+        return cage_rate - shaft_w
+    return cage_rate
+
+
+@njit(cache=True, error_model="numpy")
+def fault_depths(t, p, faults, kin, cage_rate, rates):
+    """Extra clearance opened by the defects for each element at time t (m) into
+    ``kin[K_DEPTH]``; with ``rates`` also its time derivative (m/s) into
+    ``kin[K_DDEPTH]`` (``cage_rate`` in rad/s). Needs the element angles in ``kin``.
 
     Outer race: fixed centre. Inner race: centre turns with the shaft. Ball defect on
     element e: its spin phase advances at the ball spin rate relative to the cage
     (rolling without slip on the element's own path), facing the outer race at phase 0
     and the inner race at phase pi.
     """
-    p, psi0 = m[0], m[2]
-    f_kind, f_center, f_half, f_depth, f_ramp, f_elem = m[3], m[4], m[5], m[6], m[7], m[8]
-    z = psi.shape[0]
+    z = kin.shape[1]
     for j in range(z):
-        depth[j] = 0.0
+        kin[K_DEPTH, j] = 0.0
+        kin[K_DDEPTH, j] = 0.0
     th = shaft_angle(t, p)
-    for i in range(f_kind.shape[0]):
-        kind = f_kind[i]
-        if kind == KIND_BALL:
-            e = f_elem[i]
-            spin = f_center[i] + p[P_SPIN] * (psi[e] - psi0[e])
-            d_out = profile(wrap_pi(spin), f_half[i], f_depth[i], f_ramp[i])
-            d_in = profile(wrap_pi(spin - math.pi), f_half[i], f_depth[i], f_ramp[i])
-            depth[e] += d_out + d_in
+    w = shaft_rate(t, p)
+    for i in range(faults.shape[0]):
+        half = faults[i, F_HALF]
+        depth = faults[i, F_DEPTH]
+        ramp = faults[i, F_RAMP]
+        dr = path_rate(faults, i, p, cage_rate, w)
+        if int(faults[i, F_KIND]) == KIND_BALL:
+            e = int(faults[i, F_ELEM])
+            for face in range(2):
+                off = path_offset(faults, i, p, kin[K_PSI, e], th, face)
+                kin[K_DEPTH, e] += profile(off, half, depth, ramp)
+                if rates:
+                    kin[K_DDEPTH, e] += dr * profile_slope(off, half, depth, ramp)
         else:
-            centre = f_center[i]
-            if kind == KIND_INNER:
-                centre += th
             for j in range(z):
-                depth[j] += profile(wrap_pi(psi[j] - centre), f_half[i], f_depth[i], f_ramp[i])
+                off = path_offset(faults, i, p, kin[K_PSI, j], th, 0)
+                kin[K_DEPTH, j] += profile(off, half, depth, ramp)
+                if rates:
+                    kin[K_DDEPTH, j] += dr * profile_slope(off, half, depth, ramp)
 
 
-@njit(cache=True)
-def contact_loads(y, p, cpsi, spsi, depth, q):
-    """Hertz contact loads Q_j = K max(delta_j, 0)^n, N, written into ``q``.
+@njit(cache=True, error_model="numpy")
+def kinematics(t, p, walk, faults, kin):
+    """Element angles (with cos/sin) and fault depths at time t into ``kin``; returns
+    the cage speed, rad/s. Depends on t only, so stages at one time share it."""
+    rate = element_angles(t, p, walk, kin)
+    fault_depths(t, p, faults, kin, rate, False)
+    return rate
+
+
+@njit(cache=True, error_model="numpy")
+def hertz(d, kh, nh):
+    """Hertz load K d^n of a compressed contact (d > 0, m), N; d^1.5 as d sqrt(d)."""
+    return kh * d * math.sqrt(d) if nh == 1.5 else kh * d**nh
+
+
+@njit(cache=True, error_model="numpy")
+def contact_loads(y, p, kin):
+    """Hertz contact loads Q_j = K max(delta_j, 0)^n, N, into ``kin[K_Q]``.
 
     delta_j = (u_s - u_p) cos psi_j + (v_s - v_p) sin psi_j - c - depth_j
     (Sawalhi & Randall 2008 eq. 12 as printed in seed 004). Separated elements carry
-    exactly zero force.
+    exactly zero force. ``y`` starts with u_s, v_s, u_p, v_p (either layout).
     """
     du = y[0] - y[2]
     dv = y[1] - y[3]
-    kh = p[P_KH]
-    nh = p[P_NH]
-    c = p[P_CLEAR]
-    ball = nh == 1.5
-    for j in range(cpsi.shape[0]):
-        d = du * cpsi[j] + dv * spsi[j] - c - depth[j]
-        if d > 0.0:
-            q[j] = kh * d * math.sqrt(d) if ball else kh * d**nh
-        else:
-            q[j] = 0.0
+    for j in range(kin.shape[1]):
+        d = du * kin[K_COS, j] + dv * kin[K_SIN, j] - p[P_CLEAR] - kin[K_DEPTH, j]
+        kin[K_Q, j] = hertz(d, p[P_KH], p[P_NH]) if d > 0.0 else 0.0
 
 
-@njit(cache=True)
-def housing_accel(p, cpsi, spsi, q, s_ang, s_att, fu, fv, out):
-    """Local housing acceleration along each sensor's direction, m/s^2.
+@njit(cache=True, error_model="numpy")
+def pedestal_forces(p, up, vp, dup, dvp):
+    """Spring, damping and gravity forces on the pedestal along u and v, N."""
+    fu = -p[P_KP] * up - p[P_CP] * dup + p[P_MP] * p[P_G]
+    fv = -p[P_KP] * vp - p[P_CP] * dvp
+    return fu, fv
+
+
+@njit(cache=True, error_model="numpy")
+def core_forces(y, p, kin, dydt):
+    """Core right-hand side (layout ``yc``) at state ``y`` with the kinematics already in
+    ``kin`` (see :func:`kinematics`); the contact loads are left in ``kin[K_Q]``.
+
+    Shaft:      m_s a_s = -k_s (x_s - x_s0) - c_s v_s - sum_j Q_j n_j + F_r e_u + m_s g e_u
+    Pedestal:   m_p a_p = -k_p x_p - c_p v_p + sum_j Q_j n_j + m_p g e_u
+    """
+    # the loads of :func:`contact_loads`, summed in the same loop (a kernel that calls
+    # another looping kernel keeps numba's reference counting of its array arguments)
+    du = y[0] - y[2]
+    dv = y[1] - y[3]
+    fu = 0.0
+    fv = 0.0
+    for j in range(kin.shape[1]):
+        cj = kin[K_COS, j]
+        sj = kin[K_SIN, j]
+        d = du * cj + dv * sj - p[P_CLEAR] - kin[K_DEPTH, j]
+        q = hertz(d, p[P_KH], p[P_NH]) if d > 0.0 else 0.0
+        kin[K_Q, j] = q
+        fu += q * cj
+        fv += q * sj
+    ms = p[P_MS]
+    mp = p[P_MP]
+    dydt[0] = y[4]
+    dydt[1] = y[5]
+    dydt[2] = y[6]
+    dydt[3] = y[7]
+    dydt[4] = (-p[P_KS] * (y[0] - p[P_US0]) - p[P_CS] * y[4] - fu + p[P_FR]) / ms + p[P_G]
+    dydt[5] = (-p[P_KS] * (y[1] - p[P_VS0]) - p[P_CS] * y[5] - fv) / ms
+    pu, pv = pedestal_forces(p, y[2], y[3], y[6], y[7])
+    dydt[6] = (pu + fu) / mp
+    dydt[7] = (pv + fv) / mp
+
+
+@njit(cache=True, error_model="numpy")
+def housing_accel(y, dydt, p, sensors, kin, cage_rate, out, dout, rates):
+    """Local housing acceleration along each sensor's direction (m/s^2) into ``out`` and,
+    with ``rates``, its time derivative (m/s^3) into ``dout``.
 
     The pedestal's rigid-body acceleration with each contact force weighted by its
     transmission factor exp(-kappa (1 - cos(psi_j - theta_i))) to sensor i: 1 at the
     sensor, exp(-2 kappa) opposite it (after McFadden & Smith 1984). With kappa = 0 this
-    is exactly the pedestal acceleration projected on the sensor axis. ``fu, fv`` are
-    the spring, damping and gravity forces on the pedestal (N).
+    is exactly the pedestal acceleration projected on the sensor axis.
+
+    ``y`` is a core state (layout ``yc``) with the kinematics and the contact loads of
+    that state already in ``kin`` (see :func:`core_forces`). For the derivative,
+    ``dydt`` is the core derivative at (t, y), ``cage_rate`` the cage speed (rad/s)
+    and ``kin`` must hold the fault-depth rates (:func:`fault_depths` with
+    ``rates``). Each term is differentiated
+    exactly: dQ_j/dt = n K delta_j^(n-1) d(delta_j)/dt, and the transmission-weighted
+    projection w c turns with the element at the cage speed.
     """
     mp = p[P_MP]
-    for i in range(s_ang.shape[0]):
-        ci = math.cos(s_ang[i])
-        si = math.sin(s_ang[i])
-        kappa = s_att[i]
+    fu, fv = pedestal_forces(p, y[2], y[3], y[6], y[7])
+    dfu = dfv = 0.0
+    du = y[0] - y[2]
+    dv = y[1] - y[3]
+    ddu = ddv = 0.0
+    if rates:
+        dfu = -p[P_KP] * y[6] - p[P_CP] * dydt[6]
+        dfv = -p[P_KP] * y[7] - p[P_CP] * dydt[7]
+        ddu = y[4] - y[6]
+        ddv = y[5] - y[7]
+    nh = p[P_NH]
+    c = p[P_CLEAR]
+    for i in range(sensors.shape[0]):
+        ci = sensors[i, S_COS]
+        si = sensors[i, S_SIN]
+        kappa = sensors[i, S_ATT]
         acc = (fu * ci + fv * si) / mp
-        for j in range(cpsi.shape[0]):
-            if q[j] != 0.0:
-                cos_rel = cpsi[j] * ci + spsi[j] * si
+        dacc = (dfu * ci + dfv * si) / mp
+        for j in range(kin.shape[1]):
+            q = kin[K_Q, j]
+            if q != 0.0:
+                cj = kin[K_COS, j]
+                sj = kin[K_SIN, j]
+                cos_rel = cj * ci + sj * si
                 w = math.exp(-kappa * (1.0 - cos_rel)) if kappa != 0.0 else 1.0
-                acc += w * q[j] * cos_rel / mp
+                acc += w * q * cos_rel / mp
+                if rates:
+                    d = du * cj + dv * sj - c - kin[K_DEPTH, j]
+                    dd = ddu * cj + ddv * sj + (dv * cj - du * sj) * cage_rate - kin[K_DDEPTH, j]
+                    dq = nh * q / d * dd
+                    dcos = -(sj * ci - cj * si) * cage_rate
+                    dacc += w * (dq * cos_rel + q * (1.0 + kappa * cos_rel) * dcos) / mp
         out[i] = acc
+        if rates:
+            dout[i] = dacc
 
 
-@njit(cache=True)
-def rhs(t, y, dydt, m, n_res, work):
-    """Right-hand side of the sr4/sr5 equations of motion; writes dy/dt into ``dydt``.
+@njit(cache=True, error_model="numpy")
+def rhs(t, y, dydt, p, walk, faults, sensors, n_res, kin, buf):
+    """Right-hand side of the full sr4/sr5 equations of motion (layout ``y``); writes
+    dy/dt into ``dydt``.
 
-    Shaft:      m_s a_s = -k_s (x_s - x_s0) - c_s v_s - sum_j Q_j n_j + F_r e_u + m_s g e_u
-    Pedestal:   m_p a_p = -k_p x_p - c_p v_p + sum_j Q_j n_j + m_p g e_u
-    Resonator i (sr5): z_i'' + 2 zeta w z_i' + w^2 z_i = -s_i'' (base excitation by the
-    local housing acceleration s_i'' of :func:`housing_accel`).
-
-    ``m`` is the model tuple built by :func:`ballpass.simulate.sr5.build_model`; ``work``
-    holds scratch arrays ``(psi, depth, q, sacc, cpsi, spsi)`` (lengths Z, Z, Z,
-    n_sensors, Z, Z).
+    The core equations of :func:`core_forces` plus, for sr5, the resonator of each
+    sensor i: z_i'' + 2 zeta w z_i' + w^2 z_i = -s_i'' (base excitation by the local
+    housing acceleration s_i'' of :func:`housing_accel`). ``buf``: scratch of length
+    16 + n_sensors.
     """
-    p, s_ang, s_att = m[0], m[9], m[10]
-    psi, depth, q, sacc, cpsi, spsi = work
-    element_angles(t, p, m[1], psi, cpsi, spsi)
-    fault_depths(t, m, psi, depth)
-    contact_loads(y, p, cpsi, spsi, depth, q)
-    fu = 0.0
-    fv = 0.0
-    for j in range(psi.shape[0]):
-        if q[j] != 0.0:
-            fu += q[j] * cpsi[j]
-            fv += q[j] * spsi[j]
     nd = 4 + n_res
-    g = p[P_G]
-    # shaft
-    dydt[0] = y[nd + 0]
-    dydt[1] = y[nd + 1]
-    dydt[nd + 0] = (-p[P_KS] * (y[0] - p[P_US0]) - p[P_CS] * y[nd + 0] - fu + p[P_FR]) / p[P_MS] + g
-    dydt[nd + 1] = (-p[P_KS] * (y[1] - p[P_VS0]) - p[P_CS] * y[nd + 1] - fv) / p[P_MS]
-    # pedestal
-    pu = -p[P_KP] * y[2] - p[P_CP] * y[nd + 2] + p[P_MP] * g
-    pv = -p[P_KP] * y[3] - p[P_CP] * y[nd + 3]
-    dydt[2] = y[nd + 2]
-    dydt[3] = y[nd + 3]
-    dydt[nd + 2] = (pu + fu) / p[P_MP]
-    dydt[nd + 3] = (pv + fv) / p[P_MP]
+    yc = buf[:N_CORE]
+    dc = buf[N_CORE:2 * N_CORE]
+    sacc = buf[2 * N_CORE:]
+    for i in range(4):
+        yc[i] = y[i]
+        yc[4 + i] = y[nd + i]
+    kinematics(t, p, walk, faults, kin)
+    core_forces(yc, p, kin, dc)
+    for i in range(4):
+        dydt[i] = dc[i]
+        dydt[nd + i] = dc[4 + i]
     if n_res > 0:
-        housing_accel(p, cpsi, spsi, q, s_ang, s_att, pu, pv, sacc)
+        housing_accel(yc, dc, p, sensors, kin, 0.0, sacc, sacc, False)
         w = p[P_WR]
         zeta = p[P_ZETA]
         for i in range(n_res):
@@ -227,15 +397,14 @@ def rhs(t, y, dydt, m, n_res, work):
             dydt[nd + 4 + i] = -2.0 * zeta * w * y[nd + 4 + i] - w * w * y[4 + i] - sacc[i]
 
 
-@njit(cache=True)
-def sensor_output(t, y, m, n_res, work, out):
-    """Acceleration measured by each sensor at state y, m/s^2, into ``out``.
+@njit(cache=True, error_model="numpy")
+def sensor_output(t, y, p, walk, faults, sensors, n_res, kin, buf, out):
+    """Acceleration measured by each sensor at full state y, m/s^2, into ``out``.
 
     sr5 (``n_res > 0``): absolute acceleration of the sensor's resonator mass,
     -(2 zeta w z_i' + w^2 z_i) (as Sawalhi & Randall measure y_b). sr4: the local
-    housing acceleration itself.
+    housing acceleration itself. ``buf``: scratch of length >= 8.
     """
-    p = m[0]
     if n_res > 0:
         nd = 4 + n_res
         w = p[P_WR]
@@ -243,60 +412,49 @@ def sensor_output(t, y, m, n_res, work, out):
         for i in range(n_res):
             out[i] = -(2.0 * zeta * w * y[nd + 4 + i] + w * w * y[4 + i])
         return
-    psi, depth, q, cpsi, spsi = work[0], work[1], work[2], work[4], work[5]
-    element_angles(t, p, m[1], psi, cpsi, spsi)
-    fault_depths(t, m, psi, depth)
-    contact_loads(y, p, cpsi, spsi, depth, q)
-    pu = -p[P_KP] * y[2] - p[P_CP] * y[6] + p[P_MP] * p[P_G]
-    pv = -p[P_KP] * y[3] - p[P_CP] * y[7]
-    housing_accel(p, cpsi, spsi, q, m[9], m[10], pu, pv, out)
+    kinematics(t, p, walk, faults, kin)
+    contact_loads(y, p, kin)
+    housing_accel(y, buf, p, sensors, kin, 0.0, out, out, False)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def element_angles_many(t, p, walk, z):
     """Element angles at many times: (len(t), Z) array, rad (for kinematics in Python)."""
     out = np.empty((t.shape[0], z))
-    psi = np.empty(z)
-    cpsi = np.empty(z)
-    spsi = np.empty(z)
+    kin = np.empty((N_KIN, z))
     for k in range(t.shape[0]):
-        element_angles(t[k], p, walk, psi, cpsi, spsi)
-        out[k, :] = psi
+        element_angles(t[k], p, walk, kin)
+        out[k, :] = kin[K_PSI]
     return out
 
 
-@njit(cache=True)
-def fault_offset(t, m, i, j, psi, cpsi, spsi):
-    """Signed angular offset (rad, in [-pi, pi)) of element j from the centre of fault i.
+@njit(cache=True, error_model="numpy")
+def fault_offset(t, p, walk, faults, i, j):
+    """Signed angular offset (rad, in [-pi, pi)) of path j from the centre of fault i.
 
-    For a ball defect ``j`` selects the face: 0 = facing the outer race (phase 0),
-    1 = facing the inner race (phase pi). Same arithmetic as :func:`fault_depths`, so
-    crossing times found with it are exactly where the kernels switch.
+    Races: ``j`` is the element. Ball defect: ``j`` selects the face, 0 = facing the
+    outer race (phase 0), 1 = the inner race (phase pi). Same arithmetic as
+    :func:`fault_depths` (both go through :func:`path_offset`).
     """
-    p = m[0]
-    element_angles(t, p, m[1], psi, cpsi, spsi)
-    kind = m[3][i]
-    if kind == KIND_BALL:
-        e = m[8][i]
-        spin = m[4][i] + p[P_SPIN] * (psi[e] - m[2][e])
-        return wrap_pi(spin - math.pi * j)
-    centre = m[4][i]
-    if kind == KIND_INNER:
-        centre += shaft_angle(t, p)
-    return wrap_pi(psi[j] - centre)
+    cage, _ = cage_angle(t, p, walk)
+    step = TWO_PI / p[P_Z]
+    if int(faults[i, F_KIND]) == KIND_BALL:
+        return path_offset(faults, i, p, cage + step * int(faults[i, F_ELEM]), 0.0, j)
+    return path_offset(faults, i, p, cage + step * j, shaft_angle(t, p), 0)
 
 
-@njit(cache=True)
-def find_crossings(m, t_grid, levels_per_fault):
+@njit(cache=True, error_model="numpy")
+def find_crossings(p, walk, faults, t_scan, levels_per_fault):
     """Times at which an element crosses a fault edge (or a ramp end), by bisection.
 
     Parameters
     ----------
-    m : tuple
-        Model tuple.
-    t_grid : ndarray, shape (n,)
-        Increasing scan times, s; one grid interval must not contain a wrap of the
-        offset (guaranteed when the offset moves < pi per interval).
+    p, walk, faults : ndarray
+        The model (see the module docstring).
+    t_scan : ndarray, shape (n,)
+        Increasing scan times, s. Each offset is monotone in time; within one scan
+        interval it must move by less than pi (so a wrap is recognised) and the
+        fault's levels lie within +-1 rad of its centre (see the caller).
     levels_per_fault : ndarray, shape (n_faults, 4)
         Offsets (rad) that mark an event for each fault: -half, -half_ramp, +half_ramp,
         +half (duplicates allowed for sharp edges; NaN to skip).
@@ -309,11 +467,7 @@ def find_crossings(m, t_grid, levels_per_fault):
     fault, element, level : ndarray of int64
         Which fault, which element (face for a ball defect) and which level.
     """
-    z = m[2].shape[0]
-    psi = np.empty(z)
-    cpsi = np.empty(z)
-    spsi = np.empty(z)
-    n_f = m[3].shape[0]
+    z = int(p[P_Z])
     cap = 1024
     before = np.empty(cap)
     after = np.empty(cap)
@@ -321,12 +475,12 @@ def find_crossings(m, t_grid, levels_per_fault):
     e_out = np.empty(cap, dtype=np.int64)
     l_out = np.empty(cap, dtype=np.int64)
     n = 0
-    for i in range(n_f):
-        n_paths = 2 if m[3][i] == KIND_BALL else z
+    for i in range(faults.shape[0]):
+        n_paths = 2 if int(faults[i, F_KIND]) == KIND_BALL else z
         for j in range(n_paths):
-            o_prev = fault_offset(t_grid[0], m, i, j, psi, cpsi, spsi)
-            for k in range(1, t_grid.shape[0]):
-                o_next = fault_offset(t_grid[k], m, i, j, psi, cpsi, spsi)
+            o_prev = fault_offset(t_scan[0], p, walk, faults, i, j)
+            for k in range(1, t_scan.shape[0]):
+                o_next = fault_offset(t_scan[k], p, walk, faults, i, j)
                 if abs(o_next - o_prev) < math.pi:
                     for lv in range(4):
                         level = levels_per_fault[i, lv]
@@ -338,13 +492,13 @@ def find_crossings(m, t_grid, levels_per_fault):
                         b_side = o_next >= level
                         if a_side == b_side:
                             continue
-                        lo = t_grid[k - 1]
-                        hi = t_grid[k]
+                        lo = t_scan[k - 1]
+                        hi = t_scan[k]
                         for _ in range(200):
                             mid = 0.5 * (lo + hi)
                             if mid <= lo or mid >= hi:
                                 break
-                            if (fault_offset(mid, m, i, j, psi, cpsi, spsi) >= level) == a_side:
+                            if (fault_offset(mid, p, walk, faults, i, j) >= level) == a_side:
                                 lo = mid
                             else:
                                 hi = mid
@@ -365,20 +519,41 @@ def find_crossings(m, t_grid, levels_per_fault):
     return before[:n][order], after[:n][order], f_out[:n][order], e_out[:n][order], l_out[:n][order]
 
 
-@njit(cache=True)
-def contact_loads_many(t, states, m):
-    """Contact loads of every element at many (time, state) pairs: (len(t), Z), N."""
-    p = m[0]
-    z = m[2].shape[0]
-    psi = np.empty(z)
-    cpsi = np.empty(z)
-    spsi = np.empty(z)
-    depth = np.empty(z)
-    q = np.empty(z)
+@njit(cache=True, error_model="numpy")
+def find_knots(p, t_end):
+    """Brackets ``(before, after)`` (s) of the slip-walk knots in (0, t_end], where the
+    cage speed jumps, by bisection on :func:`knot_position` (the same arithmetic as the
+    kernels, so each bracket straddles the kernels' switch)."""
+    n = int(math.floor(knot_position(t_end, p)))
+    before = np.empty(max(n, 0))
+    after = np.empty(max(n, 0))
+    lo = 0.0
+    for k in range(1, n + 1):
+        hi = t_end
+        for _ in range(200):
+            mid = 0.5 * (lo + hi)
+            if mid <= lo or mid >= hi:
+                break
+            if math.floor(knot_position(mid, p)) >= k:
+                hi = mid
+            else:
+                lo = mid
+        before[k - 1] = lo
+        after[k - 1] = hi
+        lo = hi
+    return before, after
+
+
+@njit(cache=True, error_model="numpy")
+def contact_loads_many(t, states, p, walk, faults):
+    """Contact loads of every element at many (time, state) pairs: (len(t), Z), N.
+
+    ``states`` rows start with u_s, v_s, u_p, v_p (either layout)."""
+    z = int(p[P_Z])
+    kin = np.empty((N_KIN, z))
     out = np.empty((t.shape[0], z))
     for k in range(t.shape[0]):
-        element_angles(t[k], p, m[1], psi, cpsi, spsi)
-        fault_depths(t[k], m, psi, depth)
-        contact_loads(states[k], p, cpsi, spsi, depth, q)
-        out[k, :] = q
+        kinematics(t[k], p, walk, faults, kin)
+        contact_loads(states[k], p, kin)
+        out[k, :] = kin[K_Q]
     return out

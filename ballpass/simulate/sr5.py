@@ -100,10 +100,18 @@ class BearingModel:
     params : SR5Parameters
     n_res : int
         Resonators in the state (one per sensor for sr5, 0 for sr4).
-    m : tuple
-        The kernel model tuple (see :mod:`._kernels`).
+    p : ndarray (N_PARAMS,)
+        Kernel parameter vector (indices ``P_*`` of :mod:`._kernels`), SI units.
+    walk : ndarray
+        Random walk of the cage angle, one knot per element spacing of cage angle, rad.
+    psi0 : ndarray (Z,)
+        Element angles at t = 0, rad.
+    faults : ndarray (n_faults, N_FCOLS)
+        Fault table (columns ``F_*`` of :mod:`._kernels`).
+    sensors : ndarray (n_sensors, N_SCOLS)
+        Sensor table (columns ``S_*`` of :mod:`._kernels`).
     y0 : ndarray (n_state,)
-        Static equilibrium at t = 0.
+        Static equilibrium at t = 0 (full layout).
     scale : ndarray (n_state,)
         Characteristic magnitude of each state component (for tolerances).
     levels : ndarray (n_faults, 4)
@@ -113,7 +121,11 @@ class BearingModel:
     scene: Scene
     params: SR5Parameters
     n_res: int
-    m: tuple
+    p: np.ndarray
+    walk: np.ndarray
+    psi0: np.ndarray
+    faults: np.ndarray
+    sensors: np.ndarray
     y0: np.ndarray
     scale: np.ndarray
     levels: np.ndarray
@@ -123,59 +135,64 @@ class BearingModel:
         """Length of the state vector, 2 (4 + n_res)."""
         return 2 * (4 + self.n_res)
 
-    def work(self) -> tuple:
-        """Fresh scratch arrays for the kernels."""
-        z = self.scene.bearing.n_elements
-        return (np.empty(z), np.empty(z), np.empty(z), np.empty(len(self.scene.sensors)),
-                np.empty(z), np.empty(z))
+    @property
+    def model(self) -> tuple:
+        """``(p, walk, faults, sensors)``: the arrays every kernel takes."""
+        return self.p, self.walk, self.faults, self.sensors
 
     def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
-        """dy/dt at (t, y): the compiled right-hand side, callable from Python (e.g. by
-        ``scipy.integrate.solve_ivp``)."""
+        """dy/dt of the full state (all resonators included) at (t, y): the compiled
+        right-hand side, callable from Python (e.g. by ``scipy.integrate.solve_ivp``)."""
         dydt = np.empty(self.n_state)
-        K.rhs(float(t), np.ascontiguousarray(y, dtype=np.float64), dydt, self.m, self.n_res,
-              self._work)
+        K.rhs(float(t), np.ascontiguousarray(y, dtype=np.float64), dydt, *self.model,
+              self.n_res, self._kin, self._buf)
         return dydt
 
     def sensor_output(self, t: float, y: np.ndarray) -> np.ndarray:
-        """Sensor accelerations (m/s^2) at state y, before AC coupling."""
+        """Sensor accelerations (m/s^2) at full state y, before AC coupling."""
         out = np.empty(len(self.scene.sensors))
-        K.sensor_output(float(t), np.ascontiguousarray(y, dtype=np.float64), self.m,
-                        self.n_res, self._work, out)
+        K.sensor_output(float(t), np.ascontiguousarray(y, dtype=np.float64), *self.model,
+                        self.n_res, self._kin, self._buf, out)
         return out
 
     def __post_init__(self) -> None:
-        self._work = self.work()
+        self._kin = np.empty((K.N_KIN, self.scene.bearing.n_elements))
+        self._buf = np.empty(2 * K.N_CORE + len(self.scene.sensors))
 
 
-def _fault_arrays(scene: Scene):
+def _fault_table(scene: Scene, psi0: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Kernel fault table and the event levels (rad) of each fault."""
     b = scene.bearing
-    kinds, centres, halves, depths, ramps, elems = [], [], [], [], [], []
-    levels = []
+    rows, levels = [], []
     for f in scene.faults:
         depth_m = f.effective_depth_mm(b) * 1e-3
         width_m = f.width_mm * 1e-3
         if f.kind == "ball":
             radius = 0.5 * b.element_diameter_m
-            kinds.append(K.KIND_BALL)
+            kind = K.KIND_BALL
         else:
             radius = b.outer_race_radius_m if f.kind == "outer" else b.inner_race_radius_m
-            kinds.append(K.KIND_OUTER if f.kind == "outer" else K.KIND_INNER)
+            kind = K.KIND_OUTER if f.kind == "outer" else K.KIND_INNER
         half = 0.5 * width_m / radius
         ramp = f.ramp_fraction if f.edge == "ramped" else 0.0
-        centres.append(math.radians(f.angle_deg))
-        halves.append(half)
-        depths.append(depth_m)
-        ramps.append(ramp)
-        elems.append(f.element)
+        row = np.zeros(K.N_FCOLS)
+        row[[K.F_KIND, K.F_CENTRE, K.F_HALF, K.F_DEPTH, K.F_RAMP, K.F_ELEM, K.F_PSI0]] = (
+            kind, math.radians(f.angle_deg), half, depth_m, ramp, f.element,
+            psi0[f.element] if f.kind == "ball" else 0.0)
+        rows.append(row)
         inner = half * (1.0 - 2.0 * ramp) if ramp > 0 else math.nan
         levels.append([-half, -inner, inner, half])
-    return (
-        np.array(kinds, dtype=np.int64), np.array(centres, dtype=np.float64),
-        np.array(halves, dtype=np.float64), np.array(depths, dtype=np.float64),
-        np.array(ramps, dtype=np.float64), np.array(elems, dtype=np.int64),
-        np.array(levels, dtype=np.float64).reshape(-1, 4),
-    )
+    return (np.array(rows, dtype=np.float64).reshape(-1, K.N_FCOLS),
+            np.array(levels, dtype=np.float64).reshape(-1, 4))
+
+
+def _sensor_table(scene: Scene) -> np.ndarray:
+    """Kernel sensor table: angle (rad), attenuation, cos and sin of the angle."""
+    table = np.empty((len(scene.sensors), K.N_SCOLS))
+    for i, s in enumerate(scene.sensors):
+        a = math.radians(s.angle_deg)
+        table[i, [K.S_ANG, K.S_ATT, K.S_COS, K.S_SIN]] = a, s.attenuation, math.cos(a), math.sin(a)
+    return table
 
 
 def _slip_walk(scene: Scene, cage_ratio: float, rng: np.random.Generator) -> np.ndarray:
@@ -194,14 +211,6 @@ def _slip_walk(scene: Scene, cage_ratio: float, rng: np.random.Generator) -> np.
     steps = -scene.slip * math.sqrt(1.5) * rng.standard_normal(n_knots)
     steps[0] = 0.0
     return (2.0 * math.pi / z) * np.cumsum(steps)
-
-
-def _pedestal_forces(params: SR5Parameters, y: np.ndarray, g: float, n_res: int):
-    nd = 4 + n_res
-    pu = -params.pedestal_stiffness * y[2] - params.pedestal_damping * y[nd + 2] \
-        + params.pedestal_mass * g
-    pv = -params.pedestal_stiffness * y[3] - params.pedestal_damping * y[nd + 3]
-    return pu, pv
 
 
 def build_model(scene: Scene, params: SR5Parameters | None = None, *,
@@ -252,22 +261,22 @@ def build_model(scene: Scene, params: SR5Parameters | None = None, *,
     p[K.P_Z] = b.n_elements
     p[K.P_WR] = w_r
     p[K.P_ZETA] = scene.resonance_damping
+    p[K.P_COS_STEP] = math.cos(2.0 * math.pi / b.n_elements)
+    p[K.P_SIN_STEP] = math.sin(2.0 * math.pi / b.n_elements)
 
     slip_seed, _noise_seed = np.random.SeedSequence(scene.seed).spawn(2)
     walk = _slip_walk(scene, cage_ratio, np.random.default_rng(slip_seed))
     psi0 = K.element_angles_many(np.zeros(1), p, walk, b.n_elements)[0]
-    f_kind, f_center, f_half, f_depth, f_ramp, f_elem, levels = _fault_arrays(scene)
-    s_ang = np.array([math.radians(s.angle_deg) for s in scene.sensors])
-    s_att = np.array([s.attenuation for s in scene.sensors])
-    m = (p, walk, psi0, f_kind, f_center, f_half, f_depth, f_ramp, f_elem, s_ang, s_att)
+    faults, levels = _fault_table(scene, psi0)
+    sensors = _sensor_table(scene)
     n_res = len(scene.sensors) if resonator else 0
 
-    y0, scale = _static_state(scene, params, m, n_res, kh)
-    return BearingModel(scene=scene, params=params, n_res=n_res, m=m, y0=y0, scale=scale,
-                        levels=levels)
+    y0, scale = _static_state(scene, params, (p, walk, faults, sensors), n_res, kh)
+    return BearingModel(scene=scene, params=params, n_res=n_res, p=p, walk=walk, psi0=psi0,
+                        faults=faults, sensors=sensors, y0=y0, scale=scale, levels=levels)
 
 
-def _static_state(scene: Scene, params: SR5Parameters, m: tuple, n_res: int, kh: float):
+def _static_state(scene: Scene, params: SR5Parameters, model: tuple, n_res: int, kh: float):
     """Static equilibrium at t = 0 and characteristic scales of the state.
 
     The bearing carries the radial load and the shaft's weight: the shaft support
@@ -276,12 +285,12 @@ def _static_state(scene: Scene, params: SR5Parameters, m: tuple, n_res: int, kh:
     balance sum_j Q_j n_j = (F_r + m_s g) e_u for the ring displacement.
     """
     b = scene.bearing
-    p = m[0]
+    p, _walk, faults, sensors = model
     z = b.n_elements
-    psi = m[2]
-    depth = np.empty(z)
-    K.fault_depths(0.0, m, psi, depth)
-    cos_psi, sin_psi = np.cos(psi), np.sin(psi)
+    kin = np.empty((K.N_KIN, z))
+    K.kinematics(0.0, *model[:3], kin)
+    depth = kin[K.K_DEPTH].copy()
+    cos_psi, sin_psi = np.cos(kin[K.K_PSI]), np.sin(kin[K.K_PSI])
     n = b.load_exponent
     c = b.radial_clearance_m
     g = p[K.P_G]
@@ -324,14 +333,16 @@ def _static_state(scene: Scene, params: SR5Parameters, m: tuple, n_res: int, kh:
     y0 = np.zeros(2 * nd)
     y0[:4] = [u_s, v_s, u_p, v_p]
     if n_res:
+        # resonators at rest under the static housing acceleration
         sacc = np.empty(len(scene.sensors))
-        pu, pv = _pedestal_forces(params, y0, g, n_res)
-        K.housing_accel(p, cos_psi, sin_psi, q, m[9], m[10], pu, pv, sacc)
+        yc = np.concatenate((y0[:4], y0[nd:nd + 4]))
+        K.contact_loads(yc, p, kin)
+        K.housing_accel(yc, yc, p, sensors, kin, 0.0, sacc, sacc, False)
         y0[4:nd] = -sacc / p[K.P_WR] ** 2
     load = bearing_load + params.pedestal_mass * g
 
     # scales: contact deflection, its velocity at the contact frequency, resonator
-    x_scale = max(abs(du), abs(c), float(np.max(m[6], initial=0.0)), 1e-7)
+    x_scale = max(abs(du), abs(c), float(np.max(faults[:, K.F_DEPTH], initial=0.0)), 1e-7)
     k_lin = n * kh * x_scale ** (n - 1.0) * z / 2.0
     w_c = math.sqrt(k_lin / params.shaft_mass)
     f_scale = max(kh * x_scale**n, load)
