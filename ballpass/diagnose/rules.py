@@ -4,15 +4,19 @@ A localized fault announces itself in the squared envelope spectrum (SES) as a *
 of lines whose spacing the bearing's kinematics fix (Randall & Antoni [1]_, section
 3.4; the diagnostic grades of Smith & Randall [2]_):
 
-* **outer race** — harmonics of BPFO (the fault is fixed in the load zone, so the
-  impacts are of equal strength and unmodulated);
+* **outer race** — harmonics of BPFO, *without* sidebands at +-FTF: the fault sits
+  still in the load zone, so its impacts are of equal strength and unmodulated;
 * **inner race** — harmonics of BPFI with sidebands at +-1x the shaft speed (the fault
   turns with the shaft and passes through the load zone once per revolution);
 * **rolling element** — harmonics of the ball-defect frequency 2xBSF with sidebands at
   +-FTF (the faulty element is carried through the load zone at the cage speed).
 
+The outer-race sidebands count *against* the family because BPFO = Z x FTF: a ball
+fault, modulated at FTF, fills the whole FTF comb, BPFO and its neighbours alike,
+while an outer-race line stands above its +-FTF neighbours.
+
 For each family, :func:`envelope_evidence` measures each line against the local SES
-background and averages the levels into one number, the family's *evidence* in dB.
+background and combines the levels into one number, the family's *evidence* in dB.
 Rolling elements slip, so the whole family is searched over a common scale factor
 ``1 - slip .. 1 + slip/2`` of its kinematic frequencies (slip lowers the cage speed;
 the small upward margin absorbs an imprecise tachometer) and the best-fitting scale is
@@ -58,11 +62,12 @@ __all__ = [
     "EnvelopeDiagnoser",
 ]
 
-#: fault -> (carrier line, modulating line or None), as BearingFrequencies attributes.
+#: fault -> (carrier line, sideband spacing, do sidebands support (+1) or refute (-1)
+#: the fault), as BearingFrequencies attributes.
 FAULT_FAMILIES = {
-    "outer": ("bpfo", None),
-    "inner": ("bpfi", "shaft"),
-    "ball": ("ball_defect", "ftf"),
+    "outer": ("bpfo", "ftf", -1),
+    "inner": ("bpfi", "shaft", +1),
+    "ball": ("ball_defect", "ftf", +1),
 }
 _SYMBOL = {"bpfo": "BPFO", "bpfi": "BPFI", "ball_defect": "2xBSF", "shaft": "fr", "ftf": "FTF"}
 #: Fewest SES bins on each side of a line in its background median.
@@ -71,13 +76,12 @@ _MIN_BACKGROUND_BINS = 5
 
 def _family_lines(fault: str, harmonics: int) -> list[tuple[str, int, int]]:
     """Lines of a family as ``(name, harmonic, side)``; side -1/0/+1 is the sideband."""
-    carrier, modulation = FAULT_FAMILIES[fault]
+    carrier, modulation, _ = FAULT_FAMILIES[fault]
     lines = []
     for h in range(1, harmonics + 1):
         lines.append((f"{h}x{_SYMBOL[carrier]}", h, 0))
-        if modulation is not None:
-            lines.append((f"{h}x{_SYMBOL[carrier]}-{_SYMBOL[modulation]}", h, -1))
-            lines.append((f"{h}x{_SYMBOL[carrier]}+{_SYMBOL[modulation]}", h, +1))
+        lines.append((f"{h}x{_SYMBOL[carrier]}-{_SYMBOL[modulation]}", h, -1))
+        lines.append((f"{h}x{_SYMBOL[carrier]}+{_SYMBOL[modulation]}", h, +1))
     return lines
 
 
@@ -151,12 +155,14 @@ def envelope_evidence(
 
     ``L = 10 log10(max SES within +-1 bin / background)``, dB.
 
-    The family's evidence at ``s`` is the mean level of its carriers ``h x f_c``,
-    ``h = 1..harmonics``; for a modulated family (inner race, ball) it is the mean of
-    that and of the stronger sideband of each harmonic (``h x f_c -/+ f_m``). The
-    evidence is the largest value over ``s``. Noise alone reads about 2-4 dB (the
-    largest of three exponentially distributed SES bins over their median, maximised
-    over the scales); a clear fault 8 dB and more.
+    With ``C`` the mean level of the carriers ``h x f_c``, ``h = 1..harmonics``, and
+    ``S`` the mean over ``h`` of the stronger sideband ``h x f_c -/+ f_m``, the
+    family's evidence at ``s`` is ``(C + S) / 2`` for the modulated families (inner
+    race: ``f_m`` = shaft speed; ball: ``f_m`` = FTF) and ``C - S / 2`` for the outer
+    race (``f_m`` = FTF; see the module notes). The evidence is the largest value over
+    ``s``. Noise alone reads about 1-4 dB (the largest of three exponentially
+    distributed SES bins over their median, maximised over the scales); a clear fault
+    8 dB and more.
 
     Parameters
     ----------
@@ -229,13 +235,13 @@ def envelope_evidence(
 
     out = {key: {} for key in ("evidence_db", "levels_db", "found_hz", "nominal_hz", "scale")}
     names = {}
-    for fault, (carrier, modulation) in FAULT_FAMILIES.items():
+    for fault, (carrier, modulation, support) in FAULT_FAMILIES.items():
         lines = _family_lines(fault, harmonics)
         names[fault] = [name for name, _, _ in lines]
         h = np.array([hh for _, hh, _ in lines], dtype=float)
         side = np.array([ss for _, _, ss in lines], dtype=float)
         f_c = orders[carrier] * shaft_hz  # (n,)
-        f_m = orders[modulation] * shaft_hz if modulation else np.zeros_like(shaft_hz)
+        f_m = orders[modulation] * shaft_hz
         # Common scale grid: half a bin at the highest harmonic of the fastest signal.
         step = 0.5 * df / (harmonics * f_c.max())
         scales = np.arange(1.0 - slip, 1.0 + 0.5 * slip + 0.5 * step, step)
@@ -248,16 +254,20 @@ def envelope_evidence(
         c = np.clip(centre, 1, n_bins - 2)
         window = np.stack([ses[rows, c - 1], ses[rows, c], ses[rows, c + 1]])
         best = window.argmax(axis=0) - 1
-        level = 10.0 * np.log10((window.max(axis=0) + tiny) / (background[rows, c] + tiny))
-        level = np.where(valid, level, np.nan)
-        carriers = np.nanmean(np.where(side == 0, level, np.nan), axis=-1)
-        if modulation is None:
-            score = carriers
+        floor = background[rows, c] + tiny
+        level = np.where(valid, 10.0 * np.log10((window.max(axis=0) + tiny) / floor), np.nan)
+        on_bin = np.where(valid, 10.0 * np.log10((window[1] + tiny) / floor), np.nan)
+        is_carrier = side == 0
+        # The scale is fitted on the carriers: the +-1 bin window makes their level
+        # flat over about a bin, the level of the nearest bin alone centres the fit.
+        fit = np.nanmean(np.where(is_carrier, level + on_bin, np.nan), axis=-1)
+        j = np.where(np.isnan(fit), -np.inf, fit).argmax(axis=1)  # best scale per signal
+        carriers = np.nanmean(np.where(is_carrier, level, np.nan), axis=-1)
+        sidebands = np.nanmean(np.fmax(level[..., side == -1], level[..., side == +1]), axis=-1)
+        if support > 0:
+            score = 0.5 * (carriers + sidebands)
         else:
-            per_h = np.fmax(level[..., side == -1], level[..., side == +1])
-            score = 0.5 * carriers + 0.5 * np.nanmean(per_h, axis=-1)
-        score = np.where(np.isnan(score), -np.inf, score)
-        j = score.argmax(axis=1)  # best scale per signal
+            score = carriers - 0.5 * sidebands
         i = np.arange(len(xv))
         out["evidence_db"][fault] = score[i, j]
         out["levels_db"][fault] = level[i, j]
