@@ -264,10 +264,17 @@ def _interpolate_core(t0, t1, tk, seg):
 
 @njit(cache=True, error_model="numpy")
 def _input_error(t, h, seg, rtol, atol_in, p, walk, faults, sensors, kin):
-    """RMS error of the cubic Hermite resonator input at the middle of [t, t + h],
-    against the excitation of the interpolated core state, scaled by
-    ``atol_in + rtol |s''|``. Needs rows R_Y0, R_F0, R_A0, R_DA0 (start) and R_Y1,
-    R_F1, R_A1, R_DA1 (end) of ``seg``; overwrites R_YI, R_FI, R_AK, R_DAK."""
+    """Error of the resonator state caused by the cubic Hermite input over [t, t + h],
+    in the units of the error norm (1 = at tolerance).
+
+    The input error e(s) = u''''/24 s^2 (h - s)^2 integrates to 16/30 h e(h/2) of
+    resonator velocity; against the velocity scale u_scale / w_r this is
+    (16/30) w_r h |e(h/2)| / (atol_in + rtol |u|), where e(h/2) compares the Hermite
+    interpolant at mid-step with the excitation u of the interpolated core state
+    (``atol_in`` in m/s^2; RMS over the sensors): the control the resonators would get
+    in the Runge-Kutta error norm of the full state. Needs rows R_Y0, R_F0, R_A0,
+    R_DA0 (start) and R_Y1, R_F1, R_A1, R_DA1 (end) of ``seg``; overwrites R_YI, R_FI,
+    R_AK, R_DAK."""
     tm = t + 0.5 * h
     _interpolate_core(t, t + h, tm, seg)
     _excitation(tm, seg, R_YI, R_FI, R_AK, R_DAK, p, walk, faults, sensors, kin)
@@ -278,7 +285,7 @@ def _input_error(t, h, seg, rtol, atol_in, p, walk, faults, sensors, kin):
         mid = 0.5 * (seg[R_A0, i] + seg[R_A1, i]) + 0.125 * h * (seg[R_DA0, i] - seg[R_DA1, i])
         exact = seg[R_AK, i]
         err += ((mid - exact) / (atol_in + rtol * abs(exact))) ** 2
-    return math.sqrt(err / n_s)
+    return (16.0 / 30.0) * p[P_WR] * h * math.sqrt(err / n_s)
 
 
 @njit(cache=True, error_model="numpy")
@@ -547,6 +554,10 @@ def dopri5(y0, p, walk, faults, sensors, n_res, h_out, n_out, ev_before, ev_afte
     t = 0.0
     h = min(h_max, h_out)
     h_min_used = h
+    # step-size memory for each regime: inside a defect the depth profile sets the
+    # pace, outside the core does; an event switching regimes restarts from the step
+    # last used in the new one instead of paying rejections to get there
+    h_regime = np.array([h, h])
     n_acc = 0
     n_rej = 0
     while t < t_end:
@@ -577,7 +588,7 @@ def dopri5(y0, p, walk, faults, sensors, n_res, h_out, n_out, ev_before, ev_afte
             tmp[i] = y[i] + h * (A31 * k1[i] + A32 * k2[i])
         rate = element_angles(t + C3 * h, p, walk, kin)
         fault_depths(t + C3 * h, p, faults, kin, rate, False)
-        in_fault = n_res > 0 and _in_fault(kin)
+        regime = 1 if _in_fault(kin) else 0
         core_forces(tmp, p, kin, k3)
         for i in range(n):
             tmp[i] = y[i] + h * (A41 * k1[i] + A42 * k2[i] + A43 * k3[i])
@@ -609,7 +620,7 @@ def dopri5(y0, p, walk, faults, sensors, n_res, h_out, n_out, ev_before, ev_afte
         if n_res > 0:
             housing_accel(y_new, k7, p, sensors, kin, rate, seg[R_A1, :n_res],
                           seg[R_DA1, :n_res], True)
-        if in_fault:
+        if regime == 1 and n_res > 0:
             err = max(err, _input_error(t, h, seg, rtol, atol_in, p, walk, faults, sensors,
                                         kin))
         if not (err == err):  # NaN: treat as a failed step with a much smaller h
@@ -630,14 +641,17 @@ def dopri5(y0, p, walk, faults, sensors, n_res, h_out, n_out, ev_before, ev_afte
             if h < h_min_used:
                 h_min_used = h
             fac = 5.0 if err == 0.0 else min(5.0, max(0.2, 0.9 * err ** -0.2))
+            h = h * fac
             if hits_event:
+                h = max(h, h_wanted)  # the event, not the error, limited this step
+                h_regime[regime] = h
                 t = ev_after[ev]
                 ev += 1
                 _excitation(t, seg, R_Y0, R_F0, R_A0, R_DA0, p, walk, faults, sensors, kin)
-                h = max(h * fac, h_wanted)  # the event, not the error, limited this step
+                h = h_regime[1 if _in_fault(kin) else 0]
             else:
+                h_regime[regime] = h
                 t = t_new
-                h = h * fac
         else:
             n_rej += 1
             h = h * max(0.1, 0.9 * err ** -0.25)
