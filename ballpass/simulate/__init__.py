@@ -106,25 +106,36 @@ def _core_omega(bm: BearingModel) -> float:
 
 
 def _events(bm: BearingModel, t_end: float):
-    """Fault-edge crossings in [0, t_end]: brackets, fault, element and level indices."""
-    if bm.levels.shape[0] == 0:
-        empty = np.empty(0)
-        e = np.empty(0, dtype=np.int64)
-        return empty, empty.copy(), e, e.copy(), e.copy()
+    """Fault-edge crossings in [0, t_end], by time: brackets (s), fault, element and
+    level indices."""
+    n_faults = bm.levels.shape[0]
     # Scan so that every offset moves by at most 0.5 rad per interval: each offset is
     # monotone in time and the levels lie within 1 rad of the fault centre (a race
     # fault is narrower than the element spacing, a ball fault than the ball), so a
     # sign change against a level is never missed and a wrap at +-pi never mistaken
-    # for one. The fastest offset: the cage (with its steepest slip increment), the
-    # inner race relative to it (< shaft speed) or the ball spin.
+    # for one. Offset speeds: the cage (with its steepest slip increment), the inner
+    # race relative to it (< shaft speed) or the ball spin.
     p, walk = bm.p, bm.walk
-    z = p[_K.P_Z]
+    z = int(p[_K.P_Z])
     w_max = max(p[_K.P_W0], p[_K.P_W1])
     slope = float(np.max(np.abs(np.diff(walk)))) * z / (2.0 * math.pi) if walk.size > 1 else 0.0
     cage = p[_K.P_CAGE] * w_max * (1.0 + slope)
-    rate = max(w_max, cage, p[_K.P_SPIN] * cage)
+    rates = {_K.KIND_OUTER: cage, _K.KIND_INNER: w_max, _K.KIND_BALL: p[_K.P_SPIN] * cage}
+    kinds = bm.faults[:, _K.F_KIND].astype(int)
+    rate = max((rates[k] for k in kinds), default=0.0)
     n_scan = max(2, math.ceil(t_end * rate / 0.5) + 1)
-    return _K.find_crossings(p, walk, bm.faults, np.linspace(0.0, t_end, n_scan), bm.levels)
+    # at most one crossing of each level per turn of the offset, on every path
+    capacity = sum(4 * (2 if k == _K.KIND_BALL else z)
+                   * (math.ceil(rates[k] * t_end / (2.0 * math.pi)) + 2) for k in kinds)
+    before, after = np.empty(capacity), np.empty(capacity)
+    index = np.empty((capacity, 3), dtype=np.int64)
+    n = _K.find_crossings(p, walk, bm.faults, np.linspace(0.0, t_end, n_scan), bm.levels,
+                          before, after, index) if n_faults else 0
+    if n < 0:
+        raise RuntimeError(f"more fault crossings than the kinematic bound {capacity}")
+    order = np.argsort(before[:n], kind="stable")
+    index = index[:n][order]
+    return before[:n][order], after[:n][order], index[:, 0], index[:, 1], index[:, 2]
 
 
 def _edge_names(bm: BearingModel, fault: np.ndarray, level: np.ndarray) -> np.ndarray:

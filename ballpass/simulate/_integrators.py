@@ -79,7 +79,8 @@ E1, E3, E4, E5, E6, E7 = (
 
 # rows of the segment workspace: core state and derivative at both ends and
 # interpolated; resonator excitation and rate at both ends, at the current and the
-# next refinement point
+# next refinement point (each excitation row is followed by its rate row, as
+# housing_accel writes them)
 R_Y0, R_F0, R_Y1, R_F1, R_YI, R_FI = 0, 1, 2, 3, 4, 5
 R_A0, R_DA0, R_A1, R_DA1, R_AC, R_DAC, R_AK, R_DAK = 6, 7, 8, 9, 10, 11, 12, 13
 N_SEG = 14
@@ -93,6 +94,10 @@ PROP_H, PROP_TMP = 0, 1
 GRID_TOL = 1e-9
 
 
+#: below this w tau the propagator comes from its Taylor series (see lti_propagator)
+LTI_SERIES_BELOW = 0.1
+
+
 @njit(cache=True, error_model="numpy")
 def lti_propagator(tau, w, zeta, prop, slot):
     """Exact propagator of the resonator x = (z, z') over tau with polynomial input,
@@ -101,25 +106,59 @@ def lti_propagator(tau, w, zeta, prop, slot):
     For z'' + 2 zeta w z' + w^2 z = -u(s), i.e. x' = A x + B u with
     A = [[0, 1], [-w^2, -2 zeta w]], B = (0, -1), and u(s) = sum_m c_m s^m (m <= 3):
     x(tau) = Phi x(0) + sum_m c_m g_m, Phi = exp(A tau) and
-    g_m = int_0^tau exp(A (tau - s)) B s^m ds = m! tau^(m+1) sum_k (A tau)^k B k!/(k+m+1)!.
+    g_m = int_0^tau exp(A (tau - s)) B s^m ds.
 
-    Both from the Taylor series of exp(A tau), summed until the terms fall below
-    1e-17 of the leading ones: |eigenvalues| tau = w tau <= 2 pi 0.45 fs h_out <= 2.9
-    here (resonance below 0.45 fs, pieces no longer than one output interval of at
-    most 1/fs), where the series converges without cancellation trouble (largest
-    term < e^(3 w tau) / sqrt(2 pi k) < 1e4 times the sum, so 1e-12 of rounding at
-    worst, 1e-15 at the default 4x oversampling).
+    Closed form for the underdamped oscillator (0 < zeta < 1, damped frequency
+    w_d = w sqrt(1 - zeta^2)): Phi = e^(-zeta w tau) [[c + zeta w s / w_d, s / w_d],
+    [-w^2 s / w_d, c - zeta w s / w_d]] with c, s = cos, sin(w_d tau), and by parts
+    g_0 = A^-1 (Phi - I) B, g_m = A^-1 (m g_(m-1) - tau^m B). That recursion loses
+    about a factor w tau per level to cancellation (1e-12 of g_3 at w tau = 0.1), so
+    below ``LTI_SERIES_BELOW`` the Taylor series
+    g_m = m! tau^(m+1) sum_k (A tau)^k B k!/(k+m+1)! is summed instead (< 15 terms).
 
     Parameters
     ----------
     tau : float
         Interval, s.
     w, zeta : float
-        Natural angular frequency (rad/s) and damping ratio.
+        Natural angular frequency (rad/s) and damping ratio in (0, 1).
     prop : ndarray (2, 6, 2)
         Written at ``prop[slot]``.
     slot : int
     """
+    if w * tau < LTI_SERIES_BELOW:
+        _lti_series(tau, w, zeta, prop, slot)
+        return
+    wd = w * math.sqrt(1.0 - zeta * zeta)
+    e = math.exp(-zeta * w * tau)
+    c = math.cos(wd * tau)
+    sn = math.sin(wd * tau)
+    prop[slot, 0, 0] = e * (c + zeta * w * sn / wd)
+    prop[slot, 0, 1] = e * sn / wd
+    prop[slot, 1, 0] = -e * w * w * sn / wd
+    prop[slot, 1, 1] = e * (c - zeta * w * sn / wd)
+    # A^-1 = [[-2 zeta / w, -1 / w^2], [1, 0]]; B = (0, -1)
+    b0 = -prop[slot, 0, 1]  # (Phi - I) B
+    b1 = 1.0 - prop[slot, 1, 1]
+    g0 = -2.0 * zeta / w * b0 - b1 / (w * w)
+    g1 = b0
+    prop[slot, 2, 0] = g0
+    prop[slot, 2, 1] = g1
+    tp = 1.0
+    for mm in range(1, 4):
+        tp *= tau
+        b0 = mm * g0  # m g_(m-1) - tau^m B
+        b1 = mm * g1 + tp
+        g0 = -2.0 * zeta / w * b0 - b1 / (w * w)
+        g1 = b0
+        prop[slot, 2 + mm, 0] = g0
+        prop[slot, 2 + mm, 1] = g1
+
+
+@njit(cache=True, error_model="numpy")
+def _lti_series(tau, w, zeta, prop, slot):
+    """:func:`lti_propagator` from the Taylor series of exp(A tau), summed until the
+    terms fall below 1e-17 of the leading ones (w tau < 0.1: < 15 terms)."""
     a10 = -w * w * tau
     a11 = -2.0 * zeta * w * tau
     # column 0: u = (A tau)^k e0 / k!; column 1: v = (A tau)^k e1 / k!
@@ -235,16 +274,16 @@ def _in_fault(kin):
 
 
 @njit(cache=True, error_model="numpy")
-def _excitation(t, seg, r_y, r_f, r_a, r_da, p, walk, faults, sensors, kin):
-    """Core derivative (row ``r_f``) at time t and core state row ``r_y`` of ``seg``;
-    for sr5 also the resonator excitation and its rate (rows ``r_a``, ``r_da``)."""
+def _excitation(t, seg, r_y, r_f, r_a, p, walk, faults, sensors, kin):
+    """Core derivative (row ``r_f``) at time t and core state row ``r_y`` of ``seg``,
+    and the housing excitation of every sensor and its rate (rows ``r_a``,
+    ``r_a + 1``)."""
     y = seg[r_y]
     f = seg[r_f]
     rate = element_angles(t, p, walk, kin)
     fault_depths(t, p, faults, kin, rate, True)
     core_forces(y, p, kin, f)
-    n_s = sensors.shape[0]
-    housing_accel(y, f, p, sensors, kin, rate, seg[r_a, :n_s], seg[r_da, :n_s], True)
+    housing_accel(y, f, p, sensors, kin, rate, seg, r_a, True)
 
 
 @njit(cache=True, error_model="numpy")
@@ -277,7 +316,7 @@ def _input_error(t, h, seg, rtol, atol_in, p, walk, faults, sensors, kin):
     R_AK, R_DAK."""
     tm = t + 0.5 * h
     _interpolate_core(t, t + h, tm, seg)
-    _excitation(tm, seg, R_YI, R_FI, R_AK, R_DAK, p, walk, faults, sensors, kin)
+    _excitation(tm, seg, R_YI, R_FI, R_AK, p, walk, faults, sensors, kin)
     n_s = sensors.shape[0]
     err = 0.0
     for i in range(n_s):
@@ -338,7 +377,7 @@ def _emit(t0, t1, refine, k_next, h_out, seg, res, prop, p, walk, faults, sensor
                             seg[R_AK, i] = seg[R_A1, i]
                             seg[R_DAK, i] = seg[R_DA1, i]
                     else:
-                        _excitation(tk, seg, R_YI, R_FI, R_AK, R_DAK, p, walk, faults, sensors,
+                        _excitation(tk, seg, R_YI, R_FI, R_AK, p, walk, faults, sensors,
                                     kin)
                     _hermite_input(tc, tk, seg, R_AC, R_DAC, R_AK, R_DAK, res)
                     for i in range(n_res):
@@ -357,7 +396,7 @@ def _emit(t0, t1, refine, k_next, h_out, seg, res, prop, p, walk, faults, sensor
             rate = element_angles(tk, p, walk, kin)
             fault_depths(tk, p, faults, kin, rate, False)
             contact_loads(yi, p, kin)
-            housing_accel(yi, yi, p, sensors, kin, 0.0, out[k_next], out[k_next], False)
+            housing_accel(yi, yi, p, sensors, kin, 0.0, out, k_next, False)
         if keep:
             _store_state(states, k_next, seg, R_YI, res)
         k_next += 1
@@ -390,7 +429,7 @@ def _start(y0, p, walk, faults, sensors, n_res, h_out, out, states):
     for i in range(n_res):
         res[i, X_Z] = y0[4 + i]
         res[i, X_DZ] = y0[nd + 4 + i]
-    _excitation(0.0, seg, R_Y0, R_F0, R_A0, R_DA0, p, walk, faults, sensors, kin)
+    _excitation(0.0, seg, R_Y0, R_F0, R_A0, p, walk, faults, sensors, kin)
     if n_res > 0:
         lti_propagator(h_out, p[P_WR], p[P_ZETA], prop, PROP_H)
         _resonator_output(res, p[P_WR], p[P_ZETA], out, 0)
@@ -498,8 +537,7 @@ def rk4(y0, p, walk, faults, sensors, n_res, h_out, mult, n_sub, n_out, ev_befor
                     y1[i] = y[i] + h / 6.0 * (f0[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
                 core_forces(y1, p, kin, f1)
                 if n_res > 0:
-                    housing_accel(y1, f1, p, sensors, kin, rate, seg[R_A1, :n_res],
-                                  seg[R_DA1, :n_res], True)
+                    housing_accel(y1, f1, p, sensors, kin, rate, seg, R_A1, True)
                 k_next = _emit(t, te, refine, k_next, h_out, seg, res, prop, p, walk, faults,
                                sensors, kin, out, states)
                 n_steps += 1
@@ -509,7 +547,7 @@ def rk4(y0, p, walk, faults, sensors, n_res, h_out, mult, n_sub, n_out, ev_befor
             if hit:
                 t = ev_after[ev]
                 ev += 1
-                _excitation(t, seg, R_Y0, R_F0, R_A0, R_DA0, p, walk, faults, sensors, kin)
+                _excitation(t, seg, R_Y0, R_F0, R_A0, p, walk, faults, sensors, kin)
             else:
                 t = te
     return STATUS_OK, n_steps, t
@@ -576,7 +614,7 @@ def dopri5(y0, p, walk, faults, sensors, n_res, h_out, n_out, ev_before, ev_afte
                 # already at the event: jump over the zero-width bracket
                 t = ev_after[ev]
                 ev += 1
-                _excitation(t, seg, R_Y0, R_F0, R_A0, R_DA0, p, walk, faults, sensors, kin)
+                _excitation(t, seg, R_Y0, R_F0, R_A0, p, walk, faults, sensors, kin)
                 continue
             return STATUS_UNDERFLOW, n_acc, n_rej, h, t
         for i in range(n):
@@ -618,8 +656,7 @@ def dopri5(y0, p, walk, faults, sensors, n_res, h_out, n_out, ev_before, ev_afte
             err += (e / sc) ** 2
         err = math.sqrt(err / n)
         if n_res > 0:
-            housing_accel(y_new, k7, p, sensors, kin, rate, seg[R_A1, :n_res],
-                          seg[R_DA1, :n_res], True)
+            housing_accel(y_new, k7, p, sensors, kin, rate, seg, R_A1, True)
         if regime == 1 and n_res > 0:
             err = max(err, _input_error(t, h, seg, rtol, atol_in, p, walk, faults, sensors,
                                         kin))
@@ -647,7 +684,7 @@ def dopri5(y0, p, walk, faults, sensors, n_res, h_out, n_out, ev_before, ev_afte
                 h_regime[regime] = h
                 t = ev_after[ev]
                 ev += 1
-                _excitation(t, seg, R_Y0, R_F0, R_A0, R_DA0, p, walk, faults, sensors, kin)
+                _excitation(t, seg, R_Y0, R_F0, R_A0, p, walk, faults, sensors, kin)
                 h = h_regime[1 if _in_fault(kin) else 0]
             else:
                 h_regime[regime] = h

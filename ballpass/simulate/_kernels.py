@@ -170,23 +170,29 @@ def profile_slope(offset, half, depth, ramp):
 
 
 @njit(cache=True, error_model="numpy")
+def race_reference(faults, i, theta):
+    """Angle of the centre of race fault i (rad): fixed on the outer race, turning
+    with the shaft (``theta``, rad) on the inner race."""
+    centre = faults[i, F_CENTRE]
+    if int(faults[i, F_KIND]) == KIND_INNER:
+        centre += theta
+    return centre
+
+
+@njit(cache=True, error_model="numpy")
 def path_offset(faults, i, p, psi_j, theta, face):
     """Signed angular offset (rad, in [-pi, pi)) of a path from the centre of fault i.
 
     ``psi_j`` is the angle of the element on the path (for a ball defect: of the
     defective element), ``theta`` the shaft angle, ``face`` 0 or 1 for a ball defect
-    facing the outer (spin phase 0) or the inner race (phase pi). The single place
-    where offsets are computed, so event times found with it are exactly where the
-    kernels switch.
+    facing the outer (spin phase 0) or the inner race (phase pi). Race offsets are
+    wrap_pi(psi_j - race_reference), the arithmetic :func:`fault_depths` uses, so
+    event times found with this function are exactly where the kernels switch.
     """
-    kind = int(faults[i, F_KIND])
-    if kind == KIND_BALL:
+    if int(faults[i, F_KIND]) == KIND_BALL:
         spin = faults[i, F_CENTRE] + p[P_SPIN] * (psi_j - faults[i, F_PSI0])
         return wrap_pi(spin - math.pi * face)
-    centre = faults[i, F_CENTRE]
-    if kind == KIND_INNER:
-        centre += theta
-    return wrap_pi(psi_j - centre)
+    return wrap_pi(psi_j - race_reference(faults, i, theta))
 
 
 @njit(cache=True, error_model="numpy")
@@ -230,8 +236,21 @@ def fault_depths(t, p, faults, kin, cage_rate, rates):
                 if rates:
                     kin[K_DDEPTH, e] += dr * profile_slope(off, half, depth, ramp)
         else:
-            for j in range(z):
-                off = path_offset(faults, i, p, kin[K_PSI, j], th, 0)
+            ref = race_reference(faults, i, th)
+            # Only elements within `side` spacings of the one nearest the centre can
+            # be inside (half < side * spacing); the others are at least
+            # (side + 1/2) spacings away and keep exactly the zero depth the profile
+            # would give them. Usually side = 1: three elements instead of Z.
+            spacing = TWO_PI / p[P_Z]
+            side = int(half / spacing) + 1
+            n_cand = 2 * side + 1
+            near = int(round(-wrap_pi(kin[K_PSI, 0] - ref) / spacing)) - side
+            if n_cand >= z:
+                n_cand = z
+                near = 0
+            for c in range(n_cand):
+                j = (near + c) % z
+                off = wrap_pi(kin[K_PSI, j] - ref)  # = path_offset, hoisted
                 kin[K_DEPTH, j] += profile(off, half, depth, ramp)
                 if rates:
                     kin[K_DDEPTH, j] += dr * profile_slope(off, half, depth, ramp)
@@ -311,9 +330,9 @@ def core_forces(y, p, kin, dydt):
 
 
 @njit(cache=True, error_model="numpy")
-def housing_accel(y, dydt, p, sensors, kin, cage_rate, out, dout, rates):
-    """Local housing acceleration along each sensor's direction (m/s^2) into ``out`` and,
-    with ``rates``, its time derivative (m/s^3) into ``dout``.
+def housing_accel(y, dydt, p, sensors, kin, cage_rate, out, row, rates):
+    """Local housing acceleration along each sensor's direction (m/s^2) into
+    ``out[row]`` and, with ``rates``, its time derivative (m/s^3) into ``out[row + 1]``.
 
     The pedestal's rigid-body acceleration with each contact force weighted by its
     transmission factor exp(-kappa (1 - cos(psi_j - theta_i))) to sensor i: 1 at the
@@ -361,25 +380,24 @@ def housing_accel(y, dydt, p, sensors, kin, cage_rate, out, dout, rates):
                     dq = nh * q / d * dd
                     dcos = -(sj * ci - cj * si) * cage_rate
                     dacc += w * (dq * cos_rel + q * (1.0 + kappa * cos_rel) * dcos) / mp
-        out[i] = acc
+        out[row, i] = acc
         if rates:
-            dout[i] = dacc
+            out[row + 1, i] = dacc
 
 
 @njit(cache=True, error_model="numpy")
-def rhs(t, y, dydt, p, walk, faults, sensors, n_res, kin, buf):
+def rhs(t, y, dydt, p, walk, faults, sensors, n_res, kin, buf, acc):
     """Right-hand side of the full sr4/sr5 equations of motion (layout ``y``); writes
     dy/dt into ``dydt``.
 
     The core equations of :func:`core_forces` plus, for sr5, the resonator of each
     sensor i: z_i'' + 2 zeta w z_i' + w^2 z_i = -s_i'' (base excitation by the local
-    housing acceleration s_i'' of :func:`housing_accel`). ``buf``: scratch of length
-    16 + n_sensors.
+    housing acceleration s_i'' of :func:`housing_accel`). Scratch: ``buf`` of length 16,
+    ``acc`` of shape (1, n_sensors).
     """
     nd = 4 + n_res
     yc = buf[:N_CORE]
-    dc = buf[N_CORE:2 * N_CORE]
-    sacc = buf[2 * N_CORE:]
+    dc = buf[N_CORE:]
     for i in range(4):
         yc[i] = y[i]
         yc[4 + i] = y[nd + i]
@@ -389,32 +407,32 @@ def rhs(t, y, dydt, p, walk, faults, sensors, n_res, kin, buf):
         dydt[i] = dc[i]
         dydt[nd + i] = dc[4 + i]
     if n_res > 0:
-        housing_accel(yc, dc, p, sensors, kin, 0.0, sacc, sacc, False)
+        housing_accel(yc, dc, p, sensors, kin, 0.0, acc, 0, False)
         w = p[P_WR]
         zeta = p[P_ZETA]
         for i in range(n_res):
             dydt[4 + i] = y[nd + 4 + i]
-            dydt[nd + 4 + i] = -2.0 * zeta * w * y[nd + 4 + i] - w * w * y[4 + i] - sacc[i]
+            dydt[nd + 4 + i] = -2.0 * zeta * w * y[nd + 4 + i] - w * w * y[4 + i] - acc[0, i]
 
 
 @njit(cache=True, error_model="numpy")
-def sensor_output(t, y, p, walk, faults, sensors, n_res, kin, buf, out):
-    """Acceleration measured by each sensor at full state y, m/s^2, into ``out``.
+def sensor_output(t, y, p, walk, faults, sensors, n_res, kin, out):
+    """Acceleration measured by each sensor at full state y, m/s^2, into ``out[0]``.
 
     sr5 (``n_res > 0``): absolute acceleration of the sensor's resonator mass,
     -(2 zeta w z_i' + w^2 z_i) (as Sawalhi & Randall measure y_b). sr4: the local
-    housing acceleration itself. ``buf``: scratch of length >= 8.
+    housing acceleration itself.
     """
     if n_res > 0:
         nd = 4 + n_res
         w = p[P_WR]
         zeta = p[P_ZETA]
         for i in range(n_res):
-            out[i] = -(2.0 * zeta * w * y[nd + 4 + i] + w * w * y[4 + i])
+            out[0, i] = -(2.0 * zeta * w * y[nd + 4 + i] + w * w * y[4 + i])
         return
     kinematics(t, p, walk, faults, kin)
     contact_loads(y, p, kin)
-    housing_accel(y, buf, p, sensors, kin, 0.0, out, out, False)
+    housing_accel(y, y, p, sensors, kin, 0.0, out, 0, False)
 
 
 @njit(cache=True, error_model="numpy")
@@ -444,8 +462,43 @@ def fault_offset(t, p, walk, faults, i, j):
 
 
 @njit(cache=True, error_model="numpy")
-def find_crossings(p, walk, faults, t_scan, levels_per_fault):
-    """Times at which an element crosses a fault edge (or a ramp end), by bisection.
+def _bracket(p, walk, faults, i, j, level, a_side, lo, hi, f_lo, f_hi):
+    """Shrink [lo, hi] around the time path j of fault i crosses ``level`` to adjacent
+    floating-point numbers: Illinois regula falsi (the offset is nearly linear in
+    time), then bisection. The side test is ``offset >= level``, as in the kernels."""
+    last = 0
+    for _ in range(100):
+        if hi - lo <= 1e-12 * (hi - lo + abs(hi)):
+            break
+        m = hi - f_hi * (hi - lo) / (f_hi - f_lo)
+        if not (lo < m < hi):
+            m = 0.5 * (lo + hi)
+        o_m = fault_offset(m, p, walk, faults, i, j)
+        f_m = o_m - level
+        if (o_m >= level) == a_side:
+            lo, f_lo = m, f_m
+            if last == -1:
+                f_hi *= 0.5
+            last = -1
+        else:
+            hi, f_hi = m, f_m
+            if last == 1:
+                f_lo *= 0.5
+            last = 1
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if mid <= lo or mid >= hi:
+            break
+        if (fault_offset(mid, p, walk, faults, i, j) >= level) == a_side:
+            lo = mid
+        else:
+            hi = mid
+    return lo, hi
+
+
+@njit(cache=True, error_model="numpy")
+def find_crossings(p, walk, faults, t_scan, levels_per_fault, before, after, index):
+    """Times at which an element crosses a fault edge (or a ramp end), unsorted.
 
     Parameters
     ----------
@@ -458,22 +511,19 @@ def find_crossings(p, walk, faults, t_scan, levels_per_fault):
     levels_per_fault : ndarray, shape (n_faults, 4)
         Offsets (rad) that mark an event for each fault: -half, -half_ramp, +half_ramp,
         +half (duplicates allowed for sharp edges; NaN to skip).
+    before, after : ndarray (capacity,)
+        Written with bracketing times (s): ``before < crossing <= after``, adjacent
+        floating-point numbers (see :func:`_bracket`).
+    index : ndarray of int64 (capacity, 3)
+        Written with the fault, the element (the face for a ball defect) and the
+        level of each crossing.
 
     Returns
     -------
-    before, after : ndarray
-        Bracketing times (s) with ``before < crossing <= after`` and ``after - before``
-        at floating-point resolution.
-    fault, element, level : ndarray of int64
-        Which fault, which element (face for a ball defect) and which level.
+    int
+        Number of crossings written, or -1 when they exceed the capacity.
     """
     z = int(p[P_Z])
-    cap = 1024
-    before = np.empty(cap)
-    after = np.empty(cap)
-    f_out = np.empty(cap, dtype=np.int64)
-    e_out = np.empty(cap, dtype=np.int64)
-    l_out = np.empty(cap, dtype=np.int64)
     n = 0
     for i in range(faults.shape[0]):
         n_paths = 2 if int(faults[i, F_KIND]) == KIND_BALL else z
@@ -489,34 +539,19 @@ def find_crossings(p, walk, faults, t_scan, levels_per_fault):
                         if lv > 0 and level == levels_per_fault[i, lv - 1]:
                             continue
                         a_side = o_prev >= level
-                        b_side = o_next >= level
-                        if a_side == b_side:
+                        if a_side == (o_next >= level):
                             continue
-                        lo = t_scan[k - 1]
-                        hi = t_scan[k]
-                        for _ in range(200):
-                            mid = 0.5 * (lo + hi)
-                            if mid <= lo or mid >= hi:
-                                break
-                            if (fault_offset(mid, p, walk, faults, i, j) >= level) == a_side:
-                                lo = mid
-                            else:
-                                hi = mid
                         if n == before.shape[0]:
-                            before = np.concatenate((before, np.empty(n)))
-                            after = np.concatenate((after, np.empty(n)))
-                            f_out = np.concatenate((f_out, np.empty(n, dtype=np.int64)))
-                            e_out = np.concatenate((e_out, np.empty(n, dtype=np.int64)))
-                            l_out = np.concatenate((l_out, np.empty(n, dtype=np.int64)))
-                        before[n] = lo
-                        after[n] = hi
-                        f_out[n] = i
-                        e_out[n] = j
-                        l_out[n] = lv
+                            return -1
+                        before[n], after[n] = _bracket(
+                            p, walk, faults, i, j, level, a_side, t_scan[k - 1], t_scan[k],
+                            o_prev - level, o_next - level)
+                        index[n, 0] = i
+                        index[n, 1] = j
+                        index[n, 2] = lv
                         n += 1
                 o_prev = o_next
-    order = np.argsort(before[:n])
-    return before[:n][order], after[:n][order], f_out[:n][order], e_out[:n][order], l_out[:n][order]
+    return n
 
 
 @njit(cache=True, error_model="numpy")

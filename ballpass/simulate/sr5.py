@@ -145,19 +145,19 @@ class BearingModel:
         right-hand side, callable from Python (e.g. by ``scipy.integrate.solve_ivp``)."""
         dydt = np.empty(self.n_state)
         K.rhs(float(t), np.ascontiguousarray(y, dtype=np.float64), dydt, *self.model,
-              self.n_res, self._kin, self._buf)
+              self.n_res, self._kin, self._buf, self._acc)
         return dydt
 
     def sensor_output(self, t: float, y: np.ndarray) -> np.ndarray:
         """Sensor accelerations (m/s^2) at full state y, before AC coupling."""
-        out = np.empty(len(self.scene.sensors))
         K.sensor_output(float(t), np.ascontiguousarray(y, dtype=np.float64), *self.model,
-                        self.n_res, self._kin, self._buf, out)
-        return out
+                        self.n_res, self._kin, self._acc)
+        return self._acc[0].copy()
 
     def __post_init__(self) -> None:
         self._kin = np.empty((K.N_KIN, self.scene.bearing.n_elements))
-        self._buf = np.empty(2 * K.N_CORE + len(self.scene.sensors))
+        self._buf = np.empty(2 * K.N_CORE)
+        self._acc = np.empty((1, len(self.scene.sensors)))
 
 
 def _fault_table(scene: Scene, psi0: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -334,11 +334,11 @@ def _static_state(scene: Scene, params: SR5Parameters, model: tuple, n_res: int,
     y0[:4] = [u_s, v_s, u_p, v_p]
     if n_res:
         # resonators at rest under the static housing acceleration
-        sacc = np.empty(len(scene.sensors))
+        sacc = np.empty((1, len(scene.sensors)))
         yc = np.concatenate((y0[:4], y0[nd:nd + 4]))
         K.contact_loads(yc, p, kin)
-        K.housing_accel(yc, yc, p, sensors, kin, 0.0, sacc, sacc, False)
-        y0[4:nd] = -sacc / p[K.P_WR] ** 2
+        K.housing_accel(yc, yc, p, sensors, kin, 0.0, sacc, 0, False)
+        y0[4:nd] = -sacc[0] / p[K.P_WR] ** 2
     load = bearing_load + params.pedestal_mass * g
 
     # scales: contact deflection, its velocity at the contact frequency, resonator
