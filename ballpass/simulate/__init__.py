@@ -45,6 +45,9 @@ __all__ = [
     "SimulationUnstableError",
     "SR5Parameters",
     "BearingModel",
+    "work_precision",
+    "speedup",
+    "plot_work_precision",
 ]
 
 #: model name -> one-line description
@@ -138,6 +141,28 @@ def _events(bm: BearingModel, t_end: float):
     return before[:n][order], after[:n][order], index[:, 0], index[:, 1], index[:, 2]
 
 
+def _split_times(bm: BearingModel, t_end: float, ev_before: np.ndarray | None = None,
+                 ev_after: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Brackets (s) of every time where the right-hand side is not smooth and the
+    integrators split their steps: the fault-edge crossings and the knots of the slip
+    walk, where the cage speed jumps. Sorted."""
+    if ev_before is None:
+        ev_before, ev_after = _events(bm, t_end)[:2]
+    knot_before, knot_after = _K.find_knots(bm.p, t_end)
+    before = np.concatenate((ev_before, knot_before))
+    order = np.argsort(before, kind="stable")
+    return before[order], np.concatenate((ev_after, knot_after))[order]
+
+
+def _to_output_rate(out: np.ndarray, n_samples: int, oversample: int) -> np.ndarray:
+    """Internal-grid output (n_out, n_sensors) to what a sensor delivers: anti-alias
+    decimation by ``oversample`` and AC coupling; (n_sensors, n_samples), m/s^2."""
+    accel = _signal.resample_poly(out, 1, oversample, axis=0) if oversample > 1 else out
+    accel = accel[:n_samples].T.copy()
+    accel -= accel.mean(axis=1, keepdims=True)  # AC-coupled accelerometers
+    return accel
+
+
 def _edge_names(bm: BearingModel, fault: np.ndarray, level: np.ndarray) -> np.ndarray:
     forward = np.array(["entry", "ramp_end", "ramp_start", "exit"])
     backward = forward[::-1]
@@ -217,12 +242,7 @@ def integrate(bm: BearingModel, solver: str, *, h_out: float, n_out: int,
     t_wall = time.perf_counter()
     t_end = (n_out - 1) * h_out
     ev_before, ev_after, ev_fault, ev_elem, ev_level = _events(bm, t_end)
-    # the integrators also split their steps where the slip walk bends the cage angle
-    knot_before, knot_after = _K.find_knots(bm.p, t_end)
-    split_before = np.concatenate((ev_before, knot_before))
-    order = np.argsort(split_before, kind="stable")
-    split_before = split_before[order]
-    split_after = np.concatenate((ev_after, knot_after))[order]
+    split_before, split_after = _split_times(bm, t_end, ev_before, ev_after)
     out = np.empty((n_out, len(scene.sensors)))
     states = np.empty((n_out if keep_states else 0, bm.n_state))
     nd = 4 + bm.n_res
@@ -349,10 +369,7 @@ def simulate(scene: Scene, model: str = "auto", solver: str = "auto", *, dt: flo
     h_out = raw.h_out
     n_sensors = len(scene.sensors)
 
-    accel = _signal.resample_poly(out, 1, oversample, axis=0) if oversample > 1 else out
-    accel = accel[:n_samples].T.copy()
-    accel -= accel.mean(axis=1, keepdims=True)  # AC-coupled accelerometers
-    accel = _add_noise(scene, accel)
+    accel = _add_noise(scene, _to_output_rate(out, n_samples, oversample))
     if not np.all(np.isfinite(accel)):
         raise SimulationUnstableError(f"non-finite output for scene {scene!r}")
 
@@ -400,6 +417,9 @@ def _add_noise(scene: Scene, accel: np.ndarray) -> np.ndarray:
         rms = np.sqrt(np.mean(accel**2, axis=1, keepdims=True))
         sigma = rms * 10.0 ** (-scene.snr_db / 20.0)
     return accel + sigma * rng.standard_normal(accel.shape)
+
+
+from .work_precision import plot_work_precision, speedup, work_precision  # noqa: E402
 
 
 class _CallableModule(types.ModuleType):

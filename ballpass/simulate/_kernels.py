@@ -436,6 +436,17 @@ def sensor_output(t, y, p, walk, faults, sensors, n_res, kin, out):
 
 
 @njit(cache=True, error_model="numpy")
+def sensor_output_many(t, states, p, walk, faults, sensors, n_res):
+    """:func:`sensor_output` at many (time, full state) pairs: (len(t), n_sensors),
+    m/s^2."""
+    kin = np.empty((N_KIN, int(p[P_Z])))
+    out = np.empty((t.shape[0], sensors.shape[0]))
+    for k in range(t.shape[0]):
+        sensor_output(t[k], states[k], p, walk, faults, sensors, n_res, kin, out[k:k + 1])
+    return out
+
+
+@njit(cache=True, error_model="numpy")
 def element_angles_many(t, p, walk, z):
     """Element angles at many times: (len(t), Z) array, rad (for kinematics in Python)."""
     out = np.empty((t.shape[0], z))
