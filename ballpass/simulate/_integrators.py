@@ -611,10 +611,12 @@ def dopri5(y0, p, walk, faults, sensors, n_res, h_out, n_out, ev_before, ev_afte
             hits_event = True
         if h <= 1e-15 * max(1.0, t):
             if hits_event:
-                # already at the event: jump over the zero-width bracket
+                # already at the event (several fall at one time): jump over it and
+                # keep the step size wanted before it
                 t = ev_after[ev]
                 ev += 1
                 _excitation(t, seg, R_Y0, R_F0, R_A0, p, walk, faults, sensors, kin)
+                h = h_wanted
                 continue
             return STATUS_UNDERFLOW, n_acc, n_rej, h, t
         for i in range(n):

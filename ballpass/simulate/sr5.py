@@ -276,6 +276,27 @@ def build_model(scene: Scene, params: SR5Parameters | None = None, *,
                         faults=faults, sensors=sensors, y0=y0, scale=scale, levels=levels)
 
 
+#: largest static contact deflection the model accepts, as a fraction of the element
+#: diameter. Hertz's law is elastic; bearing steel yields from about the static load
+#: rating (ISO 76, 4.2 GPa contact pressure), which a 6205 reaches at ~0.7 % of d.
+MAX_DEFLECTION_RATIO = 0.01
+
+
+def _check_elastic(scene: Scene, delta_max: float, bearing_load: float) -> None:
+    """Refuse a load that deflects the contacts beyond the elastic Hertz regime."""
+    limit = MAX_DEFLECTION_RATIO * scene.bearing.element_diameter_m
+    if delta_max > limit:
+        # deflection grows as load^(1/n) for zero clearance: the load that reaches it
+        n = scene.bearing.load_exponent
+        allowed = bearing_load * (limit / delta_max) ** n
+        raise ValueError(
+            f"radial_load_n={scene.radial_load_n:g} N deflects the most loaded contact by "
+            f"{delta_max * 1e6:.0f} um, more than {MAX_DEFLECTION_RATIO:.0%} of the element "
+            f"diameter ({limit * 1e6:.0f} um): the bearing would yield and the elastic Hertz "
+            f"contact of the model no longer applies. Use radial_load_n below about "
+            f"{allowed:.3g} N for this bearing.")
+
+
 def _static_state(scene: Scene, params: SR5Parameters, model: tuple, n_res: int, kh: float):
     """Static equilibrium at t = 0 and characteristic scales of the state.
 
@@ -321,7 +342,8 @@ def _static_state(scene: Scene, params: SR5Parameters, model: tuple, n_res: int,
             raise RuntimeError(
                 f"static equilibrium did not converge for {scene!r}: {sol.message}")
         du, dv = sol.x
-    q, _ = contact((du, dv))
+    q, delta = contact((du, dv))
+    _check_elastic(scene, float(np.max(delta, initial=0.0)), bearing_load)
     fu, fv = np.sum(q * cos_psi), np.sum(q * sin_psi)
     u_p = (fu + params.pedestal_mass * g) / params.pedestal_stiffness
     v_p = fv / params.pedestal_stiffness
