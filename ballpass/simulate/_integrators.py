@@ -52,7 +52,6 @@ from numba import njit
 from ._kernels import (
     K_DEPTH,
     N_CORE,
-    N_KIN,
     P_WR,
     P_Z,
     P_ZETA,
@@ -61,6 +60,7 @@ from ._kernels import (
     element_angles,
     fault_depths,
     housing_accel,
+    kinematics_scratch,
 )
 
 STATUS_OK, STATUS_NONFINITE, STATUS_UNDERFLOW, STATUS_MAX_STEPS = 0, 1, 2, 3
@@ -189,7 +189,7 @@ def _lti_series(tau, w, zeta, prop, slot):
         tp *= tau
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def _hermite_input(t0, t1, seg, r_a0, r_da0, r_a1, r_da1, res):
     """Cubic u(s) = sum_m res[i, X_C + m] s^m, s = t - t0, through the excitation and
     its rate in rows (r_a0, r_da0) of ``seg`` at t0 and (r_a1, r_da1) at t1."""
@@ -205,7 +205,7 @@ def _hermite_input(t0, t1, seg, r_a0, r_da0, r_a1, r_da1, res):
         res[i, X_C + 3] = (-2.0 * slope + da0 + da1) / (tau * tau)
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def _propagate(res, s0, prop, slot):
     """Advance each resonator (z, z') in ``res`` over one piece starting at s = s0 of
     its input cubic (re-expanded about s0), with the propagator ``prop[slot]``."""
@@ -225,7 +225,7 @@ def _propagate(res, s0, prop, slot):
                          + c2 * prop[slot, 4, r] + c3 * prop[slot, 5, r])
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def _resonator_output(res, w, zeta, out, k):
     """Absolute acceleration of each resonator mass, -(2 zeta w z' + w^2 z), m/s^2, into
     ``out[k]``."""
@@ -411,6 +411,24 @@ def _emit(t0, t1, refine, k_next, h_out, seg, res, prop, p, walk, faults, sensor
 
 
 @njit(cache=True, error_model="numpy")
+def _emit_grid(t0, t1, k_next, h_out, seg, res, prop, w, zeta, out):
+    """:func:`_emit` for the common case of an sr5 segment from grid point to grid point
+    without states to keep: full h_out pieces only. Its helpers are inlined and it
+    takes few arrays, so numba can drop the reference counting of its arguments."""
+    _hermite_input(t0, t1, seg, R_A0, R_DA0, R_A1, R_DA1, res)
+    tc = t0
+    while k_next < out.shape[0]:
+        tk = k_next * h_out
+        if tk > t1 + GRID_TOL * h_out:
+            break
+        _propagate(res, tc - t0, prop, PROP_H)
+        tc = tk
+        _resonator_output(res, w, zeta, out, k_next)
+        k_next += 1
+    return k_next
+
+
+@njit(cache=True, error_model="numpy")
 def _start(y0, p, walk, faults, sensors, n_res, h_out, out, states):
     """Workspaces for a run, the initial state split into core (row R_Y0 of ``seg``)
     and resonators, evaluated at t = 0; output row 0 written.
@@ -422,7 +440,7 @@ def _start(y0, p, walk, faults, sensors, n_res, h_out, out, states):
     seg = np.zeros((N_SEG, max(N_CORE, n_s)))
     res = np.zeros((n_res, 6))
     prop = np.zeros((2, 6, 2))
-    kin = np.empty((N_KIN, int(p[P_Z])))
+    kin = kinematics_scratch(int(p[P_Z]))
     for i in range(4):
         seg[R_Y0, i] = y0[i]
         seg[R_Y0, 4 + i] = y0[nd + i]
@@ -504,6 +522,8 @@ def rk4(y0, p, walk, faults, sensors, n_res, h_out, mult, n_sub, n_out, ev_befor
     k_next = 1
     t = 0.0
     n = 0
+    # steps from grid point to grid point of sr5 without states take the fast output
+    fast = n_sub == 1 and n_res > 0 and states.shape[0] == 0
     while t < t_end:
         n += 1
         q, r = divmod(n, n_sub)
@@ -538,8 +558,12 @@ def rk4(y0, p, walk, faults, sensors, n_res, h_out, mult, n_sub, n_out, ev_befor
                 core_forces(y1, p, kin, f1)
                 if n_res > 0:
                     housing_accel(y1, f1, p, sensors, kin, rate, seg, R_A1, True)
-                k_next = _emit(t, te, refine, k_next, h_out, seg, res, prop, p, walk, faults,
-                               sensors, kin, out, states)
+                if fast and not (hit or refine) and t == (k_next - 1) * h_out:
+                    k_next = _emit_grid(t, te, k_next, h_out, seg, res, prop, p[P_WR],
+                                        p[P_ZETA], out)
+                else:
+                    k_next = _emit(t, te, refine, k_next, h_out, seg, res, prop, p, walk,
+                                   faults, sensors, kin, out, states)
                 n_steps += 1
                 if not _ok(seg, R_Y1, res, bound):
                     return STATUS_NONFINITE, n_steps, te

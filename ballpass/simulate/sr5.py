@@ -155,7 +155,7 @@ class BearingModel:
         return self._acc[0].copy()
 
     def __post_init__(self) -> None:
-        self._kin = np.empty((K.N_KIN, self.scene.bearing.n_elements))
+        self._kin = K.kinematics_scratch(self.scene.bearing.n_elements)
         self._buf = np.empty(2 * K.N_CORE)
         self._acc = np.empty((1, len(self.scene.sensors)))
 
@@ -308,10 +308,10 @@ def _static_state(scene: Scene, params: SR5Parameters, model: tuple, n_res: int,
     b = scene.bearing
     p, _walk, faults, sensors = model
     z = b.n_elements
-    kin = np.empty((K.N_KIN, z))
+    kin = K.kinematics_scratch(z)
     K.kinematics(0.0, *model[:3], kin)
-    depth = kin[K.K_DEPTH].copy()
-    cos_psi, sin_psi = np.cos(kin[K.K_PSI]), np.sin(kin[K.K_PSI])
+    depth = kin[K.K_DEPTH, :z].copy()
+    cos_psi, sin_psi = np.cos(kin[K.K_PSI, :z]), np.sin(kin[K.K_PSI, :z])
     n = b.load_exponent
     c = b.radial_clearance_m
     g = p[K.P_G]
