@@ -89,6 +89,10 @@ X_Z, X_DZ, X_C = 0, 1, 2
 # propagator slots in prop (2, 6, 2): rows 0-1 Phi, rows 2-5 g_0..g_3
 PROP_H, PROP_TMP = 0, 1
 
+# step-size controller of dopri5: error exponents (PI control, beta = 0.04)
+PI_BETA = 0.04
+PI_ALPHA = 0.2 - 0.75 * PI_BETA
+
 #: a grid point within this fraction of h_out of a segment end belongs to that segment
 #: (step ends are computed in floating point; 1e-9 h_out is far below any step)
 GRID_TOL = 1e-9
@@ -302,27 +306,37 @@ def _interpolate_core(t0, t1, tk, seg):
 
 
 @njit(cache=True, error_model="numpy")
-def _input_error(t, h, seg, rtol, atol_in, p, walk, faults, sensors, kin):
-    """Error of the resonator state caused by the cubic Hermite input over [t, t + h],
-    in the units of the error norm (1 = at tolerance).
+def _input_error(t, h, h_out, seg, rtol, atol_in, p, walk, faults, sensors, kin):
+    """Error of the resonator state caused by the cubic Hermite input over [t, t + h]
+    inside a defect, in the units of the error norm (1 = at tolerance).
 
-    The input error e(s) = u''''/24 s^2 (h - s)^2 integrates to 16/30 h e(h/2) of
-    resonator velocity; against the velocity scale u_scale / w_r this is
-    (16/30) w_r h |e(h/2)| / (atol_in + rtol |u|), where e(h/2) compares the Hermite
-    interpolant at mid-step with the excitation u of the interpolated core state
-    (``atol_in`` in m/s^2; RMS over the sensors): the control the resonators would get
-    in the Runge-Kutta error norm of the full state. Needs rows R_Y0, R_F0, R_A0,
-    R_DA0 (start) and R_Y1, R_F1, R_A1, R_DA1 (end) of ``seg``; overwrites R_YI, R_FI,
-    R_AK, R_DAK."""
-    tm = t + 0.5 * h
-    _interpolate_core(t, t + h, tm, seg)
-    _excitation(tm, seg, R_YI, R_FI, R_AK, p, walk, faults, sensors, kin)
+    :func:`_emit` interpolates the excitation over pieces of length L = min(h, h_out)
+    (a step longer than h_out is refined at the grid points). On a piece the input
+    error e(s) = u''''/24 s^2 (L - s)^2 integrates to 16/30 L e(L/2) of resonator
+    velocity, over the step to 16/30 h e(L/2); against the velocity scale u_scale / w_r
+    this is (16/30) w_r h |e(L/2)| / (atol_in + rtol |u|): the control the resonators
+    would get in the Runge-Kutta error norm of the full state. e(L/2) compares the
+    Hermite interpolant of the first piece [t, t + L] at its middle with the excitation
+    u of the interpolated core state (``atol_in`` in m/s^2; RMS over the sensors).
+    Needs rows R_Y0, R_F0, R_A0, R_DA0 (start) and R_Y1, R_F1, R_A1, R_DA1 (end) of
+    ``seg``; overwrites R_YI, R_FI, R_AC, R_DAC, R_AK, R_DAK."""
+    length = min(h, h_out)
     n_s = sensors.shape[0]
+    if length < h:
+        _interpolate_core(t, t + h, t + length, seg)
+        _excitation(t + length, seg, R_YI, R_FI, R_AK, p, walk, faults, sensors, kin)
+    else:
+        for i in range(n_s):
+            seg[R_AK, i] = seg[R_A1, i]
+            seg[R_DAK, i] = seg[R_DA1, i]
+    _interpolate_core(t, t + h, t + 0.5 * length, seg)
+    _excitation(t + 0.5 * length, seg, R_YI, R_FI, R_AC, p, walk, faults, sensors, kin)
     err = 0.0
     for i in range(n_s):
-        # the cubic Hermite interpolant at mid-interval
-        mid = 0.5 * (seg[R_A0, i] + seg[R_A1, i]) + 0.125 * h * (seg[R_DA0, i] - seg[R_DA1, i])
-        exact = seg[R_AK, i]
+        # the cubic Hermite interpolant at mid-piece
+        mid = (0.5 * (seg[R_A0, i] + seg[R_AK, i])
+               + 0.125 * length * (seg[R_DA0, i] - seg[R_DAK, i]))
+        exact = seg[R_AC, i]
         err += ((mid - exact) / (atol_in + rtol * abs(exact))) ** 2
     return (16.0 / 30.0) * p[P_WR] * h * math.sqrt(err / n_s)
 
@@ -588,10 +602,9 @@ def dopri5(y0, p, walk, faults, sensors, n_res, h_out, n_out, ev_before, ev_afte
     Resonators and output as in :func:`rk4`, from the accepted steps.
 
     Inside a defect the resonator excitation follows the depth profile, which the core
-    error estimate does not see; there the step is also controlled by the error of the
-    cubic Hermite input at mid-step, against the excitation evaluated exactly with the
-    interpolated core state, in the norm ``err / (atol_in + rtol |s''|)`` (``atol_in``
-    in m/s^2). Other parameters as in :func:`rk4`.
+    error estimate does not see: it is refined at the grid points as in :func:`rk4`
+    and the step is also controlled by the error of that input (:func:`_input_error`;
+    ``atol_in`` in m/s^2). Other parameters as in :func:`rk4`.
 
     Returns
     -------
@@ -622,6 +635,8 @@ def dopri5(y0, p, walk, faults, sensors, n_res, h_out, n_out, ev_before, ev_afte
     h_regime = np.array([h, h])
     n_acc = 0
     n_rej = 0
+    rejected = False
+    err_prev = 1e-4
     while t < t_end:
         if n_acc + n_rej >= max_steps:
             return STATUS_MAX_STEPS, n_acc, n_rej, h_min_used, t
@@ -684,8 +699,8 @@ def dopri5(y0, p, walk, faults, sensors, n_res, h_out, n_out, ev_before, ev_afte
         if n_res > 0:
             housing_accel(y_new, k7, p, sensors, kin, rate, seg, R_A1, True)
         if regime == 1 and n_res > 0:
-            err = max(err, _input_error(t, h, seg, rtol, atol_in, p, walk, faults, sensors,
-                                        kin))
+            err = max(err, _input_error(t, h, h_out, seg, rtol, atol_in, p, walk, faults,
+                                        sensors, kin))
         if not (err == err):  # NaN: treat as a failed step with a much smaller h
             err = 1e10
         if err <= 1.0:
@@ -695,15 +710,23 @@ def dopri5(y0, p, walk, faults, sensors, n_res, h_out, n_out, ev_before, ev_afte
                 t_new = t_end
             else:
                 t_new = t + h
-            k_next = _emit(t, t_new, False, k_next, h_out, seg, res, prop, p, walk, faults,
-                           sensors, kin, out, states)
+            k_next = _emit(t, t_new, regime == 1, k_next, h_out, seg, res, prop, p, walk,
+                           faults, sensors, kin, out, states)
             if not _ok(seg, R_Y1, res, bound):
                 return STATUS_NONFINITE, n_acc, n_rej, h_min_used, t_new
             _advance(seg, res)
             n_acc += 1
             if h < h_min_used:
                 h_min_used = h
-            fac = 5.0 if err == 0.0 else min(5.0, max(0.2, 0.9 * err ** -0.2))
+            # PI step control of Hairer's DOPRI5 (Hairer, Norsett & Wanner 1993, II.4):
+            # exponents 0.2 - 0.75 beta and beta = 0.04 on the previous error, safety
+            # 0.9, growth within [0.2, 5] and none right after a rejection
+            fac = 5.0 if err == 0.0 else min(5.0, max(
+                0.2, 0.9 * err ** -PI_ALPHA * err_prev ** PI_BETA))
+            if rejected:
+                fac = min(fac, 1.0)
+            rejected = False
+            err_prev = max(err, 1e-4)
             h = h * fac
             if hits_event:
                 h = max(h, h_wanted)  # the event, not the error, limited this step
@@ -717,5 +740,6 @@ def dopri5(y0, p, walk, faults, sensors, n_res, h_out, n_out, ev_before, ev_afte
                 t = t_new
         else:
             n_rej += 1
-            h = h * max(0.1, 0.9 * err ** -0.25)
+            rejected = True
+            h = h * max(0.2, 0.9 * err ** -PI_ALPHA)
     return STATUS_OK, n_acc, n_rej, h_min_used, t
