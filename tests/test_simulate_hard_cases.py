@@ -228,21 +228,21 @@ def test_several_faults_at_once():
 def test_zero_structural_damping():
     # no shaft or pedestal damping: nothing dissipates the contact modes except the
     # integrator itself, and the ringing of every impact adds up. The motion stays
-    # bounded, the forces still balance on average, and the adaptive solver converges:
-    # without damping its errors no longer fade, so it converges slowly (measured
-    # 3.8e-2, 6.4e-3 at rtol 1e-6, 1e-8 against 1e-10).
+    # bounded, the forces still balance on average, and the adaptive solver converges,
+    # slowly and not monotonically at loose tolerances since its errors no longer fade
+    # (measured against rtol 1e-11: 1.4e-2, 1.9e-2, 6.0e-3, 1.2e-3 at rtol 1e-6 .. 1e-9).
     undamped = SR5Parameters(shaft_damping=0.0, pedestal_damping=0.0)
     sc = scene(fault=bp.Fault("outer"))
     runs = {rtol: bp.simulate(sc, solver="dopri5", rtol=rtol, params=undamped,
-                              return_forces=True) for rtol in (1e-6, 1e-8, 1e-10)}
-    ref = runs[1e-10]
+                              return_forces=True) for rtol in (1e-6, 1e-9, 1e-11)}
+    ref = runs[1e-11]
     finite_and_bounded(ref)
     d = ref.truth.displacement
     approach = d[0, 0] - d[2, 0]  # static shaft-to-ring approach, 12 um
     assert np.ptp(d[0] - d[2]) < 5 * approach
     err = {r: np.linalg.norm(runs[r].accel - ref.accel) / np.linalg.norm(ref.accel)
-           for r in (1e-6, 1e-8)}
-    assert err[1e-8] < err[1e-6] / 3 and err[1e-8] < 2e-2
+           for r in (1e-6, 1e-9)}
+    assert err[1e-9] < err[1e-6] / 5 and err[1e-9] < 5e-3
     assert shaft_force_balance(ref, undamped) == pytest.approx(1.0, abs=0.01)
     # the resonator, though, needs damping to be a resonance: refused, clearly
     with pytest.raises(ValueError, match="resonance_damping"):

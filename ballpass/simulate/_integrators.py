@@ -93,6 +93,11 @@ PROP_H, PROP_TMP = 0, 1
 PI_BETA = 0.04
 PI_ALPHA = 0.2 - 0.75 * PI_BETA
 
+#: inside a defect the resonator input is evaluated at least this many times per
+#: segment (and at every grid point): a cubic Hermite interpolant over a quarter of a
+#: depth ramp errs 4^4 = 256 times less than over the whole of it
+REFINE_PIECES = 4
+
 #: a grid point within this fraction of h_out of a segment end belongs to that segment
 #: (step ends are computed in floating point; 1e-9 h_out is far below any step)
 GRID_TOL = 1e-9
@@ -310,8 +315,8 @@ def _input_error(t, h, h_out, seg, rtol, atol_in, p, walk, faults, sensors, kin)
     """Error of the resonator state caused by the cubic Hermite input over [t, t + h]
     inside a defect, in the units of the error norm (1 = at tolerance).
 
-    :func:`_emit` interpolates the excitation over pieces of length L = min(h, h_out)
-    (a step longer than h_out is refined at the grid points). On a piece the input
+    :func:`_emit` interpolates the excitation over pieces of length
+    L <= min(h_out, h / REFINE_PIECES). On a piece the input
     error e(s) = u''''/24 s^2 (L - s)^2 integrates to 16/30 L e(L/2) of resonator
     velocity, over the step to 16/30 h e(L/2); against the velocity scale u_scale / w_r
     this is (16/30) w_r h |e(L/2)| / (atol_in + rtol |u|): the control the resonators
@@ -320,7 +325,7 @@ def _input_error(t, h, h_out, seg, rtol, atol_in, p, walk, faults, sensors, kin)
     u of the interpolated core state (``atol_in`` in m/s^2; RMS over the sensors).
     Needs rows R_Y0, R_F0, R_A0, R_DA0 (start) and R_Y1, R_F1, R_A1, R_DA1 (end) of
     ``seg``; overwrites R_YI, R_FI, R_AC, R_DAC, R_AK, R_DAK."""
-    length = min(h, h_out)
+    length = min(h_out, h / REFINE_PIECES)
     n_s = sensors.shape[0]
     if length < h:
         _interpolate_core(t, t + h, t + length, seg)
@@ -342,6 +347,39 @@ def _input_error(t, h, h_out, seg, rtol, atol_in, p, walk, faults, sensors, kin)
 
 
 @njit(cache=True, error_model="numpy")
+def _refined_pieces(tc, te, t0, t1, piece_max, h_out, seg, res, prop, p, walk, faults,
+                    sensors, kin):
+    """Advance the resonators in ``res`` exactly from tc to te within a segment [t0, t1]
+    inside a defect (see :func:`_emit`), in pieces of at most ``piece_max`` whose ends
+    get the excitation of the interpolated core state (row R_AC of ``seg`` holds it at
+    tc and is moved on)."""
+    w = p[P_WR]
+    zeta = p[P_ZETA]
+    n_res = res.shape[0]
+    n_pieces = max(1, math.ceil((te - tc) / piece_max - 1e-9))
+    u0 = tc
+    for k in range(1, n_pieces + 1):
+        u1 = te if k == n_pieces else tc + k * (te - tc) / n_pieces
+        if u1 >= t1 - GRID_TOL * h_out:
+            for i in range(n_res):
+                seg[R_AK, i] = seg[R_A1, i]
+                seg[R_DAK, i] = seg[R_DA1, i]
+        else:
+            _interpolate_core(t0, t1, u1, seg)
+            _excitation(u1, seg, R_YI, R_FI, R_AK, p, walk, faults, sensors, kin)
+        _hermite_input(u0, u1, seg, R_AC, R_DAC, R_AK, R_DAK, res)
+        slot = PROP_H
+        if abs(u1 - u0 - h_out) > GRID_TOL * h_out:
+            slot = PROP_TMP
+            lti_propagator(u1 - u0, w, zeta, prop, slot)
+        _propagate(res, 0.0, prop, slot)
+        for i in range(n_res):
+            seg[R_AC, i] = seg[R_AK, i]
+            seg[R_DAC, i] = seg[R_DAK, i]
+        u0 = u1
+
+
+@njit(cache=True, error_model="numpy")
 def _emit(t0, t1, refine, k_next, h_out, seg, res, prop, p, walk, faults, sensors, kin, out,
           states):
     """Output of one core segment [t0, t1] on the grid points t_k = k h_out in (t0, t1].
@@ -355,18 +393,16 @@ def _emit(t0, t1, refine, k_next, h_out, seg, res, prop, p, walk, faults, sensor
     and derivatives at both ends (rows R_Y0, R_F0, R_Y1, R_F1 of ``seg``). The
     resonator input is the cubic Hermite interpolant of the excitation and its rate at
     both ends (R_A0, R_DA0, R_A1, R_DA1), unless ``refine``: inside a defect the
-    excitation follows the known depth profile, which can change faster than the core
-    (a ramp lasts a fraction of the traversal); it is then evaluated exactly, with the
-    interpolated core state, at every grid point of a segment longer than h_out and
-    interpolated piece by piece.
+    excitation follows the known depth profile, which changes faster than the core (a
+    ramp can last a few microseconds); it is then evaluated exactly, with the
+    interpolated core state, at every grid point and at least ``REFINE_PIECES`` times
+    per segment, and interpolated piece by piece.
     """
-    w = p[P_WR]
-    zeta = p[P_ZETA]
     n_res = res.shape[0]
     n_out = out.shape[0]
     keep = states.shape[0] > 0
-    tau_seg = t1 - t0
-    refine = refine and n_res > 0 and tau_seg > h_out * (1.0 + GRID_TOL)
+    refine = refine and n_res > 0
+    piece_max = min(h_out, (t1 - t0) / REFINE_PIECES)
     if n_res > 0:
         if refine:
             for i in range(n_res):
@@ -379,33 +415,22 @@ def _emit(t0, t1, refine, k_next, h_out, seg, res, prop, p, walk, faults, sensor
         tk = k_next * h_out
         if tk > t1 + GRID_TOL * h_out:
             break
-        if n_res == 0 or keep or refine:
-            _interpolate_core(t0, t1, tk, seg)
         if n_res > 0:
-            tau = tk - tc
-            if tau > 0.0:
-                s0 = tc - t0
+            if tk > tc:
                 if refine:
-                    if tk >= t1 - GRID_TOL * h_out:
-                        for i in range(n_res):
-                            seg[R_AK, i] = seg[R_A1, i]
-                            seg[R_DAK, i] = seg[R_DA1, i]
-                    else:
-                        _excitation(tk, seg, R_YI, R_FI, R_AK, p, walk, faults, sensors,
-                                    kin)
-                    _hermite_input(tc, tk, seg, R_AC, R_DAC, R_AK, R_DAK, res)
-                    for i in range(n_res):
-                        seg[R_AC, i] = seg[R_AK, i]
-                        seg[R_DAC, i] = seg[R_DAK, i]
-                    s0 = 0.0
-                slot = PROP_H
-                if abs(tau - h_out) > GRID_TOL * h_out:
-                    slot = PROP_TMP
-                    lti_propagator(tau, w, zeta, prop, slot)
-                _propagate(res, s0, prop, slot)
+                    _refined_pieces(tc, tk, t0, t1, piece_max, h_out, seg, res, prop, p,
+                                    walk, faults, sensors, kin)
+                else:
+                    slot = PROP_H
+                    if abs(tk - tc - h_out) > GRID_TOL * h_out:
+                        slot = PROP_TMP
+                        lti_propagator(tk - tc, p[P_WR], p[P_ZETA], prop, slot)
+                    _propagate(res, tc - t0, prop, slot)
                 tc = tk
-            _resonator_output(res, w, zeta, out, k_next)
-        else:
+            _resonator_output(res, p[P_WR], p[P_ZETA], out, k_next)
+        if n_res == 0 or keep:
+            _interpolate_core(t0, t1, tk, seg)
+        if n_res == 0:
             yi = seg[R_YI]
             rate = element_angles(tk, p, walk, kin)
             fault_depths(tk, p, faults, kin, rate, False)
@@ -415,12 +440,12 @@ def _emit(t0, t1, refine, k_next, h_out, seg, res, prop, p, walk, faults, sensor
             _store_state(states, k_next, seg, R_YI, res)
         k_next += 1
     if n_res > 0 and t1 > tc:
-        s0 = tc - t0
         if refine:
-            _hermite_input(tc, t1, seg, R_AC, R_DAC, R_A1, R_DA1, res)
-            s0 = 0.0
-        lti_propagator(t1 - tc, w, zeta, prop, PROP_TMP)
-        _propagate(res, s0, prop, PROP_TMP)
+            _refined_pieces(tc, t1, t0, t1, piece_max, h_out, seg, res, prop, p, walk,
+                            faults, sensors, kin)
+        else:
+            lti_propagator(t1 - tc, p[P_WR], p[P_ZETA], prop, PROP_TMP)
+            _propagate(res, tc - t0, prop, PROP_TMP)
     return k_next
 
 
