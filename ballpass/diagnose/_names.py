@@ -9,11 +9,11 @@ LABELS = ("healthy", "outer", "inner", "ball")
 
 #: Classifier name -> description (see :func:`ballpass.diagnose.make_classifier`).
 CLASSIFIERS = {
-    "random_forest": "random forest, 300 trees",
-    "gradient_boosting": "histogram gradient boosting",
-    "svm": "support-vector machine, RBF kernel, C = 10",
+    "random_forest": "random forest, 300 trees, balanced class weights",
+    "gradient_boosting": "histogram gradient boosting, balanced class weights",
+    "svm": "support-vector machine, RBF kernel, C = 10, balanced class weights",
     "knn": "k nearest neighbours, k = 5",
-    "logistic": "multinomial logistic regression",
+    "logistic": "multinomial logistic regression, balanced class weights",
 }
 
 #: Feature set name -> description (see :func:`ballpass.diagnose.make_features`).

@@ -85,6 +85,13 @@ def _family_lines(fault: str, harmonics: int) -> list[tuple[str, int, int]]:
     return lines
 
 
+def _role(fault: str, side: int) -> str:
+    """``"carrier"``, ``"sideband"`` or ``"refuting sideband"`` (outer race, +-FTF)."""
+    if side == 0:
+        return "carrier"
+    return "sideband" if FAULT_FAMILIES[fault][2] > 0 else "refuting sideband"
+
+
 @dataclass(frozen=True, eq=False)
 class EnvelopeEvidence:
     """Fault-family evidence of a batch of signals (see :func:`envelope_evidence`).
@@ -295,9 +302,11 @@ class Explanation:
         Shaft speed used, rev/min.
     lines : pandas.DataFrame
         One row per line of every family: ``fault``, ``line`` (e.g. ``"1xBPFI+fr"``),
-        ``harmonic``, ``nominal_hz`` (kinematic), ``found_hz`` (bin that carried it),
-        ``level_db`` (above background) and ``decisive`` (True for the lines of the
-        predicted family).
+        ``harmonic``, ``role`` (``"carrier"``, ``"sideband"``, or ``"refuting
+        sideband"`` for the +-FTF neighbours of the BPFO lines, which count against an
+        outer-race fault), ``nominal_hz`` (kinematic), ``found_hz`` (bin that carried
+        it), ``level_db`` (above background) and ``decisive`` (True for the lines of
+        the predicted family).
     """
 
     label: str
@@ -320,7 +329,9 @@ class Explanation:
             return head + "; no family above its threshold"
         decisive = self.lines[self.lines["decisive"]]
         body = "; ".join(
-            f"{r.line} {r.found_hz:.1f} Hz {r.level_db:+.1f} dB" for r in decisive.itertuples()
+            f"{r.line} {r.found_hz:.1f} Hz {r.level_db:+.1f} dB"
+            + (" (against)" if r.role == "refuting sideband" else "")
+            for r in decisive.itertuples()
         )
         return f"{head}\n  {body}"
 
@@ -565,13 +576,15 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
         labels = self.classes_[self._decision(ev).argmax(axis=1)]
         speeds = _broadcast_rpm(self.rpm if rpm is None else rpm, (len(labels),))
         thresholds = self._thresholds()
+        layout = {f: _family_lines(f, self.harmonics) for f in FAULT_FAMILIES}
         out = []
         for i, label in enumerate(labels):
             frames = [
                 pd.DataFrame({
                     "fault": fault,
                     "line": ev.line_names[fault],
-                    "harmonic": [int(name.split("x", 1)[0]) for name in ev.line_names[fault]],
+                    "harmonic": [h for _, h, _ in layout[fault]],
+                    "role": [_role(fault, side) for _, _, side in layout[fault]],
                     "nominal_hz": ev.nominal_hz[fault][i],
                     "found_hz": ev.found_hz[fault][i],
                     "level_db": ev.levels_db[fault][i],
