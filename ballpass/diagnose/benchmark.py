@@ -148,7 +148,7 @@ def split_indices(meta: pd.DataFrame, split: str, *, n_splits: int = 5,
     >>> from ballpass.diagnose import split_indices
     >>> meta = pd.DataFrame({"label": ["healthy", "outer"] * 4, "group": [0, 1, 2, 3] * 2,
     ...                      "rpm": [1730, 1730, 1797, 1797] * 2})
-    >>> [(list(tr), list(te)) for tr, te in split_indices(meta, "speed")]
+    >>> [(tr.tolist(), te.tolist()) for tr, te in split_indices(meta, "speed")]
     [([2, 3, 6, 7], [0, 1, 4, 5]), ([0, 1, 4, 5], [2, 3, 6, 7])]
     """
     _check_meta(meta, len(meta), "meta")
