@@ -50,7 +50,7 @@ import numpy as np
 from numba import njit
 
 from ._kernels import (
-    K_DEPTH,
+    K_DDEPTH,
     N_CORE,
     P_WR,
     P_Z,
@@ -93,9 +93,9 @@ PROP_H, PROP_TMP = 0, 1
 PI_BETA = 0.04
 PI_ALPHA = 0.2 - 0.75 * PI_BETA
 
-#: inside a defect the resonator input is evaluated at least this many times per
-#: segment (and at every grid point): a cubic Hermite interpolant over a quarter of a
-#: depth ramp errs 4^4 = 256 times less than over the whole of it
+#: on a ramp of a defect the resonator input is evaluated this many times per segment:
+#: a cubic Hermite interpolant over a quarter of a segment errs 4^4 = 256 times less
+#: than over the whole of it
 REFINE_PIECES = 4
 
 #: a grid point within this fraction of h_out of a segment end belongs to that segment
@@ -272,12 +272,13 @@ def _ok(seg, r_y, res, bound):
 
 
 @njit(cache=True, error_model="numpy")
-def _in_fault(kin):
-    """True when some element sits in a defect (non-zero depth) at the kinematics in
-    ``kin``. Segments are split at every fault edge, so one interior time decides for
-    the whole segment."""
+def _on_ramp(kin):
+    """True when some element's defect depth is changing (non-zero rate) at the
+    kinematics in ``kin`` (computed with rates): it is on a ramp of a defect. Segments
+    are split at every fault edge and ramp end, so one interior time decides for the
+    whole segment."""
     for j in range(kin.shape[1]):
-        if kin[K_DEPTH, j] != 0.0:
+        if kin[K_DDEPTH, j] != 0.0:
             return True
     return False
 
@@ -311,29 +312,24 @@ def _interpolate_core(t0, t1, tk, seg):
 
 
 @njit(cache=True, error_model="numpy")
-def _input_error(t, h, h_out, seg, rtol, atol_in, p, walk, faults, sensors, kin):
+def _input_error(t, h, seg, rtol, atol_in, p, walk, faults, sensors, kin):
     """Error of the resonator state caused by the cubic Hermite input over [t, t + h]
-    inside a defect, in the units of the error norm (1 = at tolerance).
+    on a defect's ramp, in the units of the error norm (1 = at tolerance).
 
-    :func:`_emit` interpolates the excitation over pieces of length
-    L <= min(h_out, h / REFINE_PIECES). On a piece the input
-    error e(s) = u''''/24 s^2 (L - s)^2 integrates to 16/30 L e(L/2) of resonator
-    velocity, over the step to 16/30 h e(L/2); against the velocity scale u_scale / w_r
-    this is (16/30) w_r h |e(L/2)| / (atol_in + rtol |u|): the control the resonators
-    would get in the Runge-Kutta error norm of the full state. e(L/2) compares the
-    Hermite interpolant of the first piece [t, t + L] at its middle with the excitation
-    u of the interpolated core state (``atol_in`` in m/s^2; RMS over the sensors).
-    Needs rows R_Y0, R_F0, R_A0, R_DA0 (start) and R_Y1, R_F1, R_A1, R_DA1 (end) of
-    ``seg``; overwrites R_YI, R_FI, R_AC, R_DAC, R_AK, R_DAK."""
-    length = min(h_out, h / REFINE_PIECES)
+    :func:`_emit` interpolates the excitation there over pieces of length
+    L = h / REFINE_PIECES. On a piece the input error e(s) = u''''/24 s^2 (L - s)^2
+    integrates to 16/30 L e(L/2) of resonator velocity, over the step to
+    16/30 h e(L/2); against the velocity scale u_scale / w_r this is
+    (16/30) w_r h |e(L/2)| / (atol_in + rtol |u|): the control the resonators would get
+    in the Runge-Kutta error norm of the full state. e(L/2) compares the Hermite
+    interpolant of the first piece [t, t + L] at its middle with the excitation u of
+    the interpolated core state (``atol_in`` in m/s^2; RMS over the sensors). Needs
+    rows R_Y0, R_F0, R_A0, R_DA0 (start) and R_Y1, R_F1 (end) of ``seg``; overwrites
+    R_YI, R_FI, R_AC, R_DAC, R_AK, R_DAK."""
+    length = h / REFINE_PIECES
     n_s = sensors.shape[0]
-    if length < h:
-        _interpolate_core(t, t + h, t + length, seg)
-        _excitation(t + length, seg, R_YI, R_FI, R_AK, p, walk, faults, sensors, kin)
-    else:
-        for i in range(n_s):
-            seg[R_AK, i] = seg[R_A1, i]
-            seg[R_DAK, i] = seg[R_DA1, i]
+    _interpolate_core(t, t + h, t + length, seg)
+    _excitation(t + length, seg, R_YI, R_FI, R_AK, p, walk, faults, sensors, kin)
     _interpolate_core(t, t + h, t + 0.5 * length, seg)
     _excitation(t + 0.5 * length, seg, R_YI, R_FI, R_AC, p, walk, faults, sensors, kin)
     err = 0.0
@@ -344,39 +340,6 @@ def _input_error(t, h, h_out, seg, rtol, atol_in, p, walk, faults, sensors, kin)
         exact = seg[R_AC, i]
         err += ((mid - exact) / (atol_in + rtol * abs(exact))) ** 2
     return (16.0 / 30.0) * p[P_WR] * h * math.sqrt(err / n_s)
-
-
-@njit(cache=True, error_model="numpy")
-def _refined_pieces(tc, te, t0, t1, piece_max, h_out, seg, res, prop, p, walk, faults,
-                    sensors, kin):
-    """Advance the resonators in ``res`` exactly from tc to te within a segment [t0, t1]
-    inside a defect (see :func:`_emit`), in pieces of at most ``piece_max`` whose ends
-    get the excitation of the interpolated core state (row R_AC of ``seg`` holds it at
-    tc and is moved on)."""
-    w = p[P_WR]
-    zeta = p[P_ZETA]
-    n_res = res.shape[0]
-    n_pieces = max(1, math.ceil((te - tc) / piece_max - 1e-9))
-    u0 = tc
-    for k in range(1, n_pieces + 1):
-        u1 = te if k == n_pieces else tc + k * (te - tc) / n_pieces
-        if u1 >= t1 - GRID_TOL * h_out:
-            for i in range(n_res):
-                seg[R_AK, i] = seg[R_A1, i]
-                seg[R_DAK, i] = seg[R_DA1, i]
-        else:
-            _interpolate_core(t0, t1, u1, seg)
-            _excitation(u1, seg, R_YI, R_FI, R_AK, p, walk, faults, sensors, kin)
-        _hermite_input(u0, u1, seg, R_AC, R_DAC, R_AK, R_DAK, res)
-        slot = PROP_H
-        if abs(u1 - u0 - h_out) > GRID_TOL * h_out:
-            slot = PROP_TMP
-            lti_propagator(u1 - u0, w, zeta, prop, slot)
-        _propagate(res, 0.0, prop, slot)
-        for i in range(n_res):
-            seg[R_AC, i] = seg[R_AK, i]
-            seg[R_DAC, i] = seg[R_DAK, i]
-        u0 = u1
 
 
 @njit(cache=True, error_model="numpy")
@@ -392,60 +355,67 @@ def _emit(t0, t1, refine, k_next, h_out, seg, res, prop, p, walk, faults, sensor
     The core state between t0 and t1 is the cubic Hermite interpolant of its values
     and derivatives at both ends (rows R_Y0, R_F0, R_Y1, R_F1 of ``seg``). The
     resonator input is the cubic Hermite interpolant of the excitation and its rate at
-    both ends (R_A0, R_DA0, R_A1, R_DA1), unless ``refine``: inside a defect the
-    excitation follows the known depth profile, which changes faster than the core (a
-    ramp can last a few microseconds); it is then evaluated exactly, with the
-    interpolated core state, at every grid point and at least ``REFINE_PIECES`` times
-    per segment, and interpolated piece by piece.
+    both ends (R_A0, R_DA0, R_A1, R_DA1), unless ``refine`` (the segment lies on a
+    ramp of a defect, where the excitation follows the depth profile, which can change
+    faster than the core): the segment is then cut into ``REFINE_PIECES`` pieces whose
+    ends get the excitation of the interpolated core state, and the input is
+    interpolated piece by piece.
     """
+    w = p[P_WR]
+    zeta = p[P_ZETA]
     n_res = res.shape[0]
     n_out = out.shape[0]
     keep = states.shape[0] > 0
-    refine = refine and n_res > 0
-    piece_max = min(h_out, (t1 - t0) / REFINE_PIECES)
+    n_pieces = REFINE_PIECES if refine and n_res > 0 else 1
     if n_res > 0:
-        if refine:
-            for i in range(n_res):
-                seg[R_AC, i] = seg[R_A0, i]
-                seg[R_DAC, i] = seg[R_DA0, i]
-        else:
-            _hermite_input(t0, t1, seg, R_A0, R_DA0, R_A1, R_DA1, res)
-    tc = t0
-    while k_next < n_out:
-        tk = k_next * h_out
-        if tk > t1 + GRID_TOL * h_out:
-            break
+        for i in range(n_res):  # the excitation at the start of the current piece
+            seg[R_AC, i] = seg[R_A0, i]
+            seg[R_DAC, i] = seg[R_DA0, i]
+    b0 = t0
+    for piece in range(1, n_pieces + 1):
+        b1 = t1 if piece == n_pieces else t0 + piece * (t1 - t0) / n_pieces
         if n_res > 0:
-            if tk > tc:
-                if refine:
-                    _refined_pieces(tc, tk, t0, t1, piece_max, h_out, seg, res, prop, p,
-                                    walk, faults, sensors, kin)
-                else:
+            if piece == n_pieces:
+                for i in range(n_res):
+                    seg[R_AK, i] = seg[R_A1, i]
+                    seg[R_DAK, i] = seg[R_DA1, i]
+            else:
+                _interpolate_core(t0, t1, b1, seg)
+                _excitation(b1, seg, R_YI, R_FI, R_AK, p, walk, faults, sensors, kin)
+            _hermite_input(b0, b1, seg, R_AC, R_DAC, R_AK, R_DAK, res)
+        tc = b0
+        while k_next < n_out:
+            tk = k_next * h_out
+            if tk > b1 + GRID_TOL * h_out:
+                break
+            if n_res > 0:
+                if tk > tc:
                     slot = PROP_H
                     if abs(tk - tc - h_out) > GRID_TOL * h_out:
                         slot = PROP_TMP
-                        lti_propagator(tk - tc, p[P_WR], p[P_ZETA], prop, slot)
-                    _propagate(res, tc - t0, prop, slot)
-                tc = tk
-            _resonator_output(res, p[P_WR], p[P_ZETA], out, k_next)
-        if n_res == 0 or keep:
-            _interpolate_core(t0, t1, tk, seg)
-        if n_res == 0:
-            yi = seg[R_YI]
-            rate = element_angles(tk, p, walk, kin)
-            fault_depths(tk, p, faults, kin, rate, False)
-            contact_loads(yi, p, kin)
-            housing_accel(yi, yi, p, sensors, kin, 0.0, out, k_next, False)
-        if keep:
-            _store_state(states, k_next, seg, R_YI, res)
-        k_next += 1
-    if n_res > 0 and t1 > tc:
-        if refine:
-            _refined_pieces(tc, t1, t0, t1, piece_max, h_out, seg, res, prop, p, walk,
-                            faults, sensors, kin)
-        else:
-            lti_propagator(t1 - tc, p[P_WR], p[P_ZETA], prop, PROP_TMP)
-            _propagate(res, tc - t0, prop, PROP_TMP)
+                        lti_propagator(tk - tc, w, zeta, prop, slot)
+                    _propagate(res, tc - b0, prop, slot)
+                    tc = tk
+                _resonator_output(res, w, zeta, out, k_next)
+            if n_res == 0 or keep:
+                _interpolate_core(t0, t1, tk, seg)
+            if n_res == 0:
+                yi = seg[R_YI]
+                rate = element_angles(tk, p, walk, kin)
+                fault_depths(tk, p, faults, kin, rate, False)
+                contact_loads(yi, p, kin)
+                housing_accel(yi, yi, p, sensors, kin, 0.0, out, k_next, False)
+            if keep:
+                _store_state(states, k_next, seg, R_YI, res)
+            k_next += 1
+        if n_res > 0:
+            if b1 > tc:
+                lti_propagator(b1 - tc, w, zeta, prop, PROP_TMP)
+                _propagate(res, tc - b0, prop, PROP_TMP)
+            for i in range(n_res):
+                seg[R_AC, i] = seg[R_AK, i]
+                seg[R_DAC, i] = seg[R_DAK, i]
+        b0 = b1
     return k_next
 
 
@@ -514,7 +484,7 @@ def _advance(seg, res):
 def rk4(y0, p, walk, faults, sensors, n_res, h_out, mult, n_sub, n_out, ev_before, ev_after,
         bound, out, states):
     """Classical RK4 on the core with a fixed step of ``mult * h_out / n_sub``, split at
-    events.
+    events, and no longer than h_out on the ramps of a defect.
 
     Parameters
     ----------
@@ -563,6 +533,7 @@ def rk4(y0, p, walk, faults, sensors, n_res, h_out, mult, n_sub, n_out, ev_befor
     n = 0
     # steps from grid point to grid point of sr5 without states take the fast output
     fast = n_sub == 1 and n_res > 0 and states.shape[0] == 0
+    ramp = _on_ramp(kin)  # on a defect's ramp; changes only at events
     while t < t_end:
         n += 1
         q, r = divmod(n, n_sub)
@@ -573,7 +544,12 @@ def rk4(y0, p, walk, faults, sensors, n_res, h_out, mult, n_sub, n_out, ev_befor
             while ev < n_ev and ev_after[ev] <= t:
                 ev += 1
             te = t_next
-            hit = ev < n_ev and ev_before[ev] < t_next
+            if ramp and mult > 1:
+                # on a defect's ramp the depth profile, not the core, sets the pace
+                # (an impact can stiffen the contacts many times): step from grid point
+                # to grid point
+                te = min(te, k_next * h_out)
+            hit = ev < n_ev and ev_before[ev] < te
             if hit:
                 te = ev_before[ev]
             if te > t:
@@ -581,8 +557,8 @@ def rk4(y0, p, walk, faults, sensors, n_res, h_out, mult, n_sub, n_out, ev_befor
                 for i in range(N_CORE):
                     tmp[i] = y[i] + 0.5 * h * f0[i]
                 rate = element_angles(t + 0.5 * h, p, walk, kin)
-                fault_depths(t + 0.5 * h, p, faults, kin, rate, False)
-                refine = _in_fault(kin)
+                fault_depths(t + 0.5 * h, p, faults, kin, rate, True)
+                refine = _on_ramp(kin)
                 core_forces(tmp, p, kin, k2)
                 for i in range(N_CORE):
                     tmp[i] = y[i] + 0.5 * h * k2[i]
@@ -611,6 +587,7 @@ def rk4(y0, p, walk, faults, sensors, n_res, h_out, mult, n_sub, n_out, ev_befor
                 t = ev_after[ev]
                 ev += 1
                 _excitation(t, seg, R_Y0, R_F0, R_A0, p, walk, faults, sensors, kin)
+                ramp = _on_ramp(kin)
             else:
                 t = te
     return STATUS_OK, n_steps, t
@@ -626,10 +603,10 @@ def dopri5(y0, p, walk, faults, sensors, n_res, h_out, n_out, ev_before, ev_afte
     (``atol`` has length 8); the step never exceeds ``h_max`` nor crosses an event.
     Resonators and output as in :func:`rk4`, from the accepted steps.
 
-    Inside a defect the resonator excitation follows the depth profile, which the core
-    error estimate does not see: it is refined at the grid points as in :func:`rk4`
-    and the step is also controlled by the error of that input (:func:`_input_error`;
-    ``atol_in`` in m/s^2). Other parameters as in :func:`rk4`.
+    On the ramps of a defect the resonator excitation follows the depth profile, which
+    the core error estimate does not see: it is refined as in :func:`rk4` and the step
+    is also controlled by the error of that input (:func:`_input_error`; ``atol_in`` in
+    m/s^2). Other parameters as in :func:`rk4`.
 
     Returns
     -------
@@ -654,8 +631,8 @@ def dopri5(y0, p, walk, faults, sensors, n_res, h_out, n_out, ev_before, ev_afte
     t = 0.0
     h = min(h_max, h_out)
     h_min_used = h
-    # step-size memory for each regime: inside a defect the depth profile sets the
-    # pace, outside the core does; an event switching regimes restarts from the step
+    # step-size memory for each regime: on a defect's ramp the depth profile sets the
+    # pace, elsewhere the core does; an event switching regimes restarts from the step
     # last used in the new one instead of paying rejections to get there
     h_regime = np.array([h, h])
     n_acc = 0
@@ -691,8 +668,8 @@ def dopri5(y0, p, walk, faults, sensors, n_res, h_out, n_out, ev_before, ev_afte
         for i in range(n):
             tmp[i] = y[i] + h * (A31 * k1[i] + A32 * k2[i])
         rate = element_angles(t + C3 * h, p, walk, kin)
-        fault_depths(t + C3 * h, p, faults, kin, rate, False)
-        regime = 1 if _in_fault(kin) else 0
+        fault_depths(t + C3 * h, p, faults, kin, rate, True)
+        regime = 1 if _on_ramp(kin) else 0
         core_forces(tmp, p, kin, k3)
         for i in range(n):
             tmp[i] = y[i] + h * (A41 * k1[i] + A42 * k2[i] + A43 * k3[i])
@@ -724,8 +701,8 @@ def dopri5(y0, p, walk, faults, sensors, n_res, h_out, n_out, ev_before, ev_afte
         if n_res > 0:
             housing_accel(y_new, k7, p, sensors, kin, rate, seg, R_A1, True)
         if regime == 1 and n_res > 0:
-            err = max(err, _input_error(t, h, h_out, seg, rtol, atol_in, p, walk, faults,
-                                        sensors, kin))
+            err = max(err, _input_error(t, h, seg, rtol, atol_in, p, walk, faults, sensors,
+                                        kin))
         if not (err == err):  # NaN: treat as a failed step with a much smaller h
             err = 1e10
         if err <= 1.0:
@@ -759,7 +736,7 @@ def dopri5(y0, p, walk, faults, sensors, n_res, h_out, n_out, ev_before, ev_afte
                 t = ev_after[ev]
                 ev += 1
                 _excitation(t, seg, R_Y0, R_F0, R_A0, p, walk, faults, sensors, kin)
-                h = h_regime[1 if _in_fault(kin) else 0]
+                h = h_regime[1 if _on_ramp(kin) else 0]
             else:
                 h_regime[regime] = h
                 t = t_new
