@@ -137,9 +137,10 @@ def write(results, methods, time_limit, quick) -> None:
         "* ballpass time: `integrate` including the event search, best of 3; scipy time: "
         "stepping plus dense output at the output grid, one run, a method's sweep stopped "
         f"after a run longer than {time_limit:g} s;",
-        "* speed-up: wall time of the fastest scipy method over the ballpass solver's at "
-        "the same error, interpolated log-log along each method's Pareto front (no "
-        "extrapolation: -- where a curve does not reach the error).",
+        "* speed-up: wall time of the fastest scipy method over the ballpass solver's to "
+        "reach the same error, interpolated log-log along each method's Pareto front, or "
+        "its cheapest run's time when even that is more accurate (no extrapolation: -- "
+        "where a curve does not reach the error).",
         "",
         "![work-precision](work_precision.png)",
         "",

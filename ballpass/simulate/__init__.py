@@ -152,6 +152,18 @@ def _events(bm: BearingModel, t_end: float):
     return before[:n][order], after[:n][order], index[:, 0], index[:, 1], index[:, 2]
 
 
+def _shortest_ramp(bm: BearingModel) -> float:
+    """Shortest time an element takes to cross a defect's ramp, s (inf without ramps),
+    at the top speed: ramp fraction times the defect's angular extent over the speed
+    of its paths (cage; inner race relative to the cage; ball spin)."""
+    p = bm.p
+    w_max = max(p[_K.P_W0], p[_K.P_W1])
+    cage = p[_K.P_CAGE] * w_max
+    rate = {_K.KIND_OUTER: cage, _K.KIND_INNER: w_max - cage, _K.KIND_BALL: p[_K.P_SPIN] * cage}
+    return min((row[_K.F_RAMP] * 2.0 * row[_K.F_HALF] / rate[int(row[_K.F_KIND])]
+                for row in bm.faults if row[_K.F_RAMP] > 0.0), default=math.inf)
+
+
 def _split_times(bm: BearingModel, t_end: float, ev_before: np.ndarray | None = None,
                  ev_after: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Brackets (s) of every time where the right-hand side is not smooth and the
@@ -261,6 +273,7 @@ def integrate(bm: BearingModel, solver: str, *, h_out: float, n_out: int,
     bound[:nd] = 1e4 * np.maximum(bm.scale[:nd], 1e-6)
     bound[nd:] = 1e4 * bm.scale[nd:] + 1e3
     omega = _core_omega(bm)
+    t_ramp = _shortest_ramp(bm)
     info = {"solver": solver, "internal_fs": 1.0 / h_out, "n_events": int(ev_before.shape[0])}
     if solver == "rk4":
         dt_req = dt if dt is not None else DT_DEFAULT_OMEGA / omega
@@ -271,7 +284,8 @@ def integrate(bm: BearingModel, solver: str, *, h_out: float, n_out: int,
         else:
             mult, n_sub = 1, math.ceil(h_out / dt_req - 1e-9)
         status, n_steps, t_fail = _I.rk4(bm.y0, *bm.model, bm.n_res, h_out, mult, n_sub, n_out,
-                                         split_before, split_after, bound, out, states)
+                                         split_before, split_after, t_ramp, bound, out,
+                                         states)
         step = h_out * mult / n_sub
         info.update(n_steps=int(n_steps), n_rejected=0, dt_s=step)
         step_text = f"dt = {step:.3g} s"
@@ -286,8 +300,8 @@ def integrate(bm: BearingModel, solver: str, *, h_out: float, n_out: int,
         h_max = 0.5 * math.pi / omega  # at least 4 steps per period of the contact mode
         max_steps = int(50 * n_out + 100 * split_before.shape[0] + 10_000)
         status, n_acc, n_rej, h_min, t_fail = _I.dopri5(
-            bm.y0, *bm.model, bm.n_res, h_out, n_out, split_before, split_after, bound, rtol_v,
-            atol_v, atol_in, h_max, max_steps, out, states)
+            bm.y0, *bm.model, bm.n_res, h_out, n_out, split_before, split_after, t_ramp, bound,
+            rtol_v, atol_v, atol_in, h_max, max_steps, out, states)
         info.update(n_steps=int(n_acc), n_rejected=int(n_rej), dt_min_s=float(h_min),
                     rtol=rtol_v)
         step_text = f"rtol = {rtol_v:g}, smallest step {h_min:.3g} s"

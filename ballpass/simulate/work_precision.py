@@ -342,11 +342,13 @@ def _front(group: pd.DataFrame, error: str) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _time_at(err: np.ndarray, wall: np.ndarray, target: float) -> float:
-    """Wall time at error ``target`` by log-log interpolation on a front; NaN outside."""
-    if err.size == 0 or target < err[0] or target > err[-1]:
+    """Wall time to reach error ``target`` on a front: log-log interpolation inside it;
+    above its largest error, the time of its cheapest run (an error at least that
+    small costs no less); NaN below its smallest error (never extrapolated)."""
+    if err.size == 0 or target < err[0]:
         return math.nan
-    if err.size == 1:
-        return float(wall[0])
+    if target >= err[-1]:
+        return float(wall[-1])
     return float(np.exp(np.interp(np.log(target), np.log(err), np.log(wall))))
 
 
@@ -355,8 +357,9 @@ def speedup(table: pd.DataFrame, error: str = "error_l2", at=(1e-2, 1e-3, 1e-4)
     """Speed of each ballpass solver relative to the fastest scipy method at equal error.
 
     Each method's runs are reduced to their Pareto front (no run both slower and less
-    accurate than another); wall time at a given error is interpolated log-linearly
-    along it, never extrapolated.
+    accurate than another); the wall time to reach a given error is interpolated
+    log-linearly along it, or is the cheapest run's time when even that one is more
+    accurate, and is never extrapolated to smaller errors.
 
     Parameters
     ----------
