@@ -180,7 +180,11 @@ def _split_times(bm: BearingModel, t_end: float, ev_before: np.ndarray | None = 
 def _to_output_rate(out: np.ndarray, n_samples: int, oversample: int) -> np.ndarray:
     """Internal-grid output (n_out, n_sensors) to what a sensor delivers: anti-alias
     decimation by ``oversample`` and AC coupling; (n_sensors, n_samples), m/s^2."""
-    accel = _signal.resample_poly(out, 1, oversample, axis=0) if oversample > 1 else out
+    # padtype="line": extend the record by its end trend instead of zeros, otherwise the
+    # sensor's DC level (a static load seen through the transfer path) rings the
+    # anti-alias filter into a spike on the first and last samples
+    accel = (_signal.resample_poly(out, 1, oversample, axis=0, padtype="line")
+             if oversample > 1 else out)
     accel = accel[:n_samples].T.copy()
     accel -= accel.mean(axis=1, keepdims=True)  # AC-coupled accelerometers
     return accel
