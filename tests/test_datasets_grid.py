@@ -121,3 +121,15 @@ def test_malformed_toml_names_the_file(tmp_path):
     path.write_text("[grid]\nrpm = [1797,\n")
     with pytest.raises(ValueError, match=r"bad.toml: not a valid TOML grid file"):
         read_grid(path)
+
+
+def test_noise_floor_and_resonance_damping_axes():
+    g = read_grid(with_("grid", noise_rms=[0.0, 0.6], resonance_damping=[0.01, 0.05]))
+    # (1 healthy + 2 x 2 faults) x 2 noise x 2 damping points x 2 repeats
+    assert g.n_runs == 5 * 4 * 2
+    scenes = [r.build_scene() for r in g.runs]
+    assert {s.noise_rms for s in scenes} == {0.0, 0.6}
+    assert {s.resonance_damping for s in scenes} == {0.01, 0.05}
+    # an absolute noise floor and an SNR on the same point contradict each other
+    with pytest.raises(ValueError, match="snr_db or noise_rms"):
+        read_grid(with_("grid", noise_rms=[0.6], snr_db=[20]))

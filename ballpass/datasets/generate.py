@@ -47,7 +47,8 @@ __all__ = ["generate", "dry_run", "regenerate", "run_shard", "GenerateSummary", 
 #: metadata columns of a dataset, in stored order (the signal column comes first)
 COLUMNS = (
     "label", "bearing", "fault_width_mm", "fault_depth_mm", "fault_angle_deg", "rpm",
-    "rpm_start", "rpm_end", "radial_load_n", "slip", "snr_db", "resonance_hz", "sensor",
+    "rpm_start", "rpm_end", "radial_load_n", "slip", "snr_db", "noise_rms", "resonance_hz",
+    "resonance_damping", "sensor",
     "segment", "start_s", "duration_s", "fs", "run_id", "group", "repeat", "seed", "model",
     "solver", "scene",
 )
@@ -82,7 +83,9 @@ def _simulate_run(run: Run, solver: str, signal_length: int, n_segments: int):
         "radial_load_n": scene.radial_load_n,
         "slip": scene.slip,
         "snr_db": math.inf if scene.snr_db is None else scene.snr_db,
+        "noise_rms": scene.noise_rms or 0.0,
         "resonance_hz": scene.resonance_hz,
+        "resonance_damping": scene.resonance_damping,
         "fs": scene.fs,
         "duration_s": signal_length / scene.fs,
         "run_id": run.run_id,

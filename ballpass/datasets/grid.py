@@ -60,12 +60,14 @@ DATASET_DEFAULTS: dict[str, object] = {
 #: [grid] axes; runs follow this order, with the fault-size axes varying fastest
 AXES = (
     "bearing", "fault", "fault_width_mm", "fault_depth_mm", "fault_angle_deg", "rpm",
-    "radial_load_n", "slip", "snr_db", "resonance_hz", "model", "sensor",
+    "radial_load_n", "slip", "snr_db", "noise_rms", "resonance_hz", "resonance_damping",
+    "model", "sensor",
 )
 REQUIRED_AXES = ("bearing", "fault", "rpm")
 _FAULT_AXES = {"fault_width_mm": "width_mm", "fault_depth_mm": "depth_mm",
                "fault_angle_deg": "angle_deg"}
-_SCENE_AXES = ("radial_load_n", "slip", "snr_db", "resonance_hz")
+_SCENE_AXES = ("radial_load_n", "slip", "snr_db", "noise_rms", "resonance_hz",
+               "resonance_damping")
 _NUMERIC_AXES = ("fault_width_mm", "fault_depth_mm", "fault_angle_deg", "rpm",
                  *_SCENE_AXES)
 _SENSOR_KEYS = {f.name for f in fields(Sensor)}
@@ -396,7 +398,8 @@ def read_grid(source) -> Grid:
     ``bearing`` (catalogue names), ``fault`` ("healthy", "outer", "inner", "ball"),
     ``fault_width_mm``, ``fault_depth_mm``, ``fault_angle_deg`` (fault rows only),
     ``rpm`` (a value or a ``[start, end]`` ramp), ``radial_load_n`` (N), ``slip``,
-    ``snr_db`` (dB; ``inf`` = noise-free), ``resonance_hz`` (Hz), ``model``, and
+    ``snr_db`` (dB; ``inf`` = noise-free) or ``noise_rms`` (absolute sensor noise,
+    m/s^2), ``resonance_hz`` (Hz), ``resonance_damping`` (ratio), ``model``, and
     ``sensor`` ("loaded", "unloaded" or a table of :class:`~ballpass.Sensor` fields),
     the channels of each run. Axes left out take the :class:`~ballpass.Scene`
     defaults; ``bearing``, ``fault`` and ``rpm`` are required.

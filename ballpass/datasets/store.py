@@ -41,7 +41,8 @@ UNITS = {
     "signal": "m/s^2", "fs": "Hz", "duration_s": "s", "start_s": "s", "rpm": "rpm",
     "rpm_start": "rpm", "rpm_end": "rpm", "radial_load_n": "N", "fault_width_mm": "mm",
     "fault_depth_mm": "mm", "fault_angle_deg": "deg from the load line", "slip": "1",
-    "snr_db": "dB (inf = noise-free)", "resonance_hz": "Hz",
+    "snr_db": "dB (inf = noise-free)", "noise_rms": "m/s^2 (0 = none)", "resonance_hz": "Hz",
+    "resonance_damping": "1",
 }
 
 
