@@ -47,9 +47,9 @@ from ..features._validation import (
     check_fs,
     check_nonnegative,
     check_positive_int,
+    check_rpm,
     check_signal,
 )
-from ..features.bands import _rpm as _broadcast_rpm
 from ..features.bands import as_bearing
 from ._names import LABELS
 
@@ -228,7 +228,7 @@ def envelope_evidence(
     if slip > 0.2:
         raise ValueError(f"slip must be in [0, 0.2], got {slip!r}")
     background_hz = check_nonnegative("background_hz", background_hz)
-    shaft_hz = _broadcast_rpm(rpm, (len(xv),)) / 60.0
+    shaft_hz = check_rpm(rpm, (len(xv),)) / 60.0
     prewhiten = bool(prewhiten)
 
     freqs, ses, bands = _ses_per_band(xv, fs, band, prewhiten)
@@ -499,7 +499,7 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
         if not healthy.any():
             raise ValueError("fit needs at least one healthy signal (y == 'healthy') to "
                              "calibrate the thresholds; without fit the defaults apply")
-        rpm = None if rpm is None else _broadcast_rpm(rpm, (len(X),))[healthy]
+        rpm = None if rpm is None else check_rpm(rpm, (len(X),))[healthy]
         ev = self._evidence(X[healthy], rpm)
         margin = float(check_nonnegative("margin_db", self.margin_db))
         self.thresholds_ = {
@@ -574,7 +574,7 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
 
         ev = self._evidence(X, rpm)
         labels = self.classes_[self._decision(ev).argmax(axis=1)]
-        speeds = _broadcast_rpm(self.rpm if rpm is None else rpm, (len(labels),))
+        speeds = check_rpm(self.rpm if rpm is None else rpm, (len(labels),))
         thresholds = self._thresholds()
         layout = {f: _family_lines(f, self.harmonics) for f in FAULT_FAMILIES}
         out = []

@@ -79,3 +79,20 @@ def check_nonnegative(name: str, value) -> float:
     if not (math.isfinite(value) and value >= 0):
         raise ValueError(f"{name} must be a finite number >= 0, got {value!r}")
     return value
+
+
+def check_rpm(rpm, shape: tuple[int, ...]) -> np.ndarray:
+    """Return ``rpm`` (rev/min, > 0) broadcast to ``shape``, one speed per signal."""
+    try:
+        arr = np.asarray(rpm, dtype=float)
+    except (TypeError, ValueError):
+        raise TypeError(f"rpm must be a number or an array of numbers, got {rpm!r}") from None
+    if not (np.isfinite(arr).all() and (arr > 0).all()):
+        raise ValueError(f"rpm must be finite and > 0 (rev/min), got {rpm!r}")
+    try:
+        return np.broadcast_to(arr, shape)
+    except ValueError:
+        raise ValueError(
+            f"rpm must be a scalar or broadcast to the signals' leading shape {shape}, "
+            f"got shape {arr.shape}"
+        ) from None

@@ -16,7 +16,7 @@ import math
 import numpy as np
 
 from ..bearing import Bearing
-from ._validation import check_nonnegative, check_positive_int
+from ._validation import check_nonnegative, check_positive_int, check_rpm
 from .envelope import envelope_spectrum
 
 __all__ = [
@@ -73,22 +73,6 @@ def _target_orders(bearing: Bearing, harmonics: int) -> np.ndarray:
     lines = [getattr(orders, line) * h for line in FAULT_LINES]
     sidebands = np.stack([h * orders.bpfi - 1.0, h * orders.bpfi + 1.0], axis=-1).ravel()
     return np.concatenate(lines + [sidebands])
-
-
-def _rpm(rpm, shape: tuple[int, ...]) -> np.ndarray:
-    try:
-        arr = np.asarray(rpm, dtype=float)
-    except (TypeError, ValueError):
-        raise TypeError(f"rpm must be a number or an array of numbers, got {rpm!r}") from None
-    if not (np.isfinite(arr).all() and (arr > 0).all()):
-        raise ValueError(f"rpm must be finite and > 0 (rev/min), got {rpm!r}")
-    try:
-        return np.broadcast_to(arr, shape)
-    except ValueError:
-        raise ValueError(
-            f"rpm must be a scalar or broadcast to the signals' leading shape {shape}, "
-            f"got shape {arr.shape}"
-        ) from None
 
 
 def fault_band_levels(
@@ -160,7 +144,7 @@ def fault_band_levels(
     harmonics = check_positive_int("harmonics", harmonics, 1)
     tolerance = check_nonnegative("tolerance", tolerance)
     background_hz = check_nonnegative("background_hz", background_hz)
-    rpm = _rpm(rpm, ses.shape[:-1])
+    rpm = check_rpm(rpm, ses.shape[:-1])
 
     df = freqs[1]
     n_bins = freqs.size
