@@ -152,16 +152,24 @@ def _events(bm: BearingModel, t_end: float):
     return before[:n][order], after[:n][order], index[:, 0], index[:, 1], index[:, 2]
 
 
-def _shortest_ramp(bm: BearingModel) -> float:
-    """Shortest time an element takes to cross a defect's ramp, s (inf without ramps),
-    at the top speed: ramp fraction times the defect's angular extent over the speed
-    of its paths (cage; inner race relative to the cage; ball spin)."""
+def _ramp_times(bm: BearingModel) -> tuple[float, float]:
+    """Shortest time an element takes to cross a defect ramp, s (inf without ramps), at
+    the top speed: ramp fraction times the defect's angular extent over the speed of
+    its paths (cage; inner race relative to the cage; ball spin). First over all
+    defects, then over those deep enough to unload an element completely (depth beyond
+    the static contact deflection), whose ramps end in impacts."""
     p = bm.p
     w_max = max(p[_K.P_W0], p[_K.P_W1])
     cage = p[_K.P_CAGE] * w_max
     rate = {_K.KIND_OUTER: cage, _K.KIND_INNER: w_max - cage, _K.KIND_BALL: p[_K.P_SPIN] * cage}
-    return min((row[_K.F_RAMP] * 2.0 * row[_K.F_HALF] / rate[int(row[_K.F_KIND])]
-                for row in bm.faults if row[_K.F_RAMP] > 0.0), default=math.inf)
+    every, deep = math.inf, math.inf
+    for row in bm.faults:
+        if row[_K.F_RAMP] > 0.0:
+            t = row[_K.F_RAMP] * 2.0 * row[_K.F_HALF] / rate[int(row[_K.F_KIND])]
+            every = min(every, t)
+            if row[_K.F_DEPTH] > bm.static_deflection:
+                deep = min(deep, t)
+    return every, deep
 
 
 def _split_times(bm: BearingModel, t_end: float, ev_before: np.ndarray | None = None,
@@ -277,7 +285,7 @@ def integrate(bm: BearingModel, solver: str, *, h_out: float, n_out: int,
     bound[:nd] = 1e4 * np.maximum(bm.scale[:nd], 1e-6)
     bound[nd:] = 1e4 * bm.scale[nd:] + 1e3
     omega = _core_omega(bm)
-    t_ramp = _shortest_ramp(bm)
+    t_ramp, t_impact = _ramp_times(bm)
     info = {"solver": solver, "internal_fs": 1.0 / h_out, "n_events": int(ev_before.shape[0])}
     if solver == "rk4":
         dt_req = dt if dt is not None else DT_DEFAULT_OMEGA / omega
@@ -288,8 +296,8 @@ def integrate(bm: BearingModel, solver: str, *, h_out: float, n_out: int,
         else:
             mult, n_sub = 1, math.ceil(h_out / dt_req - 1e-9)
         status, n_steps, t_fail = _I.rk4(bm.y0, *bm.model, bm.n_res, h_out, mult, n_sub, n_out,
-                                         split_before, split_after, t_ramp, bound, out,
-                                         states)
+                                         split_before, split_after, t_ramp, t_impact, bound,
+                                         out, states)
         step = h_out * mult / n_sub
         info.update(n_steps=int(n_steps), n_rejected=0, dt_s=step)
         step_text = f"dt = {step:.3g} s"

@@ -25,8 +25,8 @@ Both integrators
   side falls on a step boundary and the methods keep their order through them;
 * on the ramps of a defect, where the excitation follows the depth profile rather
   than the core, sample the resonator input up to ``REFINE_PIECES`` times per step
-  (rk4 also limits its step to h_out on ramps it would resolve with fewer than
-  ``RAMP_STEPS`` steps; dopri5 controls the input error);
+  (rk4 also limits its step to h_out on short ramps that end in impacts; dopri5
+  controls the input error), see :data:`RAMP_PIECES`;
 * record the sensor output on a uniform internal grid ``k * h_out``, independent of the
   step: the resonators are propagated exactly from grid point to grid point; the core
   state between steps is the cubic Hermite interpolant of the step's end states and
@@ -99,23 +99,26 @@ PROP_H, PROP_TMP = 0, 1
 PI_BETA = 0.04
 PI_ALPHA = 0.2 - 0.75 * PI_BETA
 
-#: a defect ramp crossed in fewer than RAMP_STEPS steps is resolved more finely: rk4
-#: steps from grid point to grid point on it, and the resonator input of each segment
-#: on it is interpolated in REFINE_PIECES pieces (a cubic Hermite interpolant over a
-#: quarter of a segment errs 4^4 = 256 times less). Ramps are where contacts unload
-#: and reload, as impacts that stiffen them when the defect is deep: measured, a
-#: 0.1 mm outer-race fault at 6000 rpm (3.4 us ramps) 1e-3 -> 1.5e-4, a 2 mm
-#: inner-race fault at 6000 rpm (68 us ramps, 21 us steps) 5.6e-3 -> 4.3e-4 for 20 %
-#: more steps; slow ramps (1.4 ms at 300 rpm) are left alone.
-RAMP_STEPS = 8
+#: Defect ramps are resolved more finely than the core needs: the resonator input of a
+#: segment on a ramp is interpolated in up to REFINE_PIECES pieces, at least
+#: RAMP_PIECES per ramp duration (a cubic Hermite interpolant over a quarter of a
+#: segment errs 4^4 = 256 times less); and rk4 steps from grid point to grid point on
+#: a ramp it would cross in fewer than RAMP_STEPS steps that ends in an impact (the
+#: defect unloads the element completely and it strikes the far edge, stiffening its
+#: contact). Measured at 48 kHz: the 0.5 mm outer-race fault at 1797 rpm (57 us ramps,
+#: 21 us steps) 1.4e-3 -> 5e-4; a 0.1 mm one at 6000 rpm (3.4 us ramps in single
+#: segments) 1e-3 -> 1.5e-4; a 2 mm inner-race fault at 6000 rpm (68 us ramps)
+#: 5.6e-3 -> 5e-4 for 20 % more steps; slow ramps (1.4 ms at 300 rpm) are left alone.
 REFINE_PIECES = 4
+RAMP_PIECES = 16
+RAMP_STEPS = 8
 
 
 @njit(cache=True, error_model="numpy")
-def _ramp_pieces(step, t_ramp):
-    """Pieces in which the resonator input of a segment on a ramp is interpolated, for
-    steps of ``step`` (s) and the shortest ramp duration ``t_ramp`` (s)."""
-    return REFINE_PIECES if t_ramp < RAMP_STEPS * step else 1
+def _ramp_pieces(tau, t_ramp):
+    """Pieces in which the resonator input of a segment of length tau (s) on a ramp is
+    interpolated, given the shortest ramp duration t_ramp (s; inf without ramps)."""
+    return min(REFINE_PIECES, max(1, math.ceil(RAMP_PIECES * tau / t_ramp)))
 
 #: a grid point within this fraction of h_out of a segment end belongs to that segment
 #: (step ends are computed in floating point; 1e-9 h_out is far below any step)
@@ -502,9 +505,9 @@ def _advance(seg, res):
 
 @njit(cache=True, error_model="numpy")
 def rk4(y0, p, walk, faults, sensors, n_res, h_out, mult, n_sub, n_out, ev_before, ev_after,
-        t_ramp, bound, out, states):
+        t_ramp, t_impact, bound, out, states):
     """Classical RK4 on the core with a fixed step of ``mult * h_out / n_sub``, split at
-    events, and no longer than h_out on the ramps of a defect.
+    events, and no longer than h_out on short ramps ending in impacts.
 
     Parameters
     ----------
@@ -524,8 +527,9 @@ def rk4(y0, p, walk, faults, sensors, n_res, h_out, mult, n_sub, n_out, ev_befor
         Number of internal output samples (t = 0 .. (n_out - 1) h_out).
     ev_before, ev_after : ndarray
         Sorted event brackets, s.
-    t_ramp : float
-        Shortest duration of a defect ramp, s (inf without ramps).
+    t_ramp, t_impact : float
+        Shortest duration of a defect ramp, and of one ending in an impact, s (inf
+        without; see :data:`RAMP_STEPS`).
     bound : ndarray (n_state,)
         Magnitude above which a full-state component counts as diverged.
     out : ndarray (n_out, n_sensors)
@@ -557,7 +561,7 @@ def rk4(y0, p, walk, faults, sensors, n_res, h_out, mult, n_sub, n_out, ev_befor
     fast = n_sub == 1 and n_res > 0 and states.shape[0] == 0
     ramp = _on_ramp(kin)  # on a defect's ramp; changes only at events
     h_step = h_out * mult / n_sub
-    sub_ramp = mult > 1 and t_ramp < RAMP_STEPS * h_step
+    sub_ramp = mult > 1 and t_impact < RAMP_STEPS * h_step
     while t < t_end:
         n += 1
         q, r = divmod(n, n_sub)
@@ -582,7 +586,7 @@ def rk4(y0, p, walk, faults, sensors, n_res, h_out, mult, n_sub, n_out, ev_befor
                     tmp[i] = y[i] + 0.5 * h * f0[i]
                 rate = element_angles(t + 0.5 * h, p, walk, kin)
                 fault_depths(t + 0.5 * h, p, faults, kin, rate, True)
-                n_pieces = _ramp_pieces(h_step, t_ramp) if _on_ramp(kin) else 1
+                n_pieces = _ramp_pieces(h, t_ramp) if _on_ramp(kin) else 1
                 core_forces(tmp, p, kin, k2)
                 for i in range(N_CORE):
                     tmp[i] = y[i] + 0.5 * h * k2[i]
@@ -725,8 +729,8 @@ def dopri5(y0, p, walk, faults, sensors, n_res, h_out, n_out, ev_before, ev_afte
         if n_res > 0:
             housing_accel(y_new, k7, p, sensors, kin, rate, seg, R_A1, True)
         if regime == 1 and n_res > 0:
-            err = max(err, _input_error(t, h, _ramp_pieces(h, t_ramp), seg, rtol, atol_in,
-                                        p, walk, faults, sensors, kin))
+            err = max(err, _input_error(t, h, _ramp_pieces(h, t_ramp), seg, rtol, atol_in, p,
+                                        walk, faults, sensors, kin))
         if not (err == err):  # NaN: treat as a failed step with a much smaller h
             err = 1e10
         if err <= 1.0:

@@ -116,6 +116,8 @@ class BearingModel:
         Characteristic magnitude of each state component (for tolerances).
     levels : ndarray (n_faults, 4)
         Angular offsets (rad) marking fault edges and ramp ends.
+    static_deflection : float
+        Largest contact deflection at the static equilibrium, m.
     """
 
     scene: Scene
@@ -129,6 +131,7 @@ class BearingModel:
     y0: np.ndarray
     scale: np.ndarray
     levels: np.ndarray
+    static_deflection: float
 
     @property
     def n_state(self) -> int:
@@ -271,9 +274,11 @@ def build_model(scene: Scene, params: SR5Parameters | None = None, *,
     sensors = _sensor_table(scene)
     n_res = len(scene.sensors) if resonator else 0
 
-    y0, scale = _static_state(scene, params, (p, walk, faults, sensors), n_res, kh)
+    y0, scale, deflection = _static_state(scene, params, (p, walk, faults, sensors), n_res,
+                                          kh)
     return BearingModel(scene=scene, params=params, n_res=n_res, p=p, walk=walk, psi0=psi0,
-                        faults=faults, sensors=sensors, y0=y0, scale=scale, levels=levels)
+                        faults=faults, sensors=sensors, y0=y0, scale=scale, levels=levels,
+                        static_deflection=deflection)
 
 
 #: largest static contact deflection the model accepts, as a fraction of the element
@@ -298,7 +303,8 @@ def _check_elastic(scene: Scene, delta_max: float, bearing_load: float) -> None:
 
 
 def _static_state(scene: Scene, params: SR5Parameters, model: tuple, n_res: int, kh: float):
-    """Static equilibrium at t = 0 and characteristic scales of the state.
+    """Static equilibrium at t = 0, characteristic scales of the state and the largest
+    static contact deflection (m).
 
     The bearing carries the radial load and the shaft's weight: the shaft support
     spring k_s acts about the loaded static position (its rest position ``p[P_US0]`` is
@@ -343,7 +349,8 @@ def _static_state(scene: Scene, params: SR5Parameters, model: tuple, n_res: int,
                 f"static equilibrium did not converge for {scene!r}: {sol.message}")
         du, dv = sol.x
     q, delta = contact((du, dv))
-    _check_elastic(scene, float(np.max(delta, initial=0.0)), bearing_load)
+    deflection = float(np.max(delta, initial=0.0))
+    _check_elastic(scene, deflection, bearing_load)
     fu, fv = np.sum(q * cos_psi), np.sum(q * sin_psi)
     u_p = (fu + params.pedestal_mass * g) / params.pedestal_stiffness
     v_p = fv / params.pedestal_stiffness
@@ -376,4 +383,4 @@ def _static_state(scene: Scene, params: SR5Parameters, model: tuple, n_res: int,
         z_scale = f_scale / params.pedestal_mass / w_r**2
         scale[4:nd] = z_scale
         scale[nd + 4:] = z_scale * w_r
-    return y0, scale
+    return y0, scale, deflection
