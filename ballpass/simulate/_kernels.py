@@ -263,12 +263,14 @@ def fault_depths(t, p, faults, kin, cage_rate, rates):
                     kin[K_DDEPTH, e] += dr * profile_slope(off, half, depth, ramp)
         else:
             ref = race_reference(faults, i, th)
-            # Only elements within `side` spacings of the one nearest the centre can
-            # be inside (half < side * spacing); the others are at least
-            # (side + 1/2) spacings away and keep exactly the zero depth the profile
-            # would give them. Usually side = 1: three elements instead of Z.
+            # Only the element nearest the centre (at most half a spacing away) and
+            # those within `side` spacings of it can be inside: the k-th neighbour is
+            # at least (k - 1/2) spacings away, beyond the half extent for k > side,
+            # and keeps exactly the zero depth the profile would give it. A defect
+            # narrower than the spacing (every outer-race one) leaves the nearest
+            # element alone: one instead of Z.
             spacing = TWO_PI / p[P_Z]
-            side = int(half / spacing) + 1
+            side = int(half / spacing + 0.5)
             n_cand = 2 * side + 1
             near = int(round(-wrap_pi(kin[K_PSI, 0] - ref) / spacing)) - side
             if n_cand >= z:
