@@ -120,6 +120,7 @@ def _ramp_pieces(tau, t_ramp):
     interpolated, given the shortest ramp duration t_ramp (s; inf without ramps)."""
     return min(REFINE_PIECES, max(1, math.ceil(RAMP_PIECES * tau / t_ramp)))
 
+
 #: a grid point within this fraction of h_out of a segment end belongs to that segment
 #: (step ends are computed in floating point; 1e-9 h_out is far below any step)
 GRID_TOL = 1e-9
