@@ -424,6 +424,13 @@ class Scene:
         return self.bearing.frequencies(self.shaft_hz)
 
     @property
+    def demodulation_band(self) -> tuple[float, float]:
+        """Band around the structural resonance for envelope analysis, Hz:
+        ``resonance_hz`` +- max(20 %, 500 Hz), kept inside (1 Hz, 0.49 fs)."""
+        half = max(0.2 * self.resonance_hz, 500.0)
+        return (max(self.resonance_hz - half, 1.0), min(self.resonance_hz + half, 0.49 * self.fs))
+
+    @property
     def label(self) -> str:
         """``"healthy"``, a fault kind, or kinds joined by ``"+"`` for several faults."""
         kinds = [f.kind for f in self.faults]

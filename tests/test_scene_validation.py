@@ -108,3 +108,11 @@ def test_scene_conventions():
         0.5 * 7.94 * (1 - math.sqrt(1 - (0.5 / 7.94) ** 2)))
     wide = bp.Fault("outer", width_mm=9.0, depth_mm=0.2)
     assert wide.effective_depth_mm(bp.Bearing.catalog("6205")) == 0.2
+
+
+def test_demodulation_band_surrounds_the_resonance_inside_the_output_band():
+    assert make(fs=12_000.0, resonance_hz=3000.0).demodulation_band == (2400.0, 3600.0)
+    # 15 kHz at 48 kHz: +-3 kHz fits below 0.49 fs = 23.52 kHz
+    assert make().demodulation_band == (12_000.0, 18_000.0)
+    # close to Nyquist the upper edge is clipped to 0.49 fs
+    assert make(fs=12_000.0, resonance_hz=5000.0).demodulation_band == (4000.0, 5880.0)

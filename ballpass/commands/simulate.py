@@ -117,12 +117,7 @@ def run(args) -> int:
                  f"{scene.radial_load_n:g} N")
         signal_overview(res.accel, res.fs, bearing=scene.bearing, shaft_hz=scene.shaft_hz,
                         path=args.plot, channels=list(res.sensor_names), title=title,
-                        band=_resonance_band(scene))
+                        band=scene.demodulation_band)
         print(f"plot -> {args.plot}")
     return 0
 
-
-def _resonance_band(scene) -> tuple[float, float]:
-    """Demodulation band around the structural resonance, Hz (within 0.49 fs)."""
-    half = max(0.2 * scene.resonance_hz, 500.0)
-    return (max(scene.resonance_hz - half, 1.0), min(scene.resonance_hz + half, 0.49 * scene.fs))

@@ -68,14 +68,6 @@ COLUMNS = ["method", "family", "setting", "dt_s", "rtol", "wall_s", "wall_per_si
            "n_steps", "n_rhs", "error_l2", "error_ses", "error_ses_db", "status"]
 
 
-def demodulation_band(scene: Scene) -> tuple[float, float]:
-    """Band around the structural resonance used for the SES comparison, Hz:
-    resonance +- max(20 %, 500 Hz), kept below 0.49 fs."""
-    half = max(0.2 * scene.resonance_hz, 500.0)
-    return (max(scene.resonance_hz - half, 1.0),
-            min(scene.resonance_hz + half, 0.49 * scene.fs))
-
-
 def _fault_lines(scene: Scene) -> list[str]:
     """Names of :class:`ballpass.bearing.BearingFrequencies` attributes to compare."""
     by_kind = {"outer": "bpfo", "inner": "bpfi", "ball": "ball_defect"}
@@ -94,7 +86,7 @@ class _Judge:
         self._bands = fault_band_features
         self.scene = scene
         self.oversample = oversample
-        self.band = demodulation_band(scene)
+        self.band = scene.demodulation_band
         freqs = scene.frequencies
         self.targets = [h * getattr(freqs, name) for name in _fault_lines(scene)
                         for h in range(1, HARMONICS + 1)]
