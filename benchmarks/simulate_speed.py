@@ -14,11 +14,10 @@ measured against dopri5 at rtol 1e-10. Writes ``benchmarks/results/simulate_spee
 from __future__ import annotations
 
 import argparse
-import os
-import platform
 import time
 from pathlib import Path
 
+import _machine  # benchmarks/_machine.py (scripts run from their folder)
 import numpy as np
 
 import ballpass as bp
@@ -68,18 +67,10 @@ def measure(duration: float, repeats: int) -> list[dict]:
 
 
 def machine() -> str:
-    cpu = platform.processor() or platform.machine()
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                cpu = line.split(":", 1)[1].strip()
-                break
-    except OSError:
-        pass
     import numba
 
-    return (f"{cpu}, {os.cpu_count()} cores (one used), Python {platform.python_version()}, "
-            f"numba {numba.__version__}, ballpass {__version__}")
+    return (f"{_machine.machine()} (one used), numba {numba.__version__}, "
+            f"ballpass {__version__}")
 
 
 def write(records: list[dict], duration: float, repeats: int) -> Path:

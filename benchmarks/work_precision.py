@@ -29,14 +29,13 @@ from __future__ import annotations
 
 import argparse
 import math
-import os
-import platform
 import time
 from pathlib import Path
 
 import matplotlib
 
 matplotlib.use("Agg")
+import _machine  # benchmarks/_machine.py (scripts run from their folder)
 import matplotlib.pyplot as plt  # noqa: E402
 import pandas as pd  # noqa: E402
 
@@ -88,18 +87,6 @@ def fmt_ratio(v: float) -> str:
     return "--" if not math.isfinite(v) else f"{v:.0f}x"
 
 
-def machine() -> str:
-    cpu = platform.machine()
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                cpu = line.split(":", 1)[1].strip()
-                break
-    except OSError:
-        pass
-    return f"{cpu}, {os.cpu_count()} cores, Python {platform.python_version()}"
-
-
 def write(results, methods, time_limit, quick) -> None:
     DOCS.mkdir(exist_ok=True)
     everything = pd.concat([t for _, t in results], ignore_index=True)
@@ -124,7 +111,7 @@ def write(results, methods, time_limit, quick) -> None:
         f"({', '.join(methods) or 'none'}) on the same sr5 equations, for a 6205 at 500 N "
         "sampled at 48 kHz (15 kHz / 5 % resonance, faults 0.1 mm deep). Produced by "
         f"`python benchmarks/work_precision.py{' --quick' if quick else ''}` with ballpass "
-        f"{__version__} on {machine()} (shared, so timings are noisy).",
+        f"{__version__} on {_machine.machine()} (shared, so timings are noisy).",
         "",
         "How it is measured (`ballpass.simulate.work_precision`):",
         "",
