@@ -107,23 +107,29 @@ def test_outer_race_fault_peaks_at_bpfo(rpm):
     assert abs(peak - bpfo) <= tolerance(bpfo)
 
 
+def assert_family(f, ses, f0, tol, sideband, sideband_tol, rivals, rival_factor):
+    """The defect line f0 stands clear of the floor (the median SES level in 5-500 Hz,
+    itself raised by the many modulation lines): 10x, 20 dB in SES amplitude; its
+    sidebands at f0 +- ``sideband`` 5x; and it is taller than ``rival_factor`` times
+    the lines of the other defect frequencies."""
+    floor = background(f, ses)
+    main = line(f, ses, f0, tol)
+    assert main > 10.0 * floor
+    assert line(f, ses, f0 - sideband, sideband_tol) > 5.0 * floor
+    assert line(f, ses, f0 + sideband, sideband_tol) > 5.0 * floor
+    for rival in rivals:
+        assert main > rival_factor * line(f, ses, rival, tol)
+
+
 @pytest.mark.parametrize("rpm", [900.0, 1797.0, 2700.0])
 def test_inner_race_fault_shows_bpfi_with_shaft_sidebands(rpm):
     sc = scene("inner", rpm=rpm)
     fr = sc.frequencies
     f, ses = envelope_spectrum(bp.simulate(sc).accel, FS, band=BAND)
-    floor = background(f, ses)
+    # sidebands at +- shaft speed: the fault passes the load zone once a turn; and it is
+    # the inner race, not another defect frequency, that shows (3x)
     tol = tolerance(fr.bpfi)
-    bpfi = line(f, ses, fr.bpfi, tol)
-    # BPFI stands clear of the floor (the median SES level in 5-500 Hz, itself raised by
-    # the many shaft-order lines of an inner-race fault): 10x, 20 dB in SES amplitude...
-    assert bpfi > 10.0 * floor
-    # ...with sidebands at +- shaft speed (the fault passes the load zone once a turn)
-    assert line(f, ses, fr.bpfi - fr.shaft, tol) > 5.0 * floor
-    assert line(f, ses, fr.bpfi + fr.shaft, tol) > 5.0 * floor
-    # and it is the inner race, not another defect frequency, that shows
-    assert bpfi > 3.0 * line(f, ses, fr.bpfo, tol)
-    assert bpfi > 3.0 * line(f, ses, fr.ball_defect, tol)
+    assert_family(f, ses, fr.bpfi, tol, fr.shaft, tol, (fr.bpfo, fr.ball_defect), 3.0)
 
 
 @pytest.mark.parametrize("rpm", [900.0, 1797.0, 2700.0])
@@ -131,20 +137,15 @@ def test_ball_fault_shows_ball_defect_family_with_cage_sidebands(rpm):
     sc = scene("ball", rpm=rpm)
     fr = sc.frequencies
     f, ses = envelope_spectrum(bp.simulate(sc).accel, FS, band=BAND)
-    floor = background(f, ses)
     tol = tolerance(fr.ball_defect)
-    bdf = line(f, ses, fr.ball_defect, tol)
-    # same floor and margins as for the inner race
-    assert bdf > 10.0 * floor
-    assert line(f, ses, 2 * fr.ball_defect, 2 * tol) > 5.0 * floor  # a family: harmonics
-    # the defective ball carries the defect round with the cage: FTF sidebands
-    assert line(f, ses, fr.ball_defect - fr.ftf, 1.0) > 5.0 * floor
-    assert line(f, ses, fr.ball_defect + fr.ftf, 1.0) > 5.0 * floor
-    # BPFO = Z * FTF is itself a harmonic of the cage modulation of a ball fault (impacts
-    # only in the load zone, half of each cage turn), so demand only that the ball-defect
+    # the defective ball carries the defect round with the cage: FTF sidebands. BPFO =
+    # Z * FTF is itself a harmonic of the cage modulation of a ball fault (impacts only
+    # in the load zone, half of each cage turn), so demand only that the ball-defect
     # line is the taller one
-    assert bdf > line(f, ses, fr.bpfo, tol)
-    assert bdf > line(f, ses, fr.bpfi, tol)
+    assert_family(f, ses, fr.ball_defect, tol, fr.ftf, 1.0, (fr.bpfo, fr.bpfi), 1.0)
+    # a family: the second harmonic stands out too
+    floor = background(f, ses)
+    assert line(f, ses, 2 * fr.ball_defect, 2 * tol) > 5.0 * floor
 
 
 @pytest.mark.parametrize("kind", ["outer", "inner", "ball"])
