@@ -43,6 +43,7 @@ from dataclasses import dataclass, fields
 import numpy as np
 from scipy import optimize
 
+from .._validation import check_number
 from ..scene import STANDARD_GRAVITY, Scene
 from . import _kernels as K
 
@@ -81,13 +82,8 @@ class SR5Parameters:
             value = getattr(self, f.name)
             if value is None and f.name == "contact_stiffness":
                 continue
-            if not (isinstance(value, (int, float)) and math.isfinite(value)):
-                raise ValueError(f"{f.name} must be a finite number, got {value!r}")
-            if f.name.endswith("damping"):
-                if value < 0:
-                    raise ValueError(f"{f.name} must be >= 0, got {value!r}")
-            elif value <= 0:
-                raise ValueError(f"{f.name} must be > 0, got {value!r}")
+            # damping may be zero (an undamped structure); masses and stiffnesses not
+            check_number(f.name, value, 0.0, lo_open=not f.name.endswith("damping"))
 
 
 @dataclass
