@@ -42,3 +42,17 @@ def test_simulate_refuses_bad_input_with_the_argument_named(tmp_path, capsys):
     assert code == 2
     assert "resonance_hz=15000 lies above 0.45*fs" in capsys.readouterr().err
     assert not (tmp_path / "x.npz").exists()
+
+
+def test_written_files_follow_the_umask_like_any_other(tmp_path):
+    import os
+
+    old = os.umask(0o022)
+    try:
+        out = tmp_path / "s.npz"
+        assert main([*ARGS, "--out", str(out)]) == 0
+    finally:
+        os.umask(old)
+    # the atomic write's temporary file must not leave the result private (0600)
+    assert out.stat().st_mode & 0o777 == 0o644
+    assert not [p for p in tmp_path.iterdir() if p.name.endswith(".tmp")]

@@ -22,12 +22,12 @@ object column of arrays); :func:`load` returns it as one float32 matrix.
 from __future__ import annotations
 
 import json
-import os
-import uuid
 import warnings
 from pathlib import Path
 
 import numpy as np
+
+from ..signalio import atomic_write
 
 __all__ = ["load", "info", "read_manifest", "MANIFEST", "UNITS"]
 
@@ -60,18 +60,6 @@ def shard_name(index: int) -> str:
     return f"part-{index:05d}.parquet"
 
 
-def _atomic_write(path: Path, write) -> None:
-    """Call ``write(tmp_path)`` then rename the temporary file over ``path``."""
-    tmp = path.with_name(f".{path.name}.{uuid.uuid4().hex}.tmp")
-    try:
-        write(tmp)
-        with open(tmp, "rb+") as fh:
-            os.fsync(fh.fileno())
-        os.replace(tmp, path)
-    finally:
-        tmp.unlink(missing_ok=True)
-
-
 def is_temporary(path: Path) -> bool:
     """True for the temporary files this module writes (``.<name>.<random>.tmp``)."""
     return path.name.startswith(".") and path.name.endswith(".tmp")
@@ -88,7 +76,7 @@ def remove_temporaries(folder: Path) -> None:
 def write_manifest(folder: Path, manifest: dict) -> None:
     """Write ``manifest.json`` atomically (strict JSON)."""
     text = json.dumps(manifest, indent=1, allow_nan=False)
-    _atomic_write(folder / MANIFEST, lambda p: p.write_text(text))
+    atomic_write(folder / MANIFEST, lambda p: p.write_text(text))
 
 
 def read_manifest(folder) -> dict | None:
@@ -139,7 +127,7 @@ def write_table(path: Path, columns: dict, signals: np.ndarray | None = None,
     table = pa.table(arrays)
     if metadata is not None:
         table = table.replace_schema_metadata({"ballpass": json.dumps(metadata)})
-    _atomic_write(path, lambda p: pq.write_table(
+    atomic_write(path, lambda p: pq.write_table(
         table, p, compression="zstd", row_group_size=128,
         use_dictionary=[k for k in columns if table.schema.field(k).type == pa.string()],
         column_encoding=encoding or None))
