@@ -21,6 +21,7 @@ import importlib
 
 from .bearing import Bearing, BearingFrequencies
 from .scene import Fault, Scene, Sensor, SpeedProfile
+from .waviness import Waviness
 
 __version__ = "0.1.0"
 
@@ -31,6 +32,7 @@ __all__ = [
     "Scene",
     "Sensor",
     "SpeedProfile",
+    "Waviness",
     "simulate",
     "features",
     "diagnose",

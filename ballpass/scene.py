@@ -21,11 +21,13 @@ from dataclasses import dataclass, field, replace
 from ._validation import check_number as _number
 from .bearing import Bearing, BearingFrequencies
 from .phenomena import check_needs
+from .waviness import Waviness
 
 __all__ = ["Fault", "Sensor", "SpeedProfile", "Scene", "wrap_deg"]
 
 FAULT_KINDS = ("outer", "inner", "ball")
-EDGE_PROFILES = ("ramped", "sharp")
+EDGE_PROFILES = ("ramped", "sharp", "blunt")
+FAULT_GEOMETRIES = ("groove", "pit")
 STANDARD_GRAVITY = 9.80665  # m/s^2
 
 
@@ -61,13 +63,33 @@ class Fault:
         t = 0 (0 = facing the outer race). Degrees, wrapped to [0, 360). Default 0.
     element : int, optional
         Index of the rolling element that carries a ball defect (0-based). Default 0.
-    edge : {"ramped", "sharp"}, optional
+    edge : {"ramped", "sharp", "blunt"}, optional
         Depth profile across the defect. ``"ramped"`` (default) lets the depth rise and
         fall as half-cosine ramps over ``ramp_fraction`` of the defect's angular extent at
         entry and exit, the shape of public Sawalhi-Randall implementations; ``"sharp"``
-        is the rectangular notch of seed 004 eq. (15).
+        is the rectangular notch of seed 004 eq. (15); ``"blunt"`` is a notch whose edges
+        repeated impacts have cut flat (Liu & Shao 2014, seed 002 section 4.2): the ball
+        rolls on the flat cut, so its centre drops *linearly* over ``ramp_fraction`` of
+        the extent and meets the far edge's cut at the angle atan(depth / cut length)
+        instead of a vertical wall. (Liu & Shao's explicit forms H_1-H_4 are not in the
+        seed; this is their ball-on-plane segment, with the depth limited by the
+        ball-drop geometry as for every profile.)
     ramp_fraction : float, optional
-        Fraction lambda of the angular extent taken by each ramp, in (0, 0.5]. Default 0.2.
+        Fraction lambda of the angular extent taken by each ramp (or flat cut), in
+        (0, 0.5]. Default 0.2.
+    geometry : {"groove", "pit"}, optional
+        ``"groove"`` (default, Sawalhi & Randall): the defect spans the whole contact
+        across the track, so an element inside it drops by the effective depth and
+        unloads completely. ``"pit"``: a round pit of diameter ``width_mm``, like the
+        EDM faults of the CWRU rig, which removes only the strip of the Hertz contact
+        ellipse it spans across the track; see :meth:`pit_unloading`.
+    engagement : float, optional
+        Ball defects only: probability, in (0, 1], that the defect lies on the rolling
+        band during one spin revolution of the ball. A real ball's spin axis wanders,
+        so a defect on it meets the races only intermittently (the reason Smith &
+        Randall 2015 find few CWRU ball faults diagnosable); revolutions are drawn
+        independently from the scene's seed. Default 1 (every revolution, as in
+        Sawalhi & Randall).
 
     Examples
     --------
@@ -83,6 +105,8 @@ class Fault:
     element: int = 0
     edge: str = "ramped"
     ramp_fraction: float = 0.2
+    geometry: str = "groove"
+    engagement: float = 1.0
 
     def __post_init__(self) -> None:
         if self.kind not in FAULT_KINDS:
@@ -101,6 +125,13 @@ class Fault:
             raise ValueError(f"edge must be one of {EDGE_PROFILES}, got {self.edge!r}")
         object.__setattr__(self, "ramp_fraction",
                            _number("ramp_fraction", self.ramp_fraction, 0.0, 0.5, lo_open=True))
+        if self.geometry not in FAULT_GEOMETRIES:
+            raise ValueError(f"geometry must be one of {FAULT_GEOMETRIES}, got {self.geometry!r}")
+        object.__setattr__(self, "engagement",
+                           _number("engagement", self.engagement, 0.0, 1.0, lo_open=True))
+        if self.engagement < 1.0 and self.kind != "ball":
+            raise ValueError(f"engagement < 1 applies to ball defects only, got "
+                             f"engagement={self.engagement!r} for a {self.kind}-race fault")
 
     def check_fits(self, bearing: Bearing) -> None:
         """Raise ``ValueError`` if the defect does not fit on ``bearing``."""
@@ -142,6 +173,37 @@ class Fault:
             return self.depth_mm
         drop = 0.5 * d * (1.0 - math.sqrt(1.0 - (w / d) ** 2))
         return min(self.depth_mm, drop)
+
+    def pit_unloading(self, ellipse_half_width_mm: float) -> float:
+        """Share of a contact's load that a round pit removes when the contact sits on it.
+
+        A pit of diameter w centred under a Hertz contact ellipse of semi-axis a across
+        the track removes the strip |x| < w/2 of the patch (it covers the short axis of
+        the ellipse, 2b ~ 0.2-0.5 mm, from w ~ 2b on). The Hertz pressure
+        p0 sqrt(1 - x^2/a^2 - y^2/b^2) integrated over y gives a load density
+        proportional to 1 - x^2/a^2 across the track (Johnson, *Contact Mechanics*,
+        1985, sec. 4.2), so the strip carries the share (3 s - s^3) / 2 of the load,
+        s = min(1, w / 2a). A pit as wide as the ellipse unloads the contact fully.
+
+        Parameters
+        ----------
+        ellipse_half_width_mm : float
+            Semi-axis a of the contact ellipse across the track, mm, > 0.
+
+        Returns
+        -------
+        float
+            Load share in [0, 1].
+
+        Examples
+        --------
+        >>> from ballpass import Fault
+        >>> round(Fault("outer", width_mm=0.5, geometry="pit").pit_unloading(1.0), 4)
+        0.3594
+        """
+        a = _number("ellipse_half_width_mm", ellipse_half_width_mm, 0.0, lo_open=True)
+        s = min(1.0, self.width_mm / (2.0 * a))
+        return 0.5 * (3.0 * s - s**3)
 
 
 _SENSOR_NAMES = {"loaded": 0.0, "unloaded": 180.0}
@@ -299,6 +361,27 @@ class Scene:
         cheapest model that covers them. Empty (default) asks for ``envelope`` and
         ``contact_dynamics``; ``("envelope",)`` asks for the envelope-level signature
         only (the cheap ``impulse`` model). See :func:`ballpass.simulate.scene_needs`.
+    waviness : Waviness or sequence of Waviness, optional
+        Distributed form errors of the races or balls (:class:`~ballpass.Waviness`); a
+        scene with waviness needs a model that represents ``"waviness"``. Default none.
+    clearance_um : float, optional
+        Mounted radial clearance, micrometres, in (-50, 200); negative is a radial
+        preload (an interference fit or a tight housing), which loads every element,
+        also those opposite the load zone. Default None: the bearing's own
+        ``radial_clearance_mm``.
+    resonances : sequence of (hz, damping, gain), optional
+        Further structural modes of the transfer path beside ``resonance_hz``: each a
+        frequency (Hz, below 0.45 fs), a damping ratio in (0, 1) and a gain relative
+        to the main resonance (> 0). A real housing has several modes in the
+        measured band (the CWRU drive end shows energy from 2.5 to 5 kHz). Default none.
+    noise_slope_db_oct : float, optional
+        Spectral slope of the background noise of ``snr_db``/``noise_rms``, dB per
+        octave, in [-12, 12]: 0 (default) is white, -3 pink, -6 brown (a machine's
+        background falls with frequency). The RMS stays as set.
+    shaft_harmonics : sequence of float, optional
+        Amplitudes of the shaft-rate lines 1x, 2x, ... the rest of the machine adds
+        (unbalance, misalignment, looseness), m/s^2 each, >= 0; phases drawn from the
+        seed. Default none.
 
     Examples
     --------
@@ -323,6 +406,11 @@ class Scene:
     noise_rms: float | None = None
     gravity: bool = True
     needs: tuple[str, ...] = ()
+    waviness: tuple = ()
+    clearance_um: float | None = None
+    resonances: tuple = ()
+    noise_slope_db_oct: float = 0.0
+    shaft_harmonics: tuple = ()
 
     def __post_init__(self) -> None:
         bearing = self.bearing
@@ -406,6 +494,33 @@ class Scene:
         if not isinstance(self.gravity, bool):
             raise TypeError(f"gravity must be a bool, got {self.gravity!r}")
         object.__setattr__(self, "needs", tuple(sorted(check_needs(self.needs))))
+        self._check_realism()
+
+    def _check_realism(self) -> None:
+        """Validate and normalise waviness, clearance, extra resonances and background."""
+        wav = self.waviness
+        wav = (wav,) if isinstance(wav, Waviness) else wav
+        if not isinstance(wav, (tuple, list)) or not all(isinstance(w, Waviness) for w in wav):
+            raise TypeError(f"waviness must be a Waviness or a sequence of them, got {wav!r}")
+        object.__setattr__(self, "waviness", tuple(wav))
+        if self.clearance_um is not None:
+            object.__setattr__(self, "clearance_um", _number(
+                "clearance_um", self.clearance_um, -50.0, 200.0, lo_open=True, hi_open=True))
+        modes = []
+        for mode in self.resonances:
+            if not isinstance(mode, (tuple, list)) or len(mode) != 3:
+                raise ValueError(f"resonances must hold (hz, damping, gain) triples, got "
+                                 f"{mode!r}")
+            hz = _number("resonances hz", mode[0], 0.0, 0.45 * self.fs, lo_open=True)
+            zeta = _number("resonances damping", mode[1], 0.0, 1.0, lo_open=True,
+                           hi_open=True)
+            modes.append((hz, zeta, _number("resonances gain", mode[2], 0.0, 100.0,
+                                            lo_open=True)))
+        object.__setattr__(self, "resonances", tuple(modes))
+        object.__setattr__(self, "noise_slope_db_oct", _number(
+            "noise_slope_db_oct", self.noise_slope_db_oct, -12.0, 12.0))
+        object.__setattr__(self, "shaft_harmonics", tuple(
+            _number("shaft_harmonics", a, 0.0, 1e4) for a in self.shaft_harmonics))
 
     # ------------------------------------------------------------------ derived
     @property

@@ -56,7 +56,8 @@ import numpy as np
 from numba import njit
 
 from ._kernels import (
-    K_DDEPTH,
+    K_CACHE,
+    KC_RAMP,
     N_CORE,
     P_WR,
     P_Z,
@@ -296,14 +297,11 @@ def _ok(seg, r_y, res, bound):
 
 @njit(cache=True, error_model="numpy")
 def _on_ramp(kin):
-    """True when some element's defect depth is changing (non-zero rate) at the
-    kinematics in ``kin`` (computed with rates): it is on a ramp of a defect. Segments
-    are split at every fault edge and ramp end, so one interior time decides for the
-    whole segment."""
-    for j in range(kin.shape[1]):
-        if kin[K_DDEPTH, j] != 0.0:
-            return True
-    return False
+    """True when some element is on the ramp of a defect at the kinematics in ``kin``
+    (the flag :func:`._kernels.fault_depths` sets; waviness, smooth, does not count).
+    Segments are split at every fault edge and ramp end, so one interior time decides
+    for the whole segment."""
+    return kin[K_CACHE, KC_RAMP] != 0.0
 
 
 @njit(cache=True, error_model="numpy")
@@ -427,7 +425,7 @@ def _emit(t0, t1, n_pieces, k_next, h_out, seg, res, prop, p, walk, faults, sens
                 yi = seg[R_YI]
                 rate = element_angles(tk, p, walk, kin)
                 fault_depths(tk, p, faults, kin, rate, False)
-                contact_loads(yi, p, kin)
+                contact_loads(yi, p, kin, 4)
                 housing_accel(yi, yi, p, sensors, kin, 0.0, out, k_next, False)
             if keep:
                 _store_state(states, k_next, seg, R_YI, res)

@@ -42,25 +42,35 @@ P_CAGE, P_SPIN, P_Z = 14, 15, 16
 P_WR, P_ZETA = 17, 18
 P_US0, P_VS0 = 19, 20
 P_COS_STEP, P_SIN_STEP = 21, 22
-N_PARAMS = 23
+P_CD = 23  # Hunt-Crossley contact damping factor alpha, s/m (0 = no contact damping)
+N_PARAMS = 24
 
 # columns of the fault table: kind code, centre (rad), half extent (rad), depth (m),
-# ramp fraction, element (ball defects), initial angle of that element (rad)
+# ramp fraction, element (ball defects), initial angle of that element (rad), ramp
+# shape (RAMP_COSINE or RAMP_LINEAR), engagement probability per spin revolution (ball
+# defects) and the seed of those draws.
+# Waviness rows (kinds KIND_WAVY_*) reuse the columns: F_CENTRE the phase (rad), F_HALF
+# the order, F_DEPTH the amplitude (m), F_ELEM the ball (KIND_WAVY_BALL).
 F_KIND, F_CENTRE, F_HALF, F_DEPTH, F_RAMP, F_ELEM, F_PSI0 = 0, 1, 2, 3, 4, 5, 6
-N_FCOLS = 7
+F_SHAPE, F_ENGAGE, F_SEED = 7, 8, 9
+N_FCOLS = 10
+RAMP_COSINE, RAMP_LINEAR = 0, 1
 # columns of the sensor table: angle (rad), attenuation kappa, cos and sin of the angle
 S_ANG, S_ATT, S_COS, S_SIN = 0, 1, 2, 3
 N_SCOLS = 4
 # rows of the kinematics scratch; row K_CACHE holds the last cage angle, its cos and
-# sin, and the number of rotations since they were last computed exactly
+# sin, the number of rotations since they were last computed exactly, the cage speed
+# (rad/s, column KC_RATE) and whether an element is on a defect ramp (KC_RAMP)
 K_PSI, K_COS, K_SIN, K_DEPTH, K_DDEPTH, K_Q, K_CACHE = 0, 1, 2, 3, 4, 5, 6
 N_KIN = 7
+KC_RATE, KC_RAMP = 4, 5
 #: cos/sin of the cage angle are recomputed exactly after this many small rotations
 #: (each rotation may add a rounding; 64 bound the drift to ~1e-14)
 CACHE_REFRESH = 64
 
-# fault kinds (codes in the F_KIND column)
+# fault kinds (codes in the F_KIND column): localized defects, then waviness rows
 KIND_OUTER, KIND_INNER, KIND_BALL = 0, 1, 2
+KIND_WAVY_OUTER, KIND_WAVY_INNER, KIND_WAVY_BALL = 3, 4, 5
 
 N_CORE = 8
 TWO_PI = 2.0 * math.pi
@@ -121,7 +131,7 @@ def cage_angle(t, p, walk):
 @njit(cache=True, error_model="numpy")
 def kinematics_scratch(z):
     """Fresh ``kin`` scratch for Z elements (zeroed: no cached cage angle yet)."""
-    return np.zeros((N_KIN, max(z, 4)))
+    return np.zeros((N_KIN, max(z, 6)))
 
 
 @njit(cache=True, error_model="numpy")
@@ -153,6 +163,7 @@ def element_angles(t, p, walk, kin):
     kin[K_CACHE, 0] = cage
     kin[K_CACHE, 1] = c
     kin[K_CACHE, 2] = sn
+    kin[K_CACHE, KC_RATE] = rate
     cs = p[P_COS_STEP]
     ss = p[P_SIN_STEP]
     for j in range(int(p[P_Z])):
@@ -164,11 +175,14 @@ def element_angles(t, p, walk, kin):
 
 
 @njit(cache=True, error_model="numpy")
-def profile(offset, half, depth, ramp):
+def profile(offset, half, depth, ramp, shape):
     """Depth of a defect at angular offset ``offset`` from its centre, m.
 
     ``half`` is the half extent (rad), ``ramp`` the fraction of the extent taken by each
-    half-cosine ramp (0 = sharp rectangular notch).
+    ramp (0 = sharp rectangular notch), ``shape`` the ramp's form: RAMP_COSINE, a
+    half-cosine (smooth at both ends), or RAMP_LINEAR, a blunted edge (Liu & Shao 2014,
+    seed 002 section 4.2: the ball rolls on the flat cut of the edge, so its centre
+    drops linearly from the edge to the ramp end).
     """
     a = abs(offset)
     if a >= half:
@@ -178,11 +192,13 @@ def profile(offset, half, depth, ramp):
     x = (half - a) / (2.0 * half)  # 0 at the edge, 0.5 at the centre
     if x >= ramp:
         return depth
+    if shape == RAMP_LINEAR:
+        return depth * x / ramp
     return depth * 0.5 * (1.0 - math.cos(math.pi * x / ramp))
 
 
 @njit(cache=True, error_model="numpy")
-def profile_slope(offset, half, depth, ramp):
+def profile_slope(offset, half, depth, ramp, shape):
     """d(profile)/d(offset), m/rad: zero outside the ramps (a sharp notch's jumps are
     events, handled by the integrators, not slopes)."""
     a = abs(offset)
@@ -192,6 +208,8 @@ def profile_slope(offset, half, depth, ramp):
     if x >= ramp:
         return 0.0
     dx = -0.5 / half if offset > 0.0 else 0.5 / half
+    if shape == RAMP_LINEAR:
+        return depth / ramp * dx
     return depth * 0.5 * math.sin(math.pi * x / ramp) * (math.pi / ramp) * dx
 
 
@@ -233,34 +251,102 @@ def path_rate(faults, i, p, cage_rate, shaft_w):
 
 
 @njit(cache=True, error_model="numpy")
+def engaged(faults, i, spin):
+    """Whether ball defect i lies on the rolling band during the spin revolution that
+    holds spin phase ``spin`` (rad): a pseudo-random draw per revolution with
+    probability ``faults[i, F_ENGAGE]`` (1 = always, Sawalhi & Randall).
+
+    Revolution k runs from spin phase 2 pi k - pi/2 to 2 pi k + 3 pi/2, so it holds the
+    outer-race contact (phase 2 pi k) and the inner-race one (2 pi k + pi) and switches
+    where neither face can be inside a defect (narrower than the ball): no new events.
+    The draw is a hash of (k, seed), fixed for a scene.
+    """
+    prob = faults[i, F_ENGAGE]
+    if prob >= 1.0:
+        return True
+    k = math.floor((spin + 0.5 * math.pi) / TWO_PI)
+    x = math.sin(k * 12.9898 + faults[i, F_SEED] * 78.233) * 43758.5453
+    return x - math.floor(x) < prob
+
+
+@njit(cache=True, error_model="numpy")
+def waviness(faults, i, p, kin, th, w, cage_rate, rates):
+    """Add the waviness row i of the fault table to the contact geometry in ``kin``.
+
+    A race (or ball) surface raised by r(phi) = A cos(q phi + phase) (order q, amplitude
+    A, m) closes the gap of the contact at that point: the deflection of element j
+    gains r, i.e. ``kin[K_DEPTH, j]`` (the extra clearance) loses it (seed 002 section
+    4.4, Liu & Shao 2015 eq. 19: delta_j = ... + Pi_j). phi is the contact's angle on
+    the wavy body: psi_j on the outer race, psi_j - theta on the inner race; on ball e
+    its spin phase s at the outer-race contact and s + pi at the inner-race one.
+    """
+    kind = int(faults[i, F_KIND])
+    q = faults[i, F_HALF]
+    amp = faults[i, F_DEPTH]
+    phase = faults[i, F_CENTRE]
+    if kind == KIND_WAVY_BALL:
+        e = int(faults[i, F_ELEM])
+        spin = p[P_SPIN] * (kin[K_PSI, e] - faults[i, F_PSI0]) + phase
+        for face in range(2):
+            arg = q * (spin + math.pi * face)
+            kin[K_DEPTH, e] -= amp * math.cos(arg)
+            if rates:
+                kin[K_DDEPTH, e] += amp * q * math.sin(arg) * p[P_SPIN] * cage_rate
+        return
+    rel = th if kind == KIND_WAVY_INNER else 0.0
+    rate = cage_rate - w if kind == KIND_WAVY_INNER else cage_rate
+    for j in range(int(p[P_Z])):
+        arg = q * (kin[K_PSI, j] - rel) + phase
+        kin[K_DEPTH, j] -= amp * math.cos(arg)
+        if rates:
+            kin[K_DDEPTH, j] += amp * q * math.sin(arg) * rate
+
+
+@njit(cache=True, error_model="numpy")
 def fault_depths(t, p, faults, kin, cage_rate, rates):
     """Extra clearance opened by the defects for each element at time t (m) into
-    ``kin[K_DEPTH]``; with ``rates`` also its time derivative (m/s) into
-    ``kin[K_DDEPTH]`` (``cage_rate`` in rad/s). Needs the element angles in ``kin``.
+    ``kin[K_DEPTH]``; with ``rates`` (always with contact damping, which needs them)
+    also its time derivative (m/s) into ``kin[K_DDEPTH]`` (``cage_rate`` in rad/s).
+    Needs the element angles in ``kin``. Sets ``kin[K_CACHE, KC_RAMP]`` to 1 when an
+    element is on a defect ramp.
 
     Outer race: fixed centre. Inner race: centre turns with the shaft. Ball defect on
     element e: its spin phase advances at the ball spin rate relative to the cage
     (rolling without slip on the element's own path), facing the outer race at phase 0
-    and the inner race at phase pi.
+    and the inner race at phase pi; it meets the races only on the spin revolutions
+    drawn by :func:`engaged`. Waviness rows: :func:`waviness`.
     """
     z = int(p[P_Z])
+    rates = rates or p[P_CD] != 0.0
     for j in range(z):
         kin[K_DEPTH, j] = 0.0
         kin[K_DDEPTH, j] = 0.0
+    on_ramp = 0.0
     th = shaft_angle(t, p)
     w = shaft_rate(t, p)
     for i in range(faults.shape[0]):
+        kind = int(faults[i, F_KIND])
+        if kind >= KIND_WAVY_OUTER:
+            waviness(faults, i, p, kin, th, w, cage_rate, rates)
+            continue
         half = faults[i, F_HALF]
         depth = faults[i, F_DEPTH]
         ramp = faults[i, F_RAMP]
+        shape = faults[i, F_SHAPE]
         dr = path_rate(faults, i, p, cage_rate, w)
-        if int(faults[i, F_KIND]) == KIND_BALL:
+        if kind == KIND_BALL:
             e = int(faults[i, F_ELEM])
+            spin = faults[i, F_CENTRE] + p[P_SPIN] * (kin[K_PSI, e] - faults[i, F_PSI0])
             for face in range(2):
                 off = path_offset(faults, i, p, kin[K_PSI, e], th, face)
-                kin[K_DEPTH, e] += profile(off, half, depth, ramp)
+                if abs(off) >= half or not engaged(faults, i, spin):
+                    continue
+                kin[K_DEPTH, e] += profile(off, half, depth, ramp, shape)
+                slope = profile_slope(off, half, depth, ramp, shape)
+                if slope != 0.0:
+                    on_ramp = 1.0
                 if rates:
-                    kin[K_DDEPTH, e] += dr * profile_slope(off, half, depth, ramp)
+                    kin[K_DDEPTH, e] += dr * slope
         else:
             ref = race_reference(faults, i, th)
             # Only the element nearest the centre (at most half a spacing away) and
@@ -279,9 +365,13 @@ def fault_depths(t, p, faults, kin, cage_rate, rates):
             for c in range(n_cand):
                 j = (near + c) % z
                 off = wrap_pi(kin[K_PSI, j] - ref)  # = path_offset, hoisted
-                kin[K_DEPTH, j] += profile(off, half, depth, ramp)
+                kin[K_DEPTH, j] += profile(off, half, depth, ramp, shape)
+                slope = profile_slope(off, half, depth, ramp, shape)
+                if slope != 0.0:
+                    on_ramp = 1.0
                 if rates:
-                    kin[K_DDEPTH, j] += dr * profile_slope(off, half, depth, ramp)
+                    kin[K_DDEPTH, j] += dr * slope
+    kin[K_CACHE, KC_RAMP] = on_ramp
 
 
 @njit(cache=True, error_model="numpy")
@@ -300,18 +390,41 @@ def hertz(d, kh, nh):
 
 
 @njit(cache=True, error_model="numpy")
-def contact_loads(y, p, kin):
-    """Hertz contact loads Q_j = K max(delta_j, 0)^n, N, into ``kin[K_Q]``.
+def damped(q, d, ddu, ddv, du, dv, cj, sj, rate, ddepth, alpha):
+    """Hunt-Crossley contact load Q (1 + alpha d(delta)/dt), N, clamped at zero, from
+    the elastic load q = K delta^n of a compressed contact: the damping force alpha Q
+    d(delta)/dt grows with the load and vanishes on separation with it (Hunt &
+    Crossley 1975), and a receding contact never pulls. d(delta)/dt = (du_s - du_p)
+    cos psi + (dv_s - dv_p) sin psi + (dv cos psi - du sin psi) psi' - d(depth)/dt."""
+    vel = ddu * cj + ddv * sj + (dv * cj - du * sj) * rate - ddepth
+    f = 1.0 + alpha * vel
+    return q * f if f > 0.0 else 0.0
+
+
+@njit(cache=True, error_model="numpy")
+def contact_loads(y, p, kin, iv):
+    """Contact loads, N, into ``kin[K_Q]``: Hertz Q_j = K max(delta_j, 0)^n, times the
+    Hunt-Crossley factor of :func:`damped` with contact damping (``p[P_CD] > 0``).
 
     delta_j = (u_s - u_p) cos psi_j + (v_s - v_p) sin psi_j - c - depth_j
     (Sawalhi & Randall 2008 eq. 12 as printed in seed 004). Separated elements carry
-    exactly zero force. ``y`` starts with u_s, v_s, u_p, v_p (either layout).
+    exactly zero force. ``y`` starts with u_s, v_s, u_p, v_p; their rates are at
+    ``y[iv:iv + 4]`` (4 for the core layout, 4 + n_res for the full one).
     """
     du = y[0] - y[2]
     dv = y[1] - y[3]
+    alpha = p[P_CD]
+    ddu = y[iv] - y[iv + 2]
+    ddv = y[iv + 1] - y[iv + 3]
     for j in range(int(p[P_Z])):
-        d = du * kin[K_COS, j] + dv * kin[K_SIN, j] - p[P_CLEAR] - kin[K_DEPTH, j]
-        kin[K_Q, j] = hertz(d, p[P_KH], p[P_NH]) if d > 0.0 else 0.0
+        cj = kin[K_COS, j]
+        sj = kin[K_SIN, j]
+        d = du * cj + dv * sj - p[P_CLEAR] - kin[K_DEPTH, j]
+        q = hertz(d, p[P_KH], p[P_NH]) if d > 0.0 else 0.0
+        if alpha != 0.0 and q > 0.0:
+            q = damped(q, d, ddu, ddv, du, dv, cj, sj, kin[K_CACHE, KC_RATE],
+                       kin[K_DDEPTH, j], alpha)
+        kin[K_Q, j] = q
 
 
 @njit(cache=True, error_model="numpy")
@@ -336,11 +449,17 @@ def core_forces(y, p, kin, dydt):
     dv = y[1] - y[3]
     fu = 0.0
     fv = 0.0
+    alpha = p[P_CD]
+    ddu = y[4] - y[6]
+    ddv = y[5] - y[7]
     for j in range(int(p[P_Z])):
         cj = kin[K_COS, j]
         sj = kin[K_SIN, j]
         d = du * cj + dv * sj - p[P_CLEAR] - kin[K_DEPTH, j]
         q = hertz(d, p[P_KH], p[P_NH]) if d > 0.0 else 0.0
+        if alpha != 0.0 and q > 0.0:
+            q = damped(q, d, ddu, ddv, du, dv, cj, sj, kin[K_CACHE, KC_RATE],
+                       kin[K_DDEPTH, j], alpha)
         kin[K_Q, j] = q
         fu += q * cj
         fv += q * sj
@@ -388,6 +507,7 @@ def housing_accel(y, dydt, p, sensors, kin, cage_rate, out, row, rates):
         ddv = y[5] - y[7]
     nh = p[P_NH]
     c = p[P_CLEAR]
+    alpha = p[P_CD]
     for i in range(sensors.shape[0]):
         ci = sensors[i, S_COS]
         si = sensors[i, S_SIN]
@@ -406,6 +526,13 @@ def housing_accel(y, dydt, p, sensors, kin, cage_rate, out, row, rates):
                     d = du * cj + dv * sj - c - kin[K_DEPTH, j]
                     dd = ddu * cj + ddv * sj + (dv * cj - du * sj) * cage_rate - kin[K_DDEPTH, j]
                     dq = nh * q / d * dd
+                    if alpha != 0.0:
+                        # Hunt-Crossley: Q = H (1 + alpha dd); d/dt adds H alpha dd',
+                        # dd' from the relative acceleration (the second derivatives
+                        # of the depth and of the projection are left out: this rate
+                        # only shapes the resonator input between steps)
+                        dd2 = (dydt[4] - dydt[6]) * cj + (dydt[5] - dydt[7]) * sj
+                        dq += q / (1.0 + alpha * dd) * alpha * dd2
                     dcos = -(sj * ci - cj * si) * cage_rate
                     dacc += w * (dq * cos_rel + q * (1.0 + kappa * cos_rel) * dcos) / mp
         out[row, i] = acc
@@ -459,7 +586,7 @@ def sensor_output(t, y, p, walk, faults, sensors, n_res, kin, out):
             out[0, i] = -(2.0 * zeta * w * y[nd + 4 + i] + w * w * y[4 + i])
         return
     kinematics(t, p, walk, faults, kin)
-    contact_loads(y, p, kin)
+    contact_loads(y, p, kin, 4)
     housing_accel(y, y, p, sensors, kin, 0.0, out, 0, False)
 
 
@@ -628,6 +755,6 @@ def contact_loads_many(t, states, p, walk, faults):
     out = np.empty((t.shape[0], z))
     for k in range(t.shape[0]):
         kinematics(t[k], p, walk, faults, kin)
-        contact_loads(states[k], p, kin)
+        contact_loads(states[k], p, kin, states.shape[1] // 2)
         out[k, :] = kin[K_Q, :z]
     return out

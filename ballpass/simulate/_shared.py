@@ -81,7 +81,9 @@ def to_output_rate(out: np.ndarray, n_samples: int, oversample: int) -> np.ndarr
 
 
 def add_noise(scene: Scene, accel: np.ndarray) -> np.ndarray:
-    """White Gaussian measurement noise from the scene's own noise stream.
+    """Gaussian measurement noise from the scene's own noise stream (white, or coloured
+    by ``noise_slope_db_oct``) and the shaft-rate lines of ``shaft_harmonics`` (see
+    :mod:`.background`).
 
     Parameters
     ----------
@@ -95,6 +97,9 @@ def add_noise(scene: Scene, accel: np.ndarray) -> np.ndarray:
     -------
     ndarray (n_sensors, n_samples)
     """
+    from .background import coloured_noise, shaft_lines
+
+    accel = accel + shaft_lines(scene, accel.shape[-1]) if scene.shaft_harmonics else accel
     if scene.snr_db is None and scene.noise_rms is None:
         return accel
     _slip_seed, noise_seed = np.random.SeedSequence(scene.seed).spawn(2)
@@ -104,7 +109,7 @@ def add_noise(scene: Scene, accel: np.ndarray) -> np.ndarray:
     else:
         rms = np.sqrt(np.mean(accel**2, axis=1, keepdims=True))
         sigma = rms * 10.0 ** (-scene.snr_db / 20.0)
-    return accel + sigma * rng.standard_normal(accel.shape)
+    return accel + sigma * coloured_noise(rng, accel.shape, scene.fs, scene.noise_slope_db_oct)
 
 
 def check_finite(scene: Scene, accel: np.ndarray, model: str) -> None:

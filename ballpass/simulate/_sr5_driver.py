@@ -101,7 +101,8 @@ def _events(bm: BearingModel, t_end: float):
     slope = float(np.max(np.abs(np.diff(walk)))) * z / (2.0 * math.pi) if walk.size > 1 else 0.0
     cage = p[_K.P_CAGE] * w_max * (1.0 + slope)
     rates = {_K.KIND_OUTER: cage, _K.KIND_INNER: w_max, _K.KIND_BALL: p[_K.P_SPIN] * cage}
-    kinds = bm.faults[:, _K.F_KIND].astype(int)
+    local = bm.faults[:n_faults]  # the localized faults; waviness rows follow them
+    kinds = local[:, _K.F_KIND].astype(int)
     rate = max((rates[k] for k in kinds), default=0.0)
     n_scan = max(2, math.ceil(t_end * rate / 0.5) + 1)
     # at most one crossing of each level per turn of the offset, on every path
@@ -109,7 +110,7 @@ def _events(bm: BearingModel, t_end: float):
                    * (math.ceil(rates[k] * t_end / (2.0 * math.pi)) + 2) for k in kinds)
     before, after = np.empty(capacity), np.empty(capacity)
     index = np.empty((capacity, 3), dtype=np.int64)
-    n = _K.find_crossings(p, walk, bm.faults, np.linspace(0.0, t_end, n_scan), bm.levels,
+    n = _K.find_crossings(p, walk, local, np.linspace(0.0, t_end, n_scan), bm.levels,
                           before, after, index) if n_faults else 0
     if n < 0:
         raise RuntimeError(f"more fault crossings than the kinematic bound {capacity}")
@@ -129,7 +130,7 @@ def _ramp_times(bm: BearingModel) -> tuple[float, float]:
     cage = p[_K.P_CAGE] * w_max
     rate = {_K.KIND_OUTER: cage, _K.KIND_INNER: w_max - cage, _K.KIND_BALL: p[_K.P_SPIN] * cage}
     every, deep = math.inf, math.inf
-    for row in bm.faults:
+    for row in bm.faults[:bm.levels.shape[0]]:
         if row[_K.F_RAMP] > 0.0:
             t = row[_K.F_RAMP] * 2.0 * row[_K.F_HALF] / rate[int(row[_K.F_KIND])]
             every = min(every, t)
@@ -280,6 +281,43 @@ def integrate(bm: BearingModel, solver: str, *, h_out: float, n_out: int,
                           info=info)
 
 
+def _mode_filter(hz: float, zeta: float, hz1: float, zeta1: float, fs: float):
+    """Digital filter (b, a) of T_k(s) / T_1(s) at sampling rate fs: a further
+    structural mode k seen through the output of the main resonator 1, with
+    T(s) = (2 zeta w s + w^2) / (s^2 + 2 zeta w s + w^2) the transmissibility of a
+    base-excited resonator (its absolute acceleration over the base's). Bilinear
+    transform with every natural frequency pre-warped (w -> 2 fs tan(w / 2 fs)), so
+    both resonances sit exactly where they should."""
+    from scipy import signal
+
+    def warp(f):
+        return 2.0 * fs * math.tan(math.pi * f / fs)
+
+    w, w1 = warp(hz), warp(hz1)
+    num = np.polymul([2 * zeta * w, w * w], [1.0, 2 * zeta1 * w1, w1 * w1])
+    den = np.polymul([1.0, 2 * zeta * w, w * w], [2 * zeta1 * w1, w1 * w1])
+    return signal.bilinear(num, den, fs=fs)
+
+
+def add_modes(scene: Scene, out: np.ndarray, fs: float) -> np.ndarray:
+    """The sensor output with the scene's further structural modes
+    (``Scene.resonances``): y + sum_k g_k (T_k / T_1) y, where y (n, n_sensors) is the
+    main resonator's output at rate fs, so that the result is sum over all modes of
+    g_k T_k applied to the housing excitation (parallel modes of the transfer path;
+    the resonators are linear and one-way coupled, so this equals integrating them
+    all). The filters start in the steady state of the first sample."""
+    if not scene.resonances:
+        return out
+    from scipy import signal
+
+    total = out.copy()
+    for hz, zeta, gain in scene.resonances:
+        b, a = _mode_filter(hz, zeta, scene.resonance_hz, scene.resonance_damping, fs)
+        zi = signal.lfilter_zi(b, a)[:, None] * out[0][None, :]
+        total += gain * signal.lfilter(b, a, out, axis=0, zi=zi)[0]
+    return total
+
+
 def _run(scene: Scene, solver: str, *, resonator: bool, dt=None, rtol=None, atol=None,
          params: SR5Parameters | None = None, return_forces: bool = False,
          oversample: int = OVERSAMPLE) -> SimulationResult:
@@ -287,6 +325,9 @@ def _run(scene: Scene, solver: str, *, resonator: bool, dt=None, rtol=None, atol
     if params is not None and not isinstance(params, SR5Parameters):
         raise TypeError(f"params must be SR5Parameters for the sr4/sr5 models, got "
                         f"{type(params).__name__}")
+    if scene.resonances and not resonator:
+        raise ValueError(f"Scene.resonances={scene.resonances!r} adds modes beside the main "
+                         "resonator, which sr4 does not have: use model='sr5'")
     t_wall = time.perf_counter()
     bm = build_model(scene, params, resonator=resonator)
     n_samples = scene.n_samples
@@ -294,6 +335,7 @@ def _run(scene: Scene, solver: str, *, resonator: bool, dt=None, rtol=None, atol
                     n_out=n_samples * oversample, dt=dt, rtol=rtol, atol=atol,
                     keep_states=return_forces)
     out, states, info = raw.output, raw.states, raw.info
+    out = add_modes(scene, out, 1.0 / raw.h_out)
     h_out = raw.h_out
     n_sensors = len(scene.sensors)
 
@@ -354,7 +396,7 @@ SR5 = Model(
     name="sr5",
     description="Sawalhi-Randall 5-DOF: shaft, pedestal and a high-frequency resonator per "
                 "sensor; Hertz contacts, clearance, slip, localized faults",
-    represents=DEFAULT_NEEDS | {"contact_forces", "varying_speed"},
+    represents=DEFAULT_NEEDS | {"contact_forces", "varying_speed", "waviness"},
     relative_cost=1.0,
     solvers=tuple(SOLVERS),
     fixed_step_solvers=("rk4",),
@@ -369,7 +411,7 @@ SR4 = Model(
     name="sr4",
     description="Sawalhi-Randall 4-DOF: shaft and pedestal, sensors read the housing "
                 "acceleration (no resonator)",
-    represents=frozenset({"contact_dynamics", "contact_forces", "varying_speed"}),
+    represents=frozenset({"contact_dynamics", "contact_forces", "varying_speed", "waviness"}),
     # measured by benchmarks/models_cost.py (the resonators cost little: they are
     # advanced exactly between steps)
     relative_cost=0.9,

@@ -28,11 +28,21 @@ deviations from the paper, stated:
   1984), so loaded- and unloaded-zone sensors differ; with kappa = 0 it is the pedestal
   acceleration projected on the sensor axis;
 * sensors are AC-coupled: the mean of each output channel is removed;
-* the balls are massless (quasi-static), there is no contact damping, no centrifugal or
-  gyroscopic load and no lubricant film.
+* the balls are massless (quasi-static), there is no centrifugal or gyroscopic load
+  and no lubricant film; contact damping is an option (``contact_damping``, Hunt &
+  Crossley), off by default as in the paper;
+* the shaft support spring k_s rests at the loaded static position, so the bearing
+  carries all of F_r and the shaft's weight (``shaft_support="loaded"``, default). In
+  the paper the spring rests at the unloaded position and shares the static load;
+  ``shaft_support="free"`` does that (see :class:`SR5Parameters` for what it changes).
 
-Masses: sources in the Sawalhi-Randall lineage differ. We take m_s = 1.0 kg for the
-shaft and inner ring and m_p = 6.0 kg for the pedestal; both are overridable.
+Options of seed 002 (section 4): race and ball waviness (``Scene(waviness=...)``,
+:func:`._kernels.waviness`), blunted defect edges (``Fault(edge="blunt")``), contact
+damping (``SR5Parameters(contact_damping=...)``). Realism options of the scene:
+mounted clearance or preload (``Scene(clearance_um=...)``), round EDM pits that unload
+the contact only partly (``Fault(geometry="pit")``), ball defects that meet the races
+intermittently (``Fault(engagement=...)``), several structural modes
+(``Scene(resonances=...)``), coloured background and shaft lines.
 """
 
 from __future__ import annotations
@@ -57,30 +67,55 @@ class SR5Parameters:
     Parameters
     ----------
     shaft_mass : float
-        m_s, shaft and inner ring, kg. Default 1.0.
+        m_s, shaft and inner ring, kg. Default 3.26, the value of Ruan et al.'s public
+        Modelica implementation of the Sawalhi-Randall model (as quoted in issue 9 of
+        this project; the 1.0 kg used before had no source).
     pedestal_mass : float
-        m_p, pedestal and outer ring, kg. Default 6.0.
+        m_p, pedestal and outer ring, kg. Default 6.64 (Ruan et al., as above; was 6.0).
     shaft_stiffness, shaft_damping : float
-        k_s (N/m) and c_s (N s/m) of the shaft support. Defaults 7.42e7, 1376.8.
+        k_s (N/m) and c_s (N s/m) of the shaft support. Defaults 7.42e7, 1376.8
+        (Sawalhi & Randall 2008, Table 1).
     pedestal_stiffness, pedestal_damping : float
-        k_p (N/m) and c_p (N s/m) of the pedestal. Defaults 1.51e7, 2210.7.
+        k_p (N/m) and c_p (N s/m) of the pedestal. Defaults 1.51e7, 2210.7
+        (Sawalhi & Randall 2008, Table 1).
     contact_stiffness : float or None
-        Hertz load-deflection constant K, N/m^n; None takes
-        :meth:`ballpass.Bearing.hertz_stiffness`.
+        Hertz load-deflection constant K, N/m^n; None (default) takes
+        :meth:`ballpass.Bearing.hertz_stiffness`, derived from the bearing geometry.
+    contact_damping : float
+        Hunt-Crossley factor alpha, s/m, >= 0: each contact carries
+        Q = K delta^n (1 + alpha d(delta)/dt), never negative (Hunt & Crossley 1975).
+        The damping force alpha K delta^n d(delta)/dt grows with the load, as the
+        lubricated-contact damping of Kong et al. 2019 (seed 002 section 4.5) does, and
+        vanishes on separation with the contact itself (no jump at contact). The factor
+        follows from the coefficient of restitution e at an impact speed v as
+        alpha = 3 (1 - e) / (2 v) (Hunt & Crossley); Kong et al.'s dependence on speed
+        and lubricant viscosity is not modelled (their formula is not in the seed).
+        Default 0 (no contact damping, as Sawalhi & Randall).
+    shaft_support : {"loaded", "free"}
+        Where the shaft support spring k_s rests. ``"loaded"`` (default): at the loaded
+        static position, so the bearing carries all of F_r and the shaft's weight.
+        ``"free"``: at the unloaded position, as in Sawalhi & Randall 2008, so k_s
+        carries part of the static load (for a 6205 at 500 N about a third, see
+        docs/sim2real.md) and the load zone shrinks.
     """
 
-    shaft_mass: float = 1.0
-    pedestal_mass: float = 6.0
+    shaft_mass: float = 3.26
+    pedestal_mass: float = 6.64
     shaft_stiffness: float = 7.42e7
     shaft_damping: float = 1376.8
     pedestal_stiffness: float = 1.51e7
     pedestal_damping: float = 2210.7
     contact_stiffness: float | None = None
+    contact_damping: float = 0.0
+    shaft_support: str = "loaded"
 
     def __post_init__(self) -> None:
+        if self.shaft_support not in ("loaded", "free"):
+            raise ValueError(f"shaft_support must be 'loaded' or 'free', got "
+                             f"{self.shaft_support!r}")
         for f in fields(self):
             value = getattr(self, f.name)
-            if value is None and f.name == "contact_stiffness":
+            if f.name == "shaft_support" or (value is None and f.name == "contact_stiffness"):
                 continue
             # damping may be zero (an undamped structure); masses and stiffnesses not
             check_number(f.name, value, 0.0, lo_open=not f.name.endswith("damping"))
@@ -159,12 +194,80 @@ class BearingModel:
         self._acc = np.empty((1, len(self.scene.sensors)))
 
 
-def _fault_table(scene: Scene, psi0: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Kernel fault table and the event levels (rad) of each fault."""
+def _ellipse_half_width_m(bearing, race: str, load_n: float) -> float:
+    """Semi-axis a (m) of the Hertz contact ellipse across the track of one contact
+    under ``load_n``: a = a* (3 Q (1 - nu^2) / (E sum_rho))^(1/3) for like materials
+    (Harris & Kotzalas ch. 6; a* from :func:`ballpass.bearing.hertz_factors`). For a
+    roller, half its length (a line contact spans the roller)."""
+    from ..bearing import hertz_factors
+
+    if bearing.element == "roller":
+        return 0.5 * bearing.roller_length_mm * 1e-3
+    total, diff = bearing.contact_curvature(race)
+    a_star = hertz_factors(diff).a_star
+    nu = bearing.poisson_ratio
+    return a_star * (3.0 * load_n * (1.0 - nu * nu) / (bearing.youngs_modulus_pa * total)) ** (
+        1.0 / 3.0)
+
+
+#: Stribeck's load of the most loaded element, Q_max = 4.37 F_r / Z (zero clearance,
+#: Harris & Kotzalas ch. 7), the reference load of a pit's equivalent depth
+STRIBECK_FACTOR = 4.37
+
+
+def _pit_depth_m(scene: Scene, fault, kh: float, bearing_load: float) -> float:
+    """Extra clearance (m) equivalent to a round pit that unloads a contact partly.
+
+    The contact on the pit keeps the share 1 - f of its load (f from
+    :meth:`ballpass.Fault.pit_unloading`, with the ellipse of the most loaded element,
+    Stribeck's Q_max). At that element's deflection delta_ref = (Q_max / K)^(1/n) the
+    same load follows from an extra clearance h = delta_ref (1 - (1 - f)^(1/n)); the
+    depth used is min(h, the ball-drop depth of :meth:`ballpass.Fault.effective_depth_mm`).
+    An equivalent clearance, exact at the reference load only: a lighter contact is
+    unloaded a little more, a heavier one a little less.
+    """
+    b = scene.bearing
+    n = b.load_exponent
+    q_ref = max(STRIBECK_FACTOR * bearing_load / b.n_elements, 1.0)
+    race = "outer" if fault.kind == "ball" else fault.kind
+    share = fault.pit_unloading(_ellipse_half_width_m(b, race, q_ref) * 1e3)
+    drop = fault.effective_depth_mm(b) * 1e-3
+    if share >= 1.0:
+        return drop
+    delta_ref = (q_ref / kh) ** (1.0 / n)
+    return min(drop, delta_ref * (1.0 - (1.0 - share) ** (1.0 / n)))
+
+
+_WAVY_KINDS = {"outer": K.KIND_WAVY_OUTER, "inner": K.KIND_WAVY_INNER, "ball": K.KIND_WAVY_BALL}
+
+
+def _waviness_rows(scene: Scene, rng: np.random.Generator) -> list:
+    """Fault-table rows of the scene's waviness: one per order (per order and ball for
+    ball waviness, each ball with a random extra phase: balls are made one by one)."""
+    rows = []
+    for wav in scene.waviness:
+        for q, amp, phase in zip(wav.orders, wav.amplitudes_um, wav.phases_deg, strict=True):
+            balls = range(scene.bearing.n_elements) if wav.race == "ball" else (0,)
+            for e in balls:
+                row = np.zeros(K.N_FCOLS)
+                extra = rng.uniform(0.0, 2.0 * math.pi) if wav.race == "ball" else 0.0
+                row[[K.F_KIND, K.F_CENTRE, K.F_HALF, K.F_DEPTH, K.F_ELEM, K.F_ENGAGE]] = (
+                    _WAVY_KINDS[wav.race], math.radians(phase) + extra, q, amp * 1e-6, e, 1.0)
+                rows.append(row)
+    return rows
+
+
+def _fault_table(scene: Scene, psi0: np.ndarray, kh: float, bearing_load: float,
+                 rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
+    """Kernel fault table (localized faults first, then waviness rows) and the event
+    levels (rad) of each localized fault."""
     b = scene.bearing
     rows, levels = [], []
     for f in scene.faults:
-        depth_m = f.effective_depth_mm(b) * 1e-3
+        if f.geometry == "pit":
+            depth_m = _pit_depth_m(scene, f, kh, bearing_load)
+        else:
+            depth_m = f.effective_depth_mm(b) * 1e-3
         width_m = f.width_mm * 1e-3
         if f.kind == "ball":
             radius = 0.5 * b.element_diameter_m
@@ -173,14 +276,18 @@ def _fault_table(scene: Scene, psi0: np.ndarray) -> tuple[np.ndarray, np.ndarray
             radius = b.outer_race_radius_m if f.kind == "outer" else b.inner_race_radius_m
             kind = K.KIND_OUTER if f.kind == "outer" else K.KIND_INNER
         half = 0.5 * width_m / radius
-        ramp = f.ramp_fraction if f.edge == "ramped" else 0.0
+        ramp = f.ramp_fraction if f.edge in ("ramped", "blunt") else 0.0
+        shape = K.RAMP_LINEAR if f.edge == "blunt" else K.RAMP_COSINE
         row = np.zeros(K.N_FCOLS)
-        row[[K.F_KIND, K.F_CENTRE, K.F_HALF, K.F_DEPTH, K.F_RAMP, K.F_ELEM, K.F_PSI0]] = (
+        row[[K.F_KIND, K.F_CENTRE, K.F_HALF, K.F_DEPTH, K.F_RAMP, K.F_ELEM, K.F_PSI0,
+             K.F_SHAPE, K.F_ENGAGE, K.F_SEED]] = (
             kind, math.radians(f.angle_deg), half, depth_m, ramp, f.element,
-            psi0[f.element] if f.kind == "ball" else 0.0)
+            psi0[f.element] if f.kind == "ball" else 0.0, shape, f.engagement,
+            float(rng.integers(1, 2**20)))
         rows.append(row)
         inner = half * (1.0 - 2.0 * ramp) if ramp > 0 else math.nan
         levels.append([-half, -inner, inner, half])
+    rows += _waviness_rows(scene, rng)
     return (np.array(rows, dtype=np.float64).reshape(-1, K.N_FCOLS),
             np.array(levels, dtype=np.float64).reshape(-1, 4))
 
@@ -234,6 +341,7 @@ def build_model(scene: Scene, params: SR5Parameters | None = None, *,
     params = params or SR5Parameters()
     b = scene.bearing
     kh = params.contact_stiffness or b.hertz_stiffness()
+    clearance = b.radial_clearance_m if scene.clearance_um is None else scene.clearance_um * 1e-6
     speed = scene.speed
     r = b.diameter_ratio
     cage_ratio = 0.5 * (1.0 - r)
@@ -249,7 +357,7 @@ def build_model(scene: Scene, params: SR5Parameters | None = None, *,
     p[K.P_CP] = params.pedestal_damping
     p[K.P_KH] = kh
     p[K.P_NH] = b.load_exponent
-    p[K.P_CLEAR] = b.radial_clearance_m
+    p[K.P_CLEAR] = clearance
     p[K.P_FR] = scene.radial_load_n
     p[K.P_G] = g
     p[K.P_W0] = speed.rpm_start * math.pi / 30.0
@@ -262,11 +370,14 @@ def build_model(scene: Scene, params: SR5Parameters | None = None, *,
     p[K.P_ZETA] = scene.resonance_damping
     p[K.P_COS_STEP] = math.cos(2.0 * math.pi / b.n_elements)
     p[K.P_SIN_STEP] = math.sin(2.0 * math.pi / b.n_elements)
+    p[K.P_CD] = params.contact_damping
 
-    slip_seed, _noise_seed = np.random.SeedSequence(scene.seed).spawn(2)
+    # children of the scene seed: 0 slip, 1 noise, 2 shaft lines, 3 fault draws
+    slip_seed, _noise, _lines, fault_seed = np.random.SeedSequence(scene.seed).spawn(4)
     walk = _slip_walk(scene, cage_ratio, np.random.default_rng(slip_seed))
     psi0 = K.element_angles_many(np.zeros(1), p, walk, b.n_elements)[0]
-    faults, levels = _fault_table(scene, psi0)
+    faults, levels = _fault_table(scene, psi0, kh, scene.radial_load_n + params.shaft_mass * g,
+                                  np.random.default_rng(fault_seed))
     sensors = _sensor_table(scene)
     n_res = len(scene.sensors) if resonator else 0
 
@@ -302,10 +413,13 @@ def _static_state(scene: Scene, params: SR5Parameters, model: tuple, n_res: int,
     """Static equilibrium at t = 0, characteristic scales of the state and the largest
     static contact deflection (m).
 
-    The bearing carries the radial load and the shaft's weight: the shaft support
-    spring k_s acts about the loaded static position (its rest position ``p[P_US0]`` is
-    set here), so it shares the dynamic, not the static, load. Solves the 2-D contact
-    balance sum_j Q_j n_j = (F_r + m_s g) e_u for the ring displacement.
+    With ``shaft_support="loaded"`` the bearing carries the radial load and the shaft's
+    weight: the shaft support spring k_s acts about the loaded static position (its
+    rest position ``p[P_US0]`` is set here), so it shares the dynamic, not the static,
+    load. Solves the 2-D contact balance sum_j Q_j n_j = (F_r + m_s g) e_u for the ring
+    displacement. With ``"free"`` the spring rests at the origin (Sawalhi & Randall):
+    shaft k_s x_s + F_c = (F_r + m_s g) e_u and pedestal k_p x_p = F_c + m_p g e_u, i.e.
+    F_c (1 + k_s/k_p) + k_s (x_s - x_p) = (F_r + m_s g - k_s m_p g / k_p) e_u.
     """
     b = scene.bearing
     p, _walk, faults, sensors = model
@@ -315,9 +429,12 @@ def _static_state(scene: Scene, params: SR5Parameters, model: tuple, n_res: int,
     depth = kin[K.K_DEPTH, :z].copy()
     cos_psi, sin_psi = np.cos(kin[K.K_PSI, :z]), np.sin(kin[K.K_PSI, :z])
     n = b.load_exponent
-    c = b.radial_clearance_m
+    c = p[K.P_CLEAR]
     g = p[K.P_G]
     bearing_load = scene.radial_load_n + params.shaft_mass * g
+    ks = params.shaft_stiffness if params.shaft_support == "free" else 0.0
+    share = 1.0 + ks / params.pedestal_stiffness  # 1 for the loaded support
+    target = bearing_load - ks * params.pedestal_mass * g / params.pedestal_stiffness
 
     def contact(d):
         delta = d[0] * cos_psi + d[1] * sin_psi - c - depth
@@ -325,13 +442,14 @@ def _static_state(scene: Scene, params: SR5Parameters, model: tuple, n_res: int,
 
     def residual(d):
         q, _ = contact(d)
-        return [(np.sum(q * cos_psi) - bearing_load) / kh, np.sum(q * sin_psi) / kh]
+        return [(share * np.sum(q * cos_psi) + ks * d[0] - target) / kh,
+                (share * np.sum(q * sin_psi) + ks * d[1]) / kh]
 
     def jacobian(d):
         _, delta = contact(d)
-        dq = n * np.maximum(delta, 0.0) ** (n - 1.0)
-        return [[np.sum(dq * cos_psi**2), np.sum(dq * cos_psi * sin_psi)],
-                [np.sum(dq * cos_psi * sin_psi), np.sum(dq * sin_psi**2)]]
+        dq = share * n * np.maximum(delta, 0.0) ** (n - 1.0)
+        return [[np.sum(dq * cos_psi**2) + ks / kh, np.sum(dq * cos_psi * sin_psi)],
+                [np.sum(dq * cos_psi * sin_psi), np.sum(dq * sin_psi**2) + ks / kh]]
 
     guess = (max(bearing_load, 1e-3) / (kh * z / 4.0)) ** (1.0 / n) + max(c, 0.0)
     if bearing_load <= 0.0 and c >= 0.0:
@@ -351,9 +469,9 @@ def _static_state(scene: Scene, params: SR5Parameters, model: tuple, n_res: int,
     u_p = (fu + params.pedestal_mass * g) / params.pedestal_stiffness
     v_p = fv / params.pedestal_stiffness
     u_s, v_s = u_p + du, v_p + dv
-    # support spring at rest in the static position
-    p[K.P_US0] = u_s
-    p[K.P_VS0] = v_s
+    # support spring at rest in the static position ("loaded") or at the origin
+    p[K.P_US0] = u_s if ks == 0.0 else 0.0
+    p[K.P_VS0] = v_s if ks == 0.0 else 0.0
     nd = 4 + n_res
     y0 = np.zeros(2 * nd)
     y0[:4] = [u_s, v_s, u_p, v_p]
@@ -361,7 +479,7 @@ def _static_state(scene: Scene, params: SR5Parameters, model: tuple, n_res: int,
         # resonators at rest under the static housing acceleration
         sacc = np.empty((1, len(scene.sensors)))
         yc = np.concatenate((y0[:4], y0[nd:nd + 4]))
-        K.contact_loads(yc, p, kin)
+        K.contact_loads(yc, p, kin, 4)
         K.housing_accel(yc, yc, p, sensors, kin, 0.0, sacc, 0, False)
         y0[4:nd] = -sacc[0] / p[K.P_WR] ** 2
     load = bearing_load + params.pedestal_mass * g
