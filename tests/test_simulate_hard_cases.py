@@ -38,6 +38,11 @@ def finite_and_bounded(res, limit=1e5):
 
 
 DEFAULT_PARAMS = SR5Parameters()
+#: a light, well-damped shaft (the 1 kg / 6 kg of the former defaults): it floats free
+#: under 10 N, and at 20000 rpm its motion dies between impacts, so the faulty-minus-
+#: healthy difference is one burst per traversal (the default 3.26 kg shaft of Ruan et
+#: al. has a shaft-mode damping ratio of 0.044 against 0.08 and keeps ringing)
+LIGHT = SR5Parameters(shaft_mass=1.0, pedestal_mass=6.0)
 
 
 def shaft_force_balance(res, params=DEFAULT_PARAMS):
@@ -102,7 +107,7 @@ def test_large_clearance_loses_contact_yet_balances_forces_on_average():
     # tolerance-dependent, so check bounds and laws, not the waveform.
     sc = scene(bearing=bp.Bearing.catalog("6205").with_clearance(0.1), radial_load_n=10.0,
                duration_s=0.5)
-    res = bp.simulate(sc, solver="dopri5", return_forces=True)
+    res = bp.simulate(sc, solver="dopri5", return_forces=True, params=LIGHT)
     finite_and_bounded(res)
     q = res.truth.contact_forces
     assert 0.1 < np.mean(np.all(q == 0.0, axis=0)) < 0.6  # free flight happens
@@ -113,7 +118,7 @@ def test_large_clearance_loses_contact_yet_balances_forces_on_average():
     psi = res.truth.element_angles
     approach = rel[0] * np.cos(psi) + rel[1] * np.sin(psi) - 0.1e-3
     assert np.all(q[approach <= 0.0] == 0.0)
-    assert shaft_force_balance(res) == pytest.approx(1.0, abs=0.01)
+    assert shaft_force_balance(res, LIGHT) == pytest.approx(1.0, abs=0.01)
 
 
 def test_preload_keeps_every_element_loaded():
@@ -132,7 +137,7 @@ def test_preload_keeps_every_element_loaded():
 def test_extreme_speeds_register_every_impact(rpm, duration, fs, resonance):
     sc = bp.Scene("6205", rpm=rpm, duration_s=duration, fs=fs, resonance_hz=resonance,
                   slip=0.0, fault=bp.Fault("outer"))
-    faulty, peaks = count_impacts(sc)
+    faulty, peaks = count_impacts(sc, params=LIGHT)
     finite_and_bounded(faulty)
     assert_every_crossing_registered(faulty, peaks, sc.frequencies.bpfo)
 

@@ -69,7 +69,10 @@ def test_rk4_and_dopri5_agree_with_scipy_dop853(outer_reference):
 def test_rk4_converges_at_fourth_order(outer_reference):
     bm, n_out, ref = outer_reference
     errors = []
-    for n_sub in (2, 4, 8):
+    # steps of h_out, h_out/2, h_out/4: with the Ruan et al. masses (m_s 3.26 kg) the
+    # contact mode is slower than with the former 1 kg, and h_out/8 reaches a floor
+    # (~4e-8) of the resonator-input interpolation and the reference
+    for n_sub in (1, 2, 4):
         out = integrate(bm, "rk4", h_out=H_OUT, n_out=n_out, dt=H_OUT / n_sub).output
         errors.append(rel_l2(out, ref))
     ratios = np.array(errors[:-1]) / np.array(errors[1:])
