@@ -390,41 +390,44 @@ def hertz(d, kh, nh):
 
 
 @njit(cache=True, error_model="numpy")
-def damped(q, d, ddu, ddv, du, dv, cj, sj, rate, ddepth, alpha):
-    """Hunt-Crossley contact load Q (1 + alpha d(delta)/dt), N, clamped at zero, from
-    the elastic load q = K delta^n of a compressed contact: the damping force alpha Q
-    d(delta)/dt grows with the load and vanishes on separation with it (Hunt &
-    Crossley 1975), and a receding contact never pulls. d(delta)/dt = (du_s - du_p)
-    cos psi + (dv_s - dv_p) sin psi + (dv cos psi - du sin psi) psi' - d(depth)/dt."""
-    vel = ddu * cj + ddv * sj + (dv * cj - du * sj) * rate - ddepth
+def contact_load(j, du, dv, ddu, ddv, p, kin):
+    """Load of contact j, N, from the ring offset (du, dv) and its rate (ddu, ddv):
+    Hertz Q = K max(delta, 0)^n, times the Hunt-Crossley factor 1 + alpha d(delta)/dt
+    with contact damping (``p[P_CD] = alpha > 0``), never negative.
+
+    delta = du cos psi + dv sin psi - c - depth (Sawalhi & Randall 2008 eq. 12 as
+    printed in seed 004); d(delta)/dt = ddu cos psi + ddv sin psi + (dv cos psi -
+    du sin psi) psi' - d(depth)/dt. The damping force alpha Q_hertz d(delta)/dt grows
+    with the load and vanishes on separation with it (Hunt & Crossley 1975): no jump
+    at contact, and a receding contact never pulls. Separated contacts carry exactly
+    zero force.
+    """
+    cj = kin[K_COS, j]
+    sj = kin[K_SIN, j]
+    d = du * cj + dv * sj - p[P_CLEAR] - kin[K_DEPTH, j]
+    if d <= 0.0:
+        return 0.0
+    q = hertz(d, p[P_KH], p[P_NH])
+    alpha = p[P_CD]
+    if alpha == 0.0:
+        return q
+    vel = (ddu * cj + ddv * sj + (dv * cj - du * sj) * kin[K_CACHE, KC_RATE]
+           - kin[K_DDEPTH, j])
     f = 1.0 + alpha * vel
     return q * f if f > 0.0 else 0.0
 
 
 @njit(cache=True, error_model="numpy")
 def contact_loads(y, p, kin, iv):
-    """Contact loads, N, into ``kin[K_Q]``: Hertz Q_j = K max(delta_j, 0)^n, times the
-    Hunt-Crossley factor of :func:`damped` with contact damping (``p[P_CD] > 0``).
-
-    delta_j = (u_s - u_p) cos psi_j + (v_s - v_p) sin psi_j - c - depth_j
-    (Sawalhi & Randall 2008 eq. 12 as printed in seed 004). Separated elements carry
-    exactly zero force. ``y`` starts with u_s, v_s, u_p, v_p; their rates are at
-    ``y[iv:iv + 4]`` (4 for the core layout, 4 + n_res for the full one).
-    """
+    """Contact loads of :func:`contact_load`, N, into ``kin[K_Q]``. ``y`` starts with
+    u_s, v_s, u_p, v_p; their rates are at ``y[iv:iv + 4]`` (4 for the core layout,
+    4 + n_res for the full one)."""
     du = y[0] - y[2]
     dv = y[1] - y[3]
-    alpha = p[P_CD]
     ddu = y[iv] - y[iv + 2]
     ddv = y[iv + 1] - y[iv + 3]
     for j in range(int(p[P_Z])):
-        cj = kin[K_COS, j]
-        sj = kin[K_SIN, j]
-        d = du * cj + dv * sj - p[P_CLEAR] - kin[K_DEPTH, j]
-        q = hertz(d, p[P_KH], p[P_NH]) if d > 0.0 else 0.0
-        if alpha != 0.0 and q > 0.0:
-            q = damped(q, d, ddu, ddv, du, dv, cj, sj, kin[K_CACHE, KC_RATE],
-                       kin[K_DDEPTH, j], alpha)
-        kin[K_Q, j] = q
+        kin[K_Q, j] = contact_load(j, du, dv, ddu, ddv, p, kin)
 
 
 @njit(cache=True, error_model="numpy")
@@ -447,22 +450,15 @@ def core_forces(y, p, kin, dydt):
     # another looping kernel keeps numba's reference counting of its array arguments)
     du = y[0] - y[2]
     dv = y[1] - y[3]
-    fu = 0.0
-    fv = 0.0
-    alpha = p[P_CD]
     ddu = y[4] - y[6]
     ddv = y[5] - y[7]
+    fu = 0.0
+    fv = 0.0
     for j in range(int(p[P_Z])):
-        cj = kin[K_COS, j]
-        sj = kin[K_SIN, j]
-        d = du * cj + dv * sj - p[P_CLEAR] - kin[K_DEPTH, j]
-        q = hertz(d, p[P_KH], p[P_NH]) if d > 0.0 else 0.0
-        if alpha != 0.0 and q > 0.0:
-            q = damped(q, d, ddu, ddv, du, dv, cj, sj, kin[K_CACHE, KC_RATE],
-                       kin[K_DDEPTH, j], alpha)
+        q = contact_load(j, du, dv, ddu, ddv, p, kin)
         kin[K_Q, j] = q
-        fu += q * cj
-        fv += q * sj
+        fu += q * kin[K_COS, j]
+        fv += q * kin[K_SIN, j]
     ms = p[P_MS]
     mp = p[P_MP]
     dydt[0] = y[4]
