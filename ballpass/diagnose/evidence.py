@@ -20,11 +20,11 @@ Three traps make a naive family score fail on real machines, and each has a rule
    only it explains.
 2. **Shaft harmonics.** The 6203 has each defect frequency within 2 % of a shaft
    harmonic (2xBSF 3.988, BPFI 4.947, BPFO 3.053 orders) and a healthy machine's SES
-   carries shaft harmonics. SES bins closer to a shaft harmonic than the SES can
-   resolve (3 bins: the Hann main lobe of +-2 bins plus the +-1 bin line window; at
-   least 0.25 % of the harmonic's frequency) read as background, so a family line
-   that lands on one counts for nothing.
-   Long records resolve them: 10 s gives 0.1 Hz bins.
+   carries shaft harmonics. Where a shaft harmonic stands out in the SES (6 dB above
+   its background), the bins closer to it than the SES can resolve (3 bins: the Hann
+   main lobe of +-2 bins plus the +-1 bin line window; at least 0.25 % of its
+   frequency) read as background, so a family line that lands on it counts for
+   nothing. Long records resolve them: 10 s gives 0.1 Hz bins.
 3. **Ball comb vs outer race.** BPFO = Z x FTF, so a ball fault, modulated at FTF,
    fills the FTF comb and puts a line at BPFO too; that line stands no higher than its
    +-FTF neighbours. The outer-race family is marked down only by how far its
@@ -88,18 +88,34 @@ FAULT_FAMILIES = {
 #: (a factor 4 in SES power); closer, the line may be a member of a ball fault's FTF
 #: comb and the outer-race evidence is marked down by the shortfall.
 OUTER_SIDEBAND_MARGIN_DB = 6.0
-#: SES bins closer than this many bins to a shaft harmonic read as background: the
-#: Hann window's main lobe (+-2 bins) plus the +-1 bin line window ...
+#: A shaft harmonic standing this far above the SES background (dB) is a line in its
+#: own right; a fault line on it would be no evidence (the decision threshold: a shaft
+#: line strong enough to count as evidence does not count) ...
+SHAFT_LINE_DB = 6.0
+#: ... and its SES bins closer than this many bins read as background: the Hann
+#: window's main lobe (+-2 bins) plus the +-1 bin line window ...
 SHAFT_GUARD_BINS = 3.0
 #: ... or closer than this fraction of the harmonic's frequency: an induction motor's
 #: synchronous speed, whose multiples carry electromagnetic lines, lies 0.17-0.25 %
 #: above the shaft speed at no load (CWRU: 1796-1797 rpm against 1800 rpm; the healthy
 #: fan-end channel carries lines at 360.0 and 450.0 Hz).
 SHAFT_GUARD_RELATIVE = 0.0025
-#: A shaft-harmonic comb must stand this high (mean of its ten harmonics above the
-#: spectrum's background, dB) to correct the stated speed. Noise alone reads 0-5 dB at
-#: the best of the candidate speeds; the CWRU records read 25-34 dB, MFPT 13 dB.
+#: A shaft-harmonic comb must stand this high (median of its ten harmonics above the
+#: spectrum's background, dB) to correct the stated speed. Noise alone reads a few dB
+#: at the best of the candidate speeds; the whole CWRU records read 22-37 dB, the
+#: MFPT records 15 dB.
 MIN_COMB_DB = 10.0
+#: Shortest record whose speed is checked, s: at coarser than 0.5 Hz resolution a
+#: fault's own raw-spectrum harmonics pass for a shaft comb (the 6203's BPFO is 1.8 %
+#: from 3x: one-second segments of the CWRU fan-end outer-race records lock onto
+#: BPFO / 3). Diagnose the whole record, or pass its speed to its segments.
+SPEED_CHECK_S = 2.0
+#: The +-FTF sidebands are resolved from their carrier on records of at least this
+#: many cage periods (1 / FTF): 4 SES bins, the Hann main lobe (+-2 bins) plus the
+#: +-1 bin line window. Shorter, a carrier's own leakage reads as its sidebands: the
+#: ball family (told by its +-FTF sidebands) is not judged, and the outer race, which
+#: only needs them to be told from a ball comb, is judged on its carriers alone.
+FTF_RESOLVED_CAGE_PERIODS = 4.0
 #: Fewest unshared carriers a family needs to be judged.
 MIN_CARRIERS = 2
 #: The scale search reaches ``UPWARD * slip`` above the kinematic frequencies: slip only
@@ -256,10 +272,11 @@ def candidate_bands(x: np.ndarray, fs: float, lowest_hz: float, *, max_level: fl
 
 
 def _family_scores(ses, notch, df, shaft_hz, orders, fault, harmonics, slip, background_hz,
-                   shared):
+                   shared, resolved):
     """Evidence of one family in SES rows ``ses`` (n, n_bins) at speeds ``shaft_hz``.
 
-    ``notch`` (n, n_bins) marks the bins on shaft harmonics. Returns (evidence (n,),
+    ``notch`` (n, n_bins) marks the bins on shaft harmonics, ``resolved`` (n,) the rows
+    long enough to resolve +-FTF sidebands. Returns (evidence (n,),
     level (n, L), found (n, L), scale (n,)).
     """
     carrier, modulation, support = FAULT_FAMILIES[fault]
@@ -311,8 +328,10 @@ def _family_scores(ses, notch, df, shaft_hz, orders, fault, harmonics, slip, bac
     if support > 0:
         score = 0.5 * (carriers + sidebands)
     else:
-        score = carriers - np.maximum(0.0, sidebands - carriers + OUTER_SIDEBAND_MARGIN_DB)
-    judged = n_carriers >= MIN_CARRIERS
+        shortfall = np.maximum(0.0, sidebands - carriers + OUTER_SIDEBAND_MARGIN_DB)
+        score = carriers - np.where(resolved[:, None], shortfall, 0.0)
+    judged = (n_carriers >= MIN_CARRIERS) & (resolved[:, None] | (modulation != "ftf")
+                                             | (support < 0))
     score = np.where(judged & np.isfinite(score), score, -np.inf)
     fit = np.where(judged & np.isfinite(fit), fit, -np.inf)
     j = fit.argmax(axis=1)
@@ -320,12 +339,35 @@ def _family_scores(ses, notch, df, shaft_hz, orders, fault, harmonics, slip, bac
     return score[i, j], level[i, j], (c[i, j] + best[i, j]) * df, scales[j]
 
 
-def _shaft_notch(freqs: np.ndarray, shaft_hz: np.ndarray) -> np.ndarray:
-    """Bins of each row within the guard of a shaft harmonic, (n, n_bins) bool."""
+def _shaft_notch(freqs: np.ndarray, ses: np.ndarray, shaft_hz: np.ndarray,
+                 background_hz: float) -> np.ndarray:
+    """Bins of each row on a shaft harmonic that stands out, (n, n_bins) bool.
+
+    A harmonic ``k fr`` stands out when the largest SES bin within +-1 bin of it is at
+    least :data:`SHAFT_LINE_DB` above the median SES over +-``background_hz``; its bins
+    within the guard (:data:`SHAFT_GUARD_BINS`, :data:`SHAFT_GUARD_RELATIVE`) are marked.
+    Only where the guard spans at most a quarter of the shaft speed: at coarser
+    resolution (records shorter than 12 shaft revolutions) a fault line and the shaft
+    harmonic beside it share the same bins, and marking them would blank a fault line
+    as often as a shaft line.
+    """
+    n, n_bins = ses.shape
     df = freqs[1]
-    m = np.maximum(np.rint(freqs[None, :] / shaft_hz[:, None]), 1.0) * shaft_hz[:, None]
-    guard = np.maximum(SHAFT_GUARD_BINS * df, SHAFT_GUARD_RELATIVE * m)
-    return np.abs(freqs[None, :] - m) < guard
+    fine = SHAFT_GUARD_BINS * df <= 0.25 * shaft_hz  # (n,)
+    k = np.arange(1, int(freqs[-1] / shaft_hz.min()) + 1)
+    centre = np.rint(k[None, :] * shaft_hz[:, None] / df).astype(np.int64)  # (n, K)
+    half = max(5, math.ceil(background_hz / df))
+    rows = np.arange(n)[:, None, None]
+    around = np.clip(centre[..., None] + np.arange(-half, half + 1), 1, n_bins - 1)
+    background = np.median(ses[rows, around], axis=-1)
+    near = np.clip(centre[..., None] + np.arange(-1, 2), 1, n_bins - 1)
+    peak = ses[rows, near].max(axis=-1)
+    present = (centre < n_bins - 1) & (peak >= background * 10 ** (SHAFT_LINE_DB / 10))
+    m = np.maximum(np.rint(freqs[None, :] / shaft_hz[:, None]), 1.0)  # nearest harmonic
+    guard = np.maximum(SHAFT_GUARD_BINS * df, SHAFT_GUARD_RELATIVE * m * shaft_hz[:, None])
+    close = np.abs(freqs[None, :] - m * shaft_hz[:, None]) < guard
+    idx = np.clip(m.astype(np.int64) - 1, 0, k.size - 1)
+    return close & np.take_along_axis(present, idx, axis=1) & fine[:, None]
 
 
 class _quiet:
@@ -374,10 +416,11 @@ def envelope_evidence(
     carriers cannot be judged (``-inf``).
 
     The speed is checked first (:func:`ballpass.diagnose.speed.estimate_shaft_speed`):
-    where the signal carries a shaft-harmonic comb (mean level of its ten harmonics at
+    where the signal carries a shaft-harmonic comb (median level of its ten harmonics at
     least :data:`MIN_COMB_DB` above the background) that stands at least 3 dB higher
     at another speed within ``+-speed_tolerance`` (and more than 0.2 % away) than at
-    the stated one, that speed is used.
+    the stated one, that speed is used. Records shorter than :data:`SPEED_CHECK_S`
+    keep the stated speed.
 
     Parameters
     ----------
@@ -401,7 +444,7 @@ def envelope_evidence(
         Half-width of the background median beyond the slip search, Hz (default 10).
     speed_tolerance : float, optional
         Relative half-width of the speed check, in [0, 0.1]; 0 trusts ``rpm``
-        (default 0.04).
+        (default 0.04: the CWRU rig's speeds at 0-3 hp span 1730-1797 rpm).
 
     Returns
     -------
@@ -445,7 +488,7 @@ def envelope_evidence(
 
     used = stated.copy()
     corrected = np.zeros(len(xv), bool)
-    if speed_tolerance > 0:
+    if speed_tolerance > 0 and xv.shape[-1] / fs >= SPEED_CHECK_S:
         found, comb, at_stated = estimate_shaft_speed(xv, fs, stated, tolerance=speed_tolerance)
         corrected = ((comb >= MIN_COMB_DB) & (comb >= at_stated + 3.0)
                      & (np.abs(found / stated - 1) > 0.002))
@@ -461,6 +504,7 @@ def envelope_evidence(
         has_signal = np.ones((len(xv), 1), bool)
 
     n = len(xv)
+    resolved = xv.shape[-1] / fs * orders["ftf"] * shaft_hz >= FTF_RESOLVED_CAGE_PERIODS
     names = {f: [name for name, _, _ in family_lines(f, harmonics)] for f in FAULT_FAMILIES}
     n_lines = 3 * harmonics
     best = {
@@ -473,18 +517,16 @@ def envelope_evidence(
         )
         for f in FAULT_FAMILIES
     }
-    notch = None
     for k, b in enumerate(bands):
         if not has_signal[:, k].any():
             continue
         freqs, ses = envelope_spectrum(xv, fs, tuple(b), prewhiten=prewhiten)
         df = freqs[1]
-        if notch is None:
-            notch = _shaft_notch(freqs, shaft_hz)
+        notch = _shaft_notch(freqs, ses, shaft_hz, background_hz)
         for fault in FAULT_FAMILIES:
             ev, level, found, scale = _family_scores(
                 ses, notch, df, shaft_hz, orders, fault, harmonics, slip, background_hz,
-                shared[fault])
+                shared[fault], resolved)
             better = has_signal[:, k] & (ev > best[fault]["evidence"])
             rec = best[fault]
             rec["evidence"] = np.where(better, ev, rec["evidence"])

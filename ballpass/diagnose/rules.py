@@ -30,7 +30,13 @@ from sklearn.utils.validation import check_array
 from ..features._validation import check_fs, check_nonnegative, check_rpm
 from ..features.bands import as_bearing
 from ._names import LABELS
-from .evidence import FAULT_FAMILIES, EnvelopeEvidence, envelope_evidence, family_lines
+from .evidence import (
+    FAULT_FAMILIES,
+    FTF_RESOLVED_CAGE_PERIODS,
+    EnvelopeEvidence,
+    envelope_evidence,
+    family_lines,
+)
 
 __all__ = [
     "LABELS",
@@ -45,10 +51,6 @@ __all__ = [
 #: Shortest record, in cage periods (1 / FTF): the load-zone and cage modulations need
 #: a few periods to show, and below two no family is judged.
 MIN_CAGE_PERIODS = 2.0
-#: A ball fault is judged only on records of at least this many cage periods: its
-#: +-FTF sidebands must sit 4 SES bins from the carrier (Hann main lobe +-2 bins, plus
-#: the +-1 bin line window), i.e. a resolution of FTF / 4.
-BALL_CAGE_PERIODS = 4.0
 #: Grade margins, dB: "Y" when the family clears its threshold and its nearest
 #: competitor by this much (a factor 2 in SES power).
 GRADE_MARGIN_DB = 3.0
@@ -56,9 +58,9 @@ GRADE_MARGIN_DB = 3.0
 
 #: Default evidence threshold, dB. Monte Carlo on white Gaussian noise (6205 and 6203
 #: at 1797 rpm, 12 kHz, every candidate band searched): the largest family evidence
-#: over 600 one-second records is 3.9 dB, over 60 ten-second records 4.0 dB; the
-#: threshold adds 2 dB (a factor 1.6 in SES power) for the non-Gaussian background of
-#: real machines. Set from noise statistics, not from any recording.
+#: over 600 one-second records is 4.1 dB, over 60 ten-second records 4.2 dB; the
+#: threshold adds about 2 dB (a factor 1.6 in SES power) for the non-Gaussian
+#: background of real machines. Set from noise statistics, not from any recording.
 DEFAULT_THRESHOLD_DB = 6.0
 
 
@@ -296,9 +298,7 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
             speed_tolerance=self.speed_tolerance,
         )
         ftf = as_bearing(self.bearing).frequencies(1.0).ftf * ev.rpm / 60.0
-        too_short = ev.duration_s * ftf < BALL_CAGE_PERIODS
-        ev.evidence_db["ball"] = np.where(too_short, -np.inf, ev.evidence_db["ball"])
-        return ev, too_short
+        return ev, ev.duration_s * ftf < FTF_RESOLVED_CAGE_PERIODS
 
     def _thresholds(self) -> dict:
         fitted = getattr(self, "thresholds_", None)
@@ -446,7 +446,7 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
             if too_short[i]:
                 notes.append(
                     f"ball not judged: the record ({ev.duration_s:.3g} s) is shorter than "
-                    f"{BALL_CAGE_PERIODS:g} cage periods, too short to resolve the +-FTF "
+                    f"{FTF_RESOLVED_CAGE_PERIODS:g} cage periods, too short to resolve the +-FTF "
                     "sidebands")
             silent = ev.n_bands[i] == 0
             if silent:

@@ -32,9 +32,10 @@ def estimate_shaft_speed(x: np.ndarray, fs: float, rpm, *, tolerance: float = 0.
 
     The Hann-windowed power spectrum of each row is zero-padded to a quarter of a
     bin; for each candidate speed ``fr`` in ``rpm/60 (1 +- tolerance)`` (steps of a
-    quarter bin at the 10th harmonic) the comb level is the mean over ``k = 1..10`` of
-    ``10 log10(P(k fr) / background)``, the background the running median of ``P``
-    over +-5 Hz. The candidate with the highest comb wins.
+    quarter bin at the 10th harmonic) the comb level is the median over ``k = 1..10``
+    of ``10 log10(P(k fr) / background)``, the background the running median of ``P``
+    over +-5 Hz: most harmonics must be present (a fault's own harmonics hit only a
+    few of them). The candidate with the highest comb wins.
 
     Parameters
     ----------
@@ -53,7 +54,7 @@ def estimate_shaft_speed(x: np.ndarray, fs: float, rpm, *, tolerance: float = 0.
     rpm_found : ndarray, shape (n_signals,)
         Speed whose comb stands highest, rev/min.
     comb_db : ndarray, shape (n_signals,)
-        Its comb level, dB above the background.
+        Its comb level (median over the harmonics), dB above the background.
     stated_db : ndarray, shape (n_signals,)
         The comb level at the stated speed, dB.
 
@@ -91,7 +92,7 @@ def estimate_shaft_speed(x: np.ndarray, fs: float, rpm, *, tolerance: float = 0.
     inside = idx < n_keep
     rows = np.arange(len(x))[:, None, None]
     comb = np.where(inside, level[rows, np.minimum(idx, n_keep - 1)], np.nan)
-    comb = np.nanmean(comb, axis=-1)  # (n, S)
+    comb = np.nanmedian(comb, axis=-1)  # (n, S)
     best = np.nanargmax(comb[:, :-1], axis=1)
     i = np.arange(len(x))
     return 60.0 * fr0 * scales[best], comb[i, best], comb[:, -1]
