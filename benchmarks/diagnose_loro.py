@@ -315,6 +315,28 @@ def markdown(table: pd.DataFrame, seconds: float) -> str:
         "",
         "![named records per class](diagnosis.png)",
         "",
+        "## What the diagnoser does",
+        "",
+        "- **Families judged by the lines only they explain.** A carrier another family's "
+        "carrier explains within half the slip search is left out of both (6205: 2xBPFI "
+        "and 3xBPFO, 0.7 % apart; 4xBPFI and 6xBPFO).",
+        "- **Shaft harmonics are not fault lines.** Where a shaft harmonic stands 6 dB "
+        "above the SES background, the bins it covers read as background (6203: each "
+        "defect frequency is within 2 % of a shaft harmonic). Whole records (0.1 Hz bins) "
+        "resolve what one-second segments cannot.",
+        "- **Outer-race sidebands do not refute the outer race** unless they come within "
+        "6 dB of its carriers (then the line may belong to a ball fault's FTF comb).",
+        "- **Speed from the signal.** On records of 2 s or more the shaft-harmonic comb "
+        "(median of 10 harmonics) is searched within +-4 % of the stated speed; a "
+        "correction is reported in `explain()`. Segments use their record's speed.",
+        "- **Band by fault evidence.** Every band of the 1/3-binary tree wide enough for "
+        "the lines and above them, with signal in it, is demodulated; each family keeps "
+        "the band where it reads highest (the IESFOgram idea).",
+        "- **Knows what it cannot see.** Ball faults need four cage periods (the +-FTF "
+        "sidebands resolved); a band with no signal above the fault lines (a noise-free "
+        "healthy simulation: the varying-compliance line has no resonance carrier) is "
+        "healthy.",
+        "",
         "## Goals",
         "",
         *goals(table),
