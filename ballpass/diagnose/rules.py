@@ -5,17 +5,16 @@ squared envelope spectrum (:func:`ballpass.diagnose.evidence.envelope_evidence`:
 harmonics and shaft harmonics left out, the speed checked against the signal's shaft
 comb, the demodulation band chosen by the family's own evidence) when that evidence
 exceeds a threshold set by the statistics of noise, and "healthy" otherwise. Each
-decision gets a grade in the spirit of Smith & Randall's benchmark [2]_: ``"Y"``
+decision gets a grade in the spirit of Smith & Randall's benchmark [1]_: ``"Y"``
 clearly diagnosed, ``"P"`` partly (the family barely clears its threshold or a
-competitor comes close), ``"N"`` not diagnosable from this record (too short, or no
-band with signal in it).
+competitor comes close), ``"N"`` not diagnosable (no family could be judged on this
+record). The physics and its references:
+:mod:`ballpass.diagnose.evidence`.
 
 References
 ----------
-.. [1] R. B. Randall, J. Antoni, "Rolling element bearing diagnostics - A tutorial",
-   MSSP 25 (2011) 485-520.
-.. [2] W. A. Smith, R. B. Randall, "Rolling element bearing diagnostics using the Case
-   Western Reserve University data: A benchmark study", MSSP 64-65 (2015) 100-131.
+.. [1] W. A. Smith, R. B. Randall, MSSP 64-65 (2015) 100-131 (the Y/P/N grades of their
+   CWRU benchmark).
 """
 
 from __future__ import annotations
