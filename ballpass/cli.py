@@ -10,6 +10,7 @@ from __future__ import annotations
 import argparse
 import importlib
 import sys
+import warnings
 
 #: subcommand name -> module under ballpass.commands
 SUBCOMMANDS = {
@@ -45,6 +46,11 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _one_line(message, category, filename, lineno, line=None) -> str:
+    """Warnings as one line on stderr, without the source line that raised them."""
+    return f"ballpass: warning: {message}\n"
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run the ``ballpass`` command; returns the process exit code."""
     parser = build_parser()
@@ -52,11 +58,14 @@ def main(argv: list[str] | None = None) -> int:
     if getattr(args, "func", None) is None:
         parser.print_help()
         return 2
+    previous, warnings.formatwarning = warnings.formatwarning, _one_line
     try:
         return int(args.func(args) or 0)
     except (ValueError, TypeError, FileNotFoundError, FileExistsError, PermissionError) as exc:
         print(f"ballpass {args.command}: error: {exc}", file=sys.stderr)
         return 2
+    finally:
+        warnings.formatwarning = previous
 
 
 if __name__ == "__main__":  # pragma: no cover

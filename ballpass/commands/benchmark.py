@@ -38,8 +38,11 @@ def add_parser(subparsers) -> None:
     p.add_argument("dataset", metavar="DATASET", help="dataset folder (ballpass generate)")
     p.add_argument("--out", metavar="DIR", required=True, help="report folder (created)")
     p.add_argument("--real", metavar="DIR",
-                   help="folder of CWRU .mat recordings: adds the sim2real split (train on "
-                        "DATASET, test on them, cut into segments as long as DATASET's rows)")
+                   help="folder of CWRU or MFPT .mat recordings: adds the sim2real split "
+                        "(train on DATASET, test on them, resampled to DATASET's fs and cut "
+                        "into segments as long as DATASET's rows)")
+    p.add_argument("--channel", default="DE", choices=["DE", "FE", "BA"],
+                   help="accelerometer of CWRU recordings for --real (default DE)")
     p.add_argument("--splits", type=_names, metavar="A,B",
                    help=f"comma-separated subset of {','.join(SPLITS)} (default: all the "
                         "data can form)")
@@ -55,18 +58,34 @@ def add_parser(subparsers) -> None:
     p.set_defaults(func=run)
 
 
+def _check_real_rpm(meta) -> None:
+    """Refuse real recordings without a speed, naming the files."""
+    missing = sorted(meta.loc[~(meta["rpm"].astype(float) > 0), "group"].unique())
+    if missing:
+        raise ValueError(f"no shaft speed for {len(missing)} real recording(s) "
+                         f"({', '.join(missing[:5])}{', ...' if len(missing) > 5 else ''}): "
+                         "name them with their motor load (e.g. 12k_DE_IR028_2.mat) or "
+                         "store the speed in the file")
+
+
 def run(args) -> int:
     """Run ``ballpass benchmark``; returns the exit code."""
     import pandas as pd
 
-    from ..datasets import load, load_cwru
+    from ..datasets import load
+    from ..datasets.real import load_real
     from ..diagnose import run_benchmark, write_report
 
     X, meta = load(args.dataset)
     real = None
     if args.real is not None:
-        fs = float(meta["fs"].iloc[0])
-        real = load_cwru(args.real, fs=fs, segment_s=X.shape[1] / fs)
+        rates = sorted(meta["fs"].unique())
+        if len(rates) != 1:
+            raise ValueError(f"{args.dataset} mixes sampling rates {rates} Hz; benchmark "
+                             "needs one rate")
+        fs = float(rates[0])
+        real = load_real(args.real, fs=fs, segment_s=X.shape[1] / fs, channel=args.channel)
+        _check_real_rpm(real[1])
     result = run_benchmark(X, meta, real=real, splits=args.splits, models=args.models,
                            features=args.features, n_splits=args.folds,
                            random_state=args.seed)

@@ -17,13 +17,17 @@ examples:
 inputs:
   .npz/.csv/.parquet  signal files written by `ballpass simulate` (one row per channel;
                       --bearing/--rpm default to the file's metadata)
-  .mat                CWRU Bearing Data Center files. Values are stored in g and are
-                      converted to m/s^2 (x 9.80665). fs comes from the file name: 12k_*
-                      files are 12 kHz, 48k_* files AND the normal baseline (Normal_*,
-                      records 97-100) are 48 kHz -- not 12 kHz; pass --fs when a name does
-                      not tell. rpm comes from the file; the bearing defaults to the rig's
-                      (DE: 6205, FE: 6203).
-  DIR                 a dataset folder with manifest.json (`ballpass generate`)
+  .mat                CWRU Bearing Data Center or MFPT files (told apart by content).
+                      Values are stored in g and are converted to m/s^2 (x 9.80665).
+                      CWRU: fs comes from the file name or record number: 12k_* files
+                      are 12 kHz, 48k_* files AND the normal baseline (Normal_*, records
+                      97-100) are 48 kHz -- not 12 kHz; pass --fs when neither tells. rpm
+                      comes from the file, else from the motor load (rpm_source says
+                      which); the bearing defaults to the rig's (DE: 6205, FE: 6203).
+                      MFPT: fs, rpm and load from the file's `bearing` struct; bearing
+                      MFPT-NICE.
+  DIR                 a dataset folder with manifest.json (`ballpass generate`), or a
+                      folder of .mat recordings (unreadable ones skipped with a warning)
 
 columns: source, channel, segment, start_s, fs, bearing, rpm, label (when known), the
 demodulation band chosen by the kurtogram (band_lo_hz, band_hi_hz, kurtogram_sk), the
@@ -61,7 +65,8 @@ def add_input_arguments(p: argparse.ArgumentParser) -> None:
         "inputs",
         nargs="+",
         metavar="INPUT",
-        help="signal file (.npz/.csv/.parquet), CWRU .mat file or dataset folder",
+        help="signal file (.npz/.csv/.parquet), CWRU/MFPT .mat file, folder of .mat files "
+        "or dataset folder",
     )
     p.add_argument(
         "--fs",
@@ -151,20 +156,21 @@ def _from_signal_file(path: Path, args) -> list[Signal]:
     ]
 
 
-def _from_mat(path: Path, args) -> list[Signal]:
-    from ..datasets.real import load_cwru_mat
+#: Columns of a real recording's metadata copied into the feature table.
+_MAT_COLUMNS = ("channel", "label", "fault_width_mm", "fault_angle_deg", "load_hp", "load_lbs",
+                "rpm_source", "rpm_mismatch")
 
-    rec = load_cwru_mat(path, channel=args.channel, fs=args.fs)
-    columns = {
-        "channel": rec.channel,
-        "label": rec.label,
-        "fault_width_mm": rec.fault_width_mm,
-        "load_hp": rec.load_hp,
-    }
+
+def _from_mat(path: Path, args) -> list[Signal]:
+    from ..datasets.real import read_mat
+
+    rec = read_mat(path, channel=args.channel, fs=args.fs)
+    meta = rec.columns()
+    columns = {k: meta[k] for k in _MAT_COLUMNS if k in meta}
     rpm = args.rpm if args.rpm is not None else rec.rpm
     return [
         Signal(
-            f"{path.stem}_{rec.channel}",
+            f"{path.stem}_{meta['channel']}",
             rec.accel,
             rec.fs,
             args.bearing or rec.bearing,
@@ -172,6 +178,19 @@ def _from_mat(path: Path, args) -> list[Signal]:
             columns,
         )
     ]
+
+
+def _from_mat_folder(folder: Path, args) -> list[Signal]:
+    """Every readable .mat file of a folder of real recordings (others skipped, warned)."""
+    from ..datasets.real import read_all
+
+    if not any(folder.glob("*.mat")):
+        raise ValueError(f"{folder} is a folder without manifest.json or .mat files: "
+                         "neither a dataset nor a folder of recordings")
+    found = read_all(folder, lambda p: _from_mat(p, args))
+    if not found:
+        raise ValueError(f"{folder}: none of its .mat files could be read")
+    return [sig for _, signals in found for sig in signals]
 
 
 def _from_dataset(folder: Path, args) -> list[Signal]:
@@ -212,10 +231,10 @@ def load_inputs(args) -> list[Signal]:
     signals: list[Signal] = []
     for raw in args.inputs:
         path = Path(raw)
-        if path.is_dir():
-            if not (path / "manifest.json").is_file():
-                raise ValueError(f"{path} is a folder without manifest.json: not a dataset")
+        if path.is_dir() and (path / "manifest.json").is_file():
             signals += _from_dataset(path, args)
+        elif path.is_dir():
+            signals += _from_mat_folder(path, args)
         elif not path.exists():
             raise FileNotFoundError(f"no such file or folder: {path}")
         elif path.suffix.lower() == ".mat":
