@@ -20,6 +20,7 @@ from dataclasses import dataclass, field, replace
 
 from ._validation import check_number as _number
 from .bearing import Bearing, BearingFrequencies
+from .phenomena import check_needs
 
 __all__ = ["Fault", "Sensor", "SpeedProfile", "Scene", "wrap_deg"]
 
@@ -292,6 +293,12 @@ class Scene:
     gravity : bool, optional
         Add the weight of shaft and pedestal along the load line (g = 9.80665 m/s^2).
         Default True.
+    needs : sequence of str, optional
+        Phenomena the simulation must represent, beyond what the other fields already
+        say (names in :data:`ballpass.phenomena.PHENOMENA`); ``model="auto"`` runs the
+        cheapest model that covers them. Empty (default) asks for ``envelope`` and
+        ``contact_dynamics``; ``("envelope",)`` asks for the envelope-level signature
+        only (the cheap ``impulse`` model). See :func:`ballpass.simulate.scene_needs`.
 
     Examples
     --------
@@ -315,6 +322,7 @@ class Scene:
     snr_db: float | None = None
     noise_rms: float | None = None
     gravity: bool = True
+    needs: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         bearing = self.bearing
@@ -397,6 +405,7 @@ class Scene:
                                _number("noise_rms", self.noise_rms, 0.0, 1e6))
         if not isinstance(self.gravity, bool):
             raise TypeError(f"gravity must be a bool, got {self.gravity!r}")
+        object.__setattr__(self, "needs", tuple(sorted(check_needs(self.needs))))
 
     # ------------------------------------------------------------------ derived
     @property
