@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+from pathlib import Path
 
 EXAMPLE = """\
 examples:
@@ -23,6 +24,7 @@ def _names(text: str) -> list[str]:
 def add_parser(subparsers) -> None:
     """Register the ``benchmark`` subcommand."""
     from ..diagnose._names import FEATURE_SETS, MODELS, SPLITS
+    from .features import add_quiet_argument
 
     p = subparsers.add_parser(
         "benchmark",
@@ -55,6 +57,7 @@ def add_parser(subparsers) -> None:
     p.add_argument("--folds", type=int, default=5, metavar="K",
                    help="folds of the k-fold splits (default 5)")
     p.add_argument("--seed", type=int, default=0, help="shuffling and model seed (default 0)")
+    add_quiet_argument(p)
     p.set_defaults(func=run)
 
 
@@ -75,7 +78,11 @@ def run(args) -> int:
     from ..datasets import load
     from ..datasets.real import load_real
     from ..diagnose import run_benchmark, write_report
+    from ._output import check_output_path, show_progress
 
+    check_output_path(args.out, option="--out", folder=True)
+    if args.real is not None and not Path(args.real).exists():
+        raise FileNotFoundError(f"--real: no such file or folder: {args.real}")
     X, meta = load(args.dataset)
     real = None
     if args.real is not None:
@@ -88,7 +95,7 @@ def run(args) -> int:
         _check_real_rpm(real[1])
     result = run_benchmark(X, meta, real=real, splits=args.splits, models=args.models,
                            features=args.features, n_splits=args.folds,
-                           random_state=args.seed)
+                           random_state=args.seed, progress=show_progress(args))
     paths = write_report(result, args.out)
     with pd.option_context("display.width", 140, "display.max_rows", 200):
         print(result.table.drop(columns="optimistic").round(3).to_string(index=False))

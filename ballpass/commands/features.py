@@ -128,6 +128,7 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
         metavar="DIR",
         help="also draw one overview figure (PNG) per signal into DIR",
     )
+    add_quiet_argument(p)
     p.set_defaults(func=run)
     return p
 
@@ -248,11 +249,11 @@ def load_inputs(args) -> list[Signal]:
             )
     if args.segment is None:
         return signals
-    if not args.segment > 0:
-        raise ValueError(f"--segment must be > 0 s, got {args.segment}")
+    from .._validation import check_segment
+
     out = []
     for sig in signals:
-        length = round(args.segment * sig.fs)
+        length = check_segment(args.segment, sig.fs, "--segment")
         n = len(sig.x) // length
         if n == 0:
             raise ValueError(f"{sig.name}: shorter than one --segment of {args.segment} s")
@@ -266,6 +267,8 @@ def load_inputs(args) -> list[Signal]:
 
 def feature_rows(signals: list[Signal], band=None, progress: bool = True) -> list[dict]:
     """One dict of columns per signal: identity, kurtogram band, indicators, fault bands."""
+    import sys
+
     import numpy as np
     from tqdm import tqdm
 
@@ -273,7 +276,8 @@ def feature_rows(signals: list[Signal], band=None, progress: bool = True) -> lis
     from ..features._validation import check_band
 
     rows = []
-    for sig in tqdm(signals, desc="features", unit="signal", disable=not progress, leave=False):
+    for sig in tqdm(signals, desc="features", unit="signal", disable=not progress,
+                    leave=False, file=sys.stderr):
         x = np.asarray(sig.x, dtype=np.float64)
         kg = F.fast_kurtogram(x, sig.fs)
         lo, hi = check_band(band, sig.fs) if band is not None else kg.best_band
@@ -298,25 +302,36 @@ def feature_rows(signals: list[Signal], band=None, progress: bool = True) -> lis
     return rows
 
 
+TABLE_SUFFIXES = (".csv", ".parquet")
+
+
+def add_quiet_argument(p: argparse.ArgumentParser) -> None:
+    """``--quiet``: no progress bar (it is shown on stderr only when that is a terminal)."""
+    p.add_argument("--quiet", "-q", "--no-progress", dest="quiet", action="store_true",
+                   help="hide the progress bar (shown on stderr when it is a terminal)")
+
+
 def _write_table(frame, out: Path) -> None:
     from ..signalio import atomic_write
 
-    suffix = out.suffix.lower()
-    if suffix == ".csv":
+    if out.suffix.lower() == ".csv":
         atomic_write(out, lambda tmp: frame.to_csv(tmp, index=False))
-    elif suffix == ".parquet":
-        atomic_write(out, lambda tmp: frame.to_parquet(tmp, index=False))
     else:
-        raise ValueError(f"--out must end in .csv or .parquet, got {out.name!r}")
+        atomic_write(out, lambda tmp: frame.to_parquet(tmp, index=False))
 
 
-def plot_signals(signals: list[Signal], folder: Path, band=None) -> list[Path]:
-    """One overview PNG per signal in ``folder``; returns the paths."""
+def plot_signals(signals: list[Signal], folder: Path, band=None, names=None) -> list[Path]:
+    """One overview PNG per signal in ``folder`` (each written atomically); the paths.
+
+    ``names`` are the file stems (default: the signals' names).
+    """
     from ..features.bands import as_bearing
     from ..plot import signal_overview
+    from ..signalio import atomic_write
+    from ._output import figure_writer
 
     paths = []
-    for sig in signals:
+    for sig, stem in zip(signals, names or [s.name for s in signals], strict=True):
         known = _known(sig.bearing) and _known(sig.rpm)
         bearing = as_bearing(sig.bearing) if known else None
         shaft_hz = float(sig.rpm) / 60.0 if known else None
@@ -324,10 +339,11 @@ def plot_signals(signals: list[Signal], folder: Path, band=None) -> list[Path]:
         title = " · ".join(
             str(p) for p in (sig.name, label, f"{sig.rpm:g} rpm" if known else None) if p
         )
-        path = folder / f"{sig.name}.png"
+        path = folder / f"{stem}.png"
         fig = signal_overview(
-            sig.x, sig.fs, bearing=bearing, shaft_hz=shaft_hz, path=path, band=band, title=title
+            sig.x, sig.fs, bearing=bearing, shaft_hz=shaft_hz, band=band, title=title
         )
+        atomic_write(path, figure_writer(fig, path))
         fig.clear()
         paths.append(path)
     return paths
@@ -339,15 +355,21 @@ def run(args) -> int:
 
     import pandas as pd
 
+    from ._output import check_output_path, show_progress
+
+    out = None if args.out is None else check_output_path(
+        args.out, option="--out", suffixes=TABLE_SUFFIXES)
+    plots = None if args.plot is None else check_output_path(
+        args.plot, option="--plot", folder=True)
     signals = load_inputs(args)
     band = tuple(args.band) if args.band is not None else None
-    frame = pd.DataFrame(feature_rows(signals, band, progress=sys.stderr.isatty()))
-    if args.out is None:
+    frame = pd.DataFrame(feature_rows(signals, band, progress=show_progress(args)))
+    if out is None:
         frame.to_csv(sys.stdout, index=False)
     else:
-        _write_table(frame, Path(args.out))
-        print(f"{len(frame)} signal(s) x {frame.shape[1]} columns -> {args.out}")
-    if args.plot is not None:
-        paths = plot_signals(signals, Path(args.plot), band)
-        print(f"{len(paths)} figure(s) -> {args.plot}")
+        _write_table(frame, out)
+        print(f"{len(frame)} signal(s) x {frame.shape[1]} columns -> {out}")
+    if plots is not None:
+        paths = plot_signals(signals, plots, band)
+        print(f"{len(paths)} figure(s) -> {plots}")
     return 0

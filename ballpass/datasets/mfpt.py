@@ -28,17 +28,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._validation import check_segment
 from ..features._validation import check_fs
-from .real import (
-    STANDARD_GRAVITY,
-    _loadmat,
-    _path,
-    _samples,
-    _scalar,
-    check_segment,
-    read_all,
-    segment_records,
-)
+from .real import STANDARD_GRAVITY, _loadmat, _path, _samples, _scalar, read_all, segment_records
 
 __all__ = ["MFPT_BEARING", "MfptRecord", "load_mfpt_mat", "load_mfpt"]
 

@@ -45,6 +45,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .._validation import check_segment
 from ..features._validation import check_fs
 from ._cwru_table import NOMINAL_RPM, RECORDS
 
@@ -379,18 +380,6 @@ def mat_paths(paths) -> list[Path]:
     if not out:
         raise ValueError(f"no .mat files in {', '.join(map(str, paths))}")
     return out
-
-
-def check_segment(segment_s, fs: float) -> int:
-    """Samples per segment of ``segment_s`` seconds at ``fs`` Hz (at least 64)."""
-    if isinstance(segment_s, bool) or not isinstance(segment_s, (int, float)) or not (
-            math.isfinite(segment_s) and segment_s > 0):
-        raise ValueError(f"segment_s must be a finite number > 0 s, got {segment_s!r}")
-    length = round(segment_s * fs)
-    if length < 64:
-        raise ValueError(f"segment_s * fs must give at least 64 samples (a spectrum needs "
-                         f"them), got {segment_s!r} s x {fs:g} Hz = {segment_s * fs:g}")
-    return length
 
 
 def segment_records(records, fs: float, length: int):
