@@ -144,7 +144,9 @@ def check_output_path(path, *, option: str = "path", suffixes=None,
 
     path = Path(path)
     if not folder and suffixes is not None and path.suffix.lower() not in suffixes:
-        raise ValueError(f"{option} must end in {', '.join(suffixes)}, got {str(path)!r}")
+        allowed = " or ".join([", ".join(suffixes[:-1]), suffixes[-1]] if len(suffixes) > 1
+                              else suffixes)
+        raise ValueError(f"{option} must end in {allowed}, got {str(path)!r}")
     if folder and path.exists() and not path.is_dir():
         raise ValueError(f"{option} {path} is a file, not a folder")
     if not folder and path.is_dir():

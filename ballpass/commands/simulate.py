@@ -101,8 +101,6 @@ def run(args) -> int:
     out = check_output_path(args.out, option="--out", suffixes=SUFFIXES)
     plot = None if args.plot is None else check_output_path(
         args.plot, option="--plot", suffixes=FIGURE_SUFFIXES)
-    if plot is not None and plot.resolve() == out.resolve():
-        raise ValueError(f"--plot and --out name the same file {out}")
     scene = scene_from_args(args)
     compile_notice()
     res = bp.simulate(scene, model=args.model, solver=args.solver, dt=args.dt, rtol=args.rtol)

@@ -71,8 +71,6 @@ def run(args) -> int:
     csv = None if args.csv is None else check_output_path(args.csv, option="--csv",
                                                            suffixes=(".csv",))
     plot = check_output_path(args.plot, option="--plot", suffixes=FIGURE_SUFFIXES)
-    if csv is not None and csv.resolve() == plot.resolve():
-        raise ValueError(f"--csv and --plot name the same file {csv}")
     if args.repeats < 1:
         raise ValueError(f"--repeats must be an int >= 1, got {args.repeats}")
     scene = scene_from_args(args).replace(snr_db=None)

@@ -435,7 +435,8 @@ def read_all(paths, read) -> list:
         try:
             out.append((path, read(path)))
         except (ValueError, OSError) as exc:
-            warnings.warn(f"skipped {path.name}: {exc}", stacklevel=3)
+            reason = str(exc).removeprefix(f"{path.name}: ")
+            warnings.warn(f"skipped {path.name}: {reason}", stacklevel=3)
     return out
 
 
