@@ -238,3 +238,23 @@ def test_benchmark_real_accepts_both_sets(tmp_path, capsys, bearing, fs, real):
                  str(tmp_path / "rep"), "--splits", "sim2real", "--models", "envelope"])
     assert code == 0, capsys.readouterr().err
     assert "sim2real" in capsys.readouterr().out
+
+
+def test_resampling_between_unrelated_rates_keeps_frequencies_exact():
+    """48 828 Hz -> 12 000 Hz is exactly 1000/4069. A ratio rounded to a small
+    denominator (29/118) puts a 1 kHz tone 8.5 ppm off, a phase drift of 0.53 rad over
+    10 s; the exact ratio must keep the drift below 0.05 rad (< 1 ppm)."""
+    from ballpass.datasets.real import segment_records
+
+    class Tone:
+        fs, name = 48_828.0, "tone"
+        accel = np.sin(2 * np.pi * 1000.0 * np.arange(48_828 * 11) / 48_828.0)
+
+        def columns(self):
+            return {}
+
+    X, meta = segment_records([(Path("tone.mat"), Tone())], 12_000.0, 120_000)
+    t = np.arange(120_000) / 12_000.0
+    phase = np.unwrap(np.angle(scipy.signal.hilbert(X[0].astype(float))))
+    drift = (phase - 2 * np.pi * 1000.0 * t)[5000:-5000]
+    assert np.ptp(drift) < 0.05

@@ -364,12 +364,12 @@ def run(args) -> int:
     signals = load_inputs(args)
     band = tuple(args.band) if args.band is not None else None
     frame = pd.DataFrame(feature_rows(signals, band, progress=show_progress(args)))
+    if plots is not None:  # figures first: the table appears only once they all exist
+        paths = plot_signals(signals, plots, band)
+        print(f"{len(paths)} figure(s) -> {plots}", file=sys.stderr if out is None else None)
     if out is None:
         frame.to_csv(sys.stdout, index=False)
     else:
         _write_table(frame, out)
         print(f"{len(frame)} signal(s) x {frame.shape[1]} columns -> {out}")
-    if plots is not None:
-        paths = plot_signals(signals, plots, band)
-        print(f"{len(paths)} figure(s) -> {plots}")
     return 0
