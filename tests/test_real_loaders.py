@@ -32,7 +32,7 @@ MFPT = DATA / "mfpt_mat"
         ("12k_DE_IR007_0", 12_000.0, "inner", 1797.0, "file", 0, None),
         ("12k_DE_OR007@6_0", 12_000.0, "outer", 1796.0, "file", 0, 6),
         ("12k_FE_OR007@12_0", 12_000.0, "outer", 1797.0, "file", 0, 12),
-        ("12k_FE_OR014@3_0", 12_000.0, "outer", 1774.0, "file", 0, 3),
+        ("12k_FE_OR014@3_0", 12_000.0, "outer", 1774.0, "file", 1, 3),  # misnamed, below
         # named by record number only: everything from the official table
         ("105", 12_000.0, "inner", 1797.0, "file", 0, None),
         ("97", 48_000.0, "healthy", 1796.0, "file", 0, None),
@@ -67,16 +67,36 @@ def test_values_are_converted_from_g():
                                raw * 9.80665)
 
 
-def test_a_wrong_stored_speed_is_kept_and_flagged():
-    """12k_FE_OR014@3_0 stores 1774 rpm at 0 hp (1.3 % below 1797): kept, flagged; its
-    variables are record 309, which the CWRU table lists as the 1 hp record."""
-    with pytest.warns(UserWarning) as caught:
+def test_a_misnamed_load_is_resolved_by_record_number_and_stored_speed():
+    """12k_FE_OR014@3_0 stores 1774 rpm, 1.3 % below the 1797 rpm of 0 hp. Its variables
+    are record 309, which the CWRU table lists as the 1 hp test (nominal 1772 rpm), and
+    the shaft-harmonic comb of the full file peaks at 1773.6 rpm: the name's "_0" is
+    wrong, not the speed. Two sources against the name: 1 hp, no speed flag."""
+    with pytest.warns(UserWarning, match=r"record 309, the 1 hp record, and its stored "
+                                         r"1774 rpm fits 1 hp"):
         rec = load_cwru_mat(CWRU / "12k_FE_OR014@3_0.mat")
-    messages = " | ".join(str(w.message) for w in caught)
-    assert "1774 rpm differs from the nominal 1797" in messages
-    assert "record 309" in messages and "load_hp=1" in messages
-    assert rec.rpm == 1774.0 and rec.rpm_mismatch and rec.rpm_nominal == 1797.0
+    assert (rec.load_hp, rec.rpm, rec.rpm_nominal, rec.rpm_mismatch) == (1, 1774.0, 1772.0,
+                                                                          False)
+
+
+def test_a_stored_speed_off_the_motor_load_is_kept_and_flagged(tmp_path):
+    """Record 105 is 0 hp like its name; a stored 1750 rpm (2.6 % off 1797) is kept,
+    flagged, and the nominal speed recorded for downstream checks."""
+    x = scipy.io.loadmat(CWRU / "105.mat")["X105_DE_time"]
+    scipy.io.savemat(tmp_path / "12k_DE_IR007_0.mat",
+                     {"X105_DE_time": x, "X105RPM": np.array([[1750]], dtype=np.uint16)})
+    with pytest.warns(UserWarning, match="1750 rpm differs from the nominal 1797 rpm"):
+        rec = load_cwru_mat(tmp_path / "12k_DE_IR007_0.mat")
+    assert (rec.rpm, rec.rpm_source, rec.rpm_nominal, rec.rpm_mismatch, rec.load_hp) == (
+        1750.0, "file", 1797.0, True, 0)
     assert not load_cwru_mat(CWRU / "12k_DE_IR007_0.mat").rpm_mismatch
+    # 1 % is the line (17.97 rpm): 1780 rpm (0.95 % off) passes, 1778 (1.06 %) is flagged
+    for rpm, flagged in ((1780, False), (1778, True)):
+        scipy.io.savemat(tmp_path / "12k_DE_IR007_0.mat",
+                         {"X105_DE_time": x, "X105RPM": np.array([[rpm]], dtype=np.uint16)})
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            assert load_cwru_mat(tmp_path / "12k_DE_IR007_0.mat").rpm_mismatch is flagged
 
 
 def test_the_table_matches_the_shipped_files():

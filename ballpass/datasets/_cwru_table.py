@@ -17,7 +17,8 @@ Gaps and irregularities of the official numbering (kept as they are):
   0.014 in at 3 o'clock is **310 (0 hp), 309 (1 hp)**, 311, 312; 0.014 in at 6 o'clock
   only 313 (0 hp); 0.021 in at 6 o'clock only 315 (0 hp), at 3 o'clock 316-318 (1-3 hp).
   So a file distributed as ``12k_FE_OR014@3_0.mat`` that holds ``X309`` is, by this
-  table, the 1 hp record; its stored 1774 rpm fits 1 hp (nominal 1772), not 0 hp.
+  table, the 1 hp record; its stored 1774 rpm fits 1 hp (nominal 1772), not 0 hp, and
+  so does its signal (shaft-harmonic comb at 1773.6 rpm).
 * The 0.028 in faults (3001-3008, drive end, 12 kHz) carry no RPM variable.
 * The normal baseline (97-100) is sampled at 48 kHz.
 

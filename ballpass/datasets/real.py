@@ -16,10 +16,13 @@ by suffix. Pitfalls that catch most users:
   load come from the name where it says them, otherwise from the record number (the
   file name's or the variables') looked up in the official numbering
   (:mod:`ballpass.datasets._cwru_table`).
-* **The speed is not always stored or right**: the 0.028 in files carry no RPM variable
-  (the loaders fill the nominal speed of the motor load, 1797/1772/1750/1730 rpm for
-  0-3 hp, and say so in ``rpm_source``), and ``12k_FE_OR014@3_0`` stores 1774 rpm at
-  0 hp (kept, but flagged in ``rpm_mismatch`` with the nominal speed in ``rpm_nominal``).
+* **The speed is not always stored**: the 0.028 in files carry no RPM variable (the
+  loaders fill the nominal speed of the motor load, 1797/1772/1750/1730 rpm for 0-3 hp,
+  and say so in ``rpm_source``). A stored speed more than 1 % off the nominal speed of
+  the load is kept but flagged (``rpm_mismatch``, ``rpm_nominal``) -- unless the record
+  number names another load that the speed fits: ``12k_FE_OR014@3_0`` stores 1774 rpm
+  at "0 hp", but holds record 309, the 1 hp test (1772 rpm nominal), and its
+  shaft-harmonic comb peaks at 1773.6 rpm; the name is wrong, so it loads as 1 hp.
 
 The drive-end bearing is an SKF 6205-2RS JEM, the fan-end bearing an SKF 6203-2RS JEM.
 Faults are EDM pits of 0.007-0.040 in (0.178-1.016 mm); outer-race faults sit at
@@ -185,28 +188,30 @@ def _parse_name(stem: str) -> dict:
     return out
 
 
-def _merge_with_record(info: dict, record: int | None, name: str) -> dict:
+def _merge_with_record(info: dict, record: int | None) -> tuple[dict, dict, list]:
     """Fill what the name leaves open from the record's entry of the CWRU table.
 
-    Where the name and the table disagree, the name wins and a warning says so.
+    Returns the merged fields, the table's fields (empty for an unknown record) and the
+    keys on which the name and the table disagree (the name's value is kept).
     """
     test = RECORDS.get(record)
+    table, differ = {}, []
     if test is not None:
         table = {"fs": test.fs, "end": test.end, "kind": test.kind, "size_in": test.size_in,
                  "clock": test.clock, "load_hp": test.load_hp}
         differ = [k for k, v in table.items()
                   if info[k] is not None and v is not None and info[k] != v]
-        if differ:
-            said = ", ".join(f"{k}={info[k]!r}" for k in differ)
-            listed = ", ".join(f"{k}={table[k]!r}" for k in differ)
-            warnings.warn(f"{name}: the name says {said}, but its variables are CWRU record "
-                          f"{record}, which the data centre lists as {listed}; using the name",
-                          stacklevel=3)
         if "kind" not in differ:  # another test altogether: its rate and load do not apply
             info = {k: (v if v is not None else table.get(k)) for k, v in info.items()}
     if info["kind"] == "healthy" and info["fs"] is None:
         info["fs"] = 48_000.0  # the normal baseline is only distributed at 48 kHz
-    return info
+    return info, table, differ
+
+
+def _fits(rpm: float, load) -> bool:
+    """The speed is within :data:`RPM_TOLERANCE` of the nominal speed of ``load`` hp."""
+    nominal = NOMINAL_RPM.get(load, math.nan)
+    return abs(rpm - nominal) <= RPM_TOLERANCE * nominal
 
 
 def _scalar(value) -> float:
@@ -307,7 +312,29 @@ def load_cwru_mat(path, channel: str = "DE", fs: float | None = None) -> CwruRec
     key = next((k for k in signals if k.startswith(f"{prefix}_")), signals[0])
     record = variables[key][0]
     info = _parse_name(path.stem)
-    info = _merge_with_record(info, info["record"] or record, path.name)
+    number = info["record"] or record
+    info, table, differ = _merge_with_record(info, number)
+    stored = _scalar(data[f"{prefix}RPM"]) if speeds else math.nan
+    if speeds and not stored > 0:
+        warnings.warn(f"{path.name}: stored speed {prefix}RPM is not a positive number; "
+                      "ignored", stacklevel=2)
+        stored = math.nan
+    if "load_hp" in differ and _fits(stored, table["load_hp"]) \
+            and not _fits(stored, info["load_hp"]):
+        # the record number and the stored speed agree against the name: a misnamed file
+        warnings.warn(f"{path.name}: the name says {info['load_hp']} hp, but its variables "
+                      f"are CWRU record {number}, the {table['load_hp']} hp record, and its "
+                      f"stored {stored:g} rpm fits {table['load_hp']} hp "
+                      f"({NOMINAL_RPM[table['load_hp']]:g} rpm nominal); using "
+                      f"{table['load_hp']} hp", stacklevel=2)
+        info["load_hp"] = table["load_hp"]
+        differ.remove("load_hp")
+    if differ:
+        said = ", ".join(f"{k}={info[k]!r}" for k in differ)
+        listed = ", ".join(f"{k}={table[k]!r}" for k in differ)
+        warnings.warn(f"{path.name}: the name says {said}, but its variables are CWRU record "
+                      f"{number}, which the data centre lists as {listed}; using the name",
+                      stacklevel=2)
     if fs is None:
         if info["fs"] is None:
             raise ValueError(
@@ -320,11 +347,6 @@ def load_cwru_mat(path, channel: str = "DE", fs: float | None = None) -> CwruRec
         warnings.warn(f"{path.name}: fs={fs:g} Hz given but the file name says "
                       f"{info['fs']:g} Hz", stacklevel=2)
     accel = _samples(data[key], f"{path.name}: {key}") * STANDARD_GRAVITY
-    stored = _scalar(data[f"{prefix}RPM"]) if speeds else math.nan
-    if speeds and not stored > 0:
-        warnings.warn(f"{path.name}: stored speed {prefix}RPM is not a positive number; "
-                      "ignored", stacklevel=2)
-        stored = math.nan
     load = info["load_hp"]
     nominal = NOMINAL_RPM.get(load, math.nan)
     if stored > 0:
@@ -335,7 +357,7 @@ def load_cwru_mat(path, channel: str = "DE", fs: float | None = None) -> CwruRec
         rpm, source = math.nan, "unknown"
         warnings.warn(f"{path.name}: no stored speed and no motor load in the name; rpm "
                       "is NaN (pass it to the diagnoser yourself)", stacklevel=2)
-    mismatch = source == "file" and abs(rpm - nominal) > RPM_TOLERANCE * nominal
+    mismatch = source == "file" and math.isfinite(nominal) and not _fits(rpm, load)
     if mismatch:
         warnings.warn(f"{path.name}: stored speed {rpm:g} rpm differs from the nominal "
                       f"{nominal:g} rpm at {load} hp by {100 * abs(rpm / nominal - 1):.1f} %; "
