@@ -198,6 +198,7 @@ def test_mfpt_mixed_rates_need_fs(tmp_path):
         load_mfpt(tmp_path)
     X, meta = load_mfpt(tmp_path, fs=48_828, segment_s=0.1)
     healthy = meta[meta.label == "healthy"]
+    assert set(healthy.group) == {"baseline_1"} and len(healthy) == 4  # 0.5 s -> 4 x 0.1 s
     assert (healthy.source_fs == 97_656.0).all() and (healthy.load_lbs == 270.0).all()
     assert (meta.fs == 48_828.0).all()
 
