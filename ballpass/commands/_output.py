@@ -42,7 +42,7 @@ def kernels_cached() -> bool:
     for folder in cache_dirs():
         try:
             if (folder / STAMP_NAME).read_text() == fingerprint and any(
-                    folder.glob("_integrators.*.nbi")):
+                    folder.glob("*.nbi")):
                 return True
         except OSError:
             continue
