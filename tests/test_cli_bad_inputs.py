@@ -151,3 +151,32 @@ def test_a_bug_keeps_its_traceback(monkeypatch):
     monkeypatch.setattr(bp, "simulate", bug)
     with pytest.raises(RuntimeError, match="internal"):
         main(["simulate", "--duration", "0.01", "--out", "x.npz"])
+
+
+OUTPUT_MESSAGES = ("afile is a file", "cannot write", "must end in", "is a folder",
+                   "is a file, not a folder")
+OUTPUT_CASES = [c for c in CASES if any(m in c[1] for m in OUTPUT_MESSAGES)]
+
+
+@pytest.mark.parametrize(("argv", "message"), OUTPUT_CASES,
+                         ids=[" ".join(c[0]) for c in OUTPUT_CASES])
+def test_output_paths_are_checked_before_any_work(workdir, capsys, monkeypatch, argv,
+                                                  message):
+    """The work itself (simulating, reading the inputs, loading the dataset) is replaced
+    by a tripwire: a bad output path must be refused before it is reached."""
+    import importlib
+
+    import ballpass.commands.features as features_cmd
+    import ballpass.datasets
+
+    wp = importlib.import_module("ballpass.simulate.work_precision")
+
+    def tripwire(*args, **kwargs):
+        raise AssertionError("work started before the output path was checked")
+
+    monkeypatch.setattr(bp, "simulate", tripwire)
+    monkeypatch.setattr(wp, "work_precision", tripwire)
+    monkeypatch.setattr(features_cmd, "load_inputs", tripwire)
+    monkeypatch.setattr(ballpass.datasets, "load", tripwire)
+    assert main(argv) == 2
+    assert message in capsys.readouterr().err
