@@ -31,6 +31,7 @@ References
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
 
@@ -151,10 +152,24 @@ class Bearing:
     source: str = field(default="user", compare=False)
 
     def __post_init__(self) -> None:
-        if not isinstance(self.n_elements, int) or isinstance(self.n_elements, bool):
-            raise TypeError(f"n_elements must be an int, got {type(self.n_elements).__name__}")
+        if not isinstance(self.n_elements, numbers.Integral) or isinstance(self.n_elements,
+                                                                           bool):
+            raise TypeError(f"n_elements must be an int, got "
+                            f"{type(self.n_elements).__name__} ({self.n_elements!r})")
         if self.n_elements < 3:
             raise ValueError(f"n_elements must be >= 3, got {self.n_elements}")
+        object.__setattr__(self, "n_elements", int(self.n_elements))
+        if not isinstance(self.name, str) or not self.name:
+            raise TypeError(f"name must be a non-empty str, got {self.name!r}")
+        # numbers first (a string '10' is a TypeError naming the argument, not a failed
+        # comparison), stored as floats
+        for arg in ("element_diameter_mm", "pitch_diameter_mm", "contact_angle_deg",
+                    "inner_conformity", "outer_conformity", "radial_clearance_mm",
+                    "youngs_modulus_pa", "poisson_ratio"):
+            object.__setattr__(self, arg, check_number(arg, getattr(self, arg)))
+        if self.roller_length_mm is not None:
+            object.__setattr__(self, "roller_length_mm",
+                               check_number("roller_length_mm", self.roller_length_mm))
         check_number("element_diameter_mm", self.element_diameter_mm, 0.0, lo_open=True)
         check_number("pitch_diameter_mm", self.pitch_diameter_mm, 0.0, lo_open=True)
         if self.element_diameter_mm >= self.pitch_diameter_mm:
@@ -306,7 +321,7 @@ class Bearing:
     def contact_curvature(self, race: str) -> tuple[float, float]:
         """Curvature sum and curvature difference of one ball-raceway contact.
 
-        Harris & Kotzalas [1]_ ch. 6 (seed 000 eqs. 7-8). With gamma = d cos(alpha)/d_p
+        Harris & Kotzalas [1] ch. 6 (seed 000 eqs. 7-8). With gamma = d cos(alpha)/d_p
         and f the groove conformity (groove radius / d), the principal curvatures are
         ball 2/d, 2/d; inner race 2/d * gamma/(1 - gamma) (rolling direction) and
         -1/(f d) (groove); outer race -2/d * gamma/(1 + gamma) and -1/(f d). Concave
@@ -437,7 +452,7 @@ class Bearing:
         psi_j = cage_angle + 360 j / Z and is compressed along its contact normal by
         delta_j = (x cos psi_j + y sin psi_j - c) cos(alpha), carrying
         Q_j = K max(delta_j, 0)^n (seed 001 eqs. 1, 11 with sin for the y term, 13-14;
-        Harris & Kotzalas [1]_ ch. 7). The equilibrium
+        Harris & Kotzalas [1] ch. 7). The equilibrium
         sum_j Q_j cos(alpha) (cos psi_j, sin psi_j) = (F_r, 0) is solved to machine
         precision with :func:`scipy.optimize.brentq`: the radial balance is monotone in
         x. When the layout is symmetric about the load line (an element on it, or two
@@ -605,6 +620,13 @@ _CATALOG: dict[str, dict] = {
         n_elements=11, element_diameter_mm=9.25, pitch_diameter_mm=43.5,
         element="roller", roller_length_mm=11.0, radial_clearance_mm=0.125,
         source="NJ 305, seed 003 section 2.1 (P_d = 0.25 mm diametral)",
+    ),
+    # The MFPT data set's test bearing (Bechhoefer, MFPT fault database, 2013): 8 elements
+    # of 0.235 in on a 1.245 in pitch circle, contact angle 0. Its geometry gives FTF
+    # 10.14 Hz at 25 Hz; the 14.8375 Hz stored in the data files contradicts their BPFO.
+    "MFPT-NICE": dict(
+        n_elements=8, element_diameter_mm=0.235 * 25.4, pitch_diameter_mm=1.245 * 25.4,
+        source="NICE bearing of the MFPT fault data set (0.235 in elements, 1.245 in pitch)",
     ),
 }
 
