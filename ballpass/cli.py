@@ -21,6 +21,7 @@ SUBCOMMANDS = {
     "info": "info",
     "benchmark": "benchmark",
     "work-precision": "work_precision",
+    "bifurcation": "bifurcation",
 }
 
 

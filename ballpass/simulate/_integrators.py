@@ -784,7 +784,10 @@ def dopri5(y0, p, walk, faults, sensors, n_res, h_out, n_out, ev_before, ev_afte
 # function ``force(t, x, v, p, f, kx, kv)`` that fills the generalised force f (n,),
 # everything except the inertia (contacts, damping, minus the external loads), and its
 # tangent matrices kx = df/dx and kv = df/dv (n, n); ``p`` is the model's float64
-# parameter array. Numba specialises the integrators on the function passed.
+# parameter array. :func:`newmark_for` and :func:`dopri5_for` compile the integrators
+# for one force function. (The force is bound as a global of a copy of the integrator,
+# not passed as an argument: numba cannot cache a function that receives another as a
+# value, whose type holds an address that changes from process to process.)
 # ----------------------------------------------------------------------------------
 
 #: status code of :func:`newmark`: the Newton iterations did not converge
@@ -826,11 +829,11 @@ def _solve_small(a, b, x):
     return True
 
 
-@njit(cache=True, error_model="numpy")
-def newmark(force, p, mass, x0, v0, h_out, n_sub, n_out, x_scale, newton_tol, bound,
+def _newmark(p, mass, x0, v0, h_out, n_sub, n_out, x_scale, newton_tol, bound,
             out_x, out_v, out_a):
     """Newmark-beta, average acceleration (gamma = 1/2, beta = 1/4), with Newton
-    iterations on the non-linear force and its tangent matrices.
+    iterations on the non-linear force (the bound ``force``, see :func:`newmark_for`)
+    and its tangent matrices.
 
     Integrates M a + f(t, x, v) = 0 from t = 0 with ``n_sub`` equal steps
     dt = h_out / n_sub per output interval and records x, v, a at t = k h_out,
@@ -846,8 +849,6 @@ def newmark(force, p, mass, x0, v0, h_out, n_sub, n_out, x_scale, newton_tol, bo
 
     Parameters
     ----------
-    force : numba function
-        ``force(t, x, v, p, f, kx, kv)`` as described above.
     p : ndarray
         Parameters passed to ``force``.
     mass : ndarray (n, n)
@@ -963,8 +964,7 @@ def newmark(force, p, mass, x0, v0, h_out, n_sub, n_out, x_scale, newton_tol, bo
     return STATUS_OK, n_steps, max_iter, (n_out - 1) * h_out
 
 
-@njit(cache=True, error_model="numpy")
-def _second_order_rhs(force, t, y, p, minv, f, kx, kv, dy):
+def _second_order_rhs(t, y, p, minv, f, kx, kv, dy):
     """dy/dt of the first-order form y = (x, v) of M a + f(t, x, v) = 0."""
     n = f.shape[0]
     force(t, y[:n], y[n:], p, f, kx, kv)
@@ -976,11 +976,10 @@ def _second_order_rhs(force, t, y, p, minv, f, kx, kv, dy):
         dy[n + i] = s
 
 
-@njit(cache=True, error_model="numpy")
-def dopri5_second_order(force, p, minv, y0, h_out, n_out, rtol, atol, h_max, max_steps,
+def _dopri5_second_order(p, minv, y0, h_out, n_out, rtol, atol, h_max, max_steps,
                         out_y, out_dy):
-    """Dormand-Prince 5(4) with error control on M a + f(t, x, v) = 0 (``force`` as
-    for :func:`newmark`), written as y' = (v, -M^-1 f) with y = (x, v).
+    """Dormand-Prince 5(4) with error control on M a + f(t, x, v) = 0 (the bound
+    ``force``, see :func:`dopri5_for`), written as y' = (v, -M^-1 f) with y = (x, v).
 
     Steps never cross an output time t = k h_out: a step that would is shortened to
     end on it, so the outputs are the method's own step ends (no interpolation).
@@ -989,7 +988,6 @@ def dopri5_second_order(force, p, minv, y0, h_out, n_out, rtol, atol, h_max, max
 
     Parameters
     ----------
-    force : numba function
     p : ndarray
         Parameters passed to ``force``.
     minv : ndarray (n, n)
@@ -1036,7 +1034,7 @@ def dopri5_second_order(force, p, minv, y0, h_out, n_out, rtol, atol, h_max, max
     k7 = np.zeros(m)
     ys = np.zeros(m)
     y5 = np.zeros(m)
-    _second_order_rhs(force, 0.0, y, p, minv, f, kx, kv, k1)
+    _second_order_rhs(0.0, y, p, minv, f, kx, kv, k1)
     for i in range(m):
         out_y[0, i] = y[i]
         out_dy[0, i] = k1[i]
@@ -1060,25 +1058,25 @@ def dopri5_second_order(force, p, minv, y0, h_out, n_out, rtol, atol, h_max, max
             return STATUS_UNDERFLOW, n_acc, n_rej, h_min, t
         for i in range(m):
             ys[i] = y[i] + h_try * A21 * k1[i]
-        _second_order_rhs(force, t + C2 * h_try, ys, p, minv, f, kx, kv, k2)
+        _second_order_rhs(t + C2 * h_try, ys, p, minv, f, kx, kv, k2)
         for i in range(m):
             ys[i] = y[i] + h_try * (A31 * k1[i] + A32 * k2[i])
-        _second_order_rhs(force, t + C3 * h_try, ys, p, minv, f, kx, kv, k3)
+        _second_order_rhs(t + C3 * h_try, ys, p, minv, f, kx, kv, k3)
         for i in range(m):
             ys[i] = y[i] + h_try * (A41 * k1[i] + A42 * k2[i] + A43 * k3[i])
-        _second_order_rhs(force, t + C4 * h_try, ys, p, minv, f, kx, kv, k4)
+        _second_order_rhs(t + C4 * h_try, ys, p, minv, f, kx, kv, k4)
         for i in range(m):
             ys[i] = y[i] + h_try * (A51 * k1[i] + A52 * k2[i] + A53 * k3[i] + A54 * k4[i])
-        _second_order_rhs(force, t + C5 * h_try, ys, p, minv, f, kx, kv, k5)
+        _second_order_rhs(t + C5 * h_try, ys, p, minv, f, kx, kv, k5)
         for i in range(m):
             ys[i] = y[i] + h_try * (A61 * k1[i] + A62 * k2[i] + A63 * k3[i] + A64 * k4[i]
                                     + A65 * k5[i])
-        _second_order_rhs(force, t + h_try, ys, p, minv, f, kx, kv, k6)
+        _second_order_rhs(t + h_try, ys, p, minv, f, kx, kv, k6)
         for i in range(m):
             y5[i] = y[i] + h_try * (B1 * k1[i] + B3 * k3[i] + B4 * k4[i] + B5 * k5[i]
                                     + B6 * k6[i])
         t_new = t_next if lands else t + h_try
-        _second_order_rhs(force, t_new, y5, p, minv, f, kx, kv, k7)
+        _second_order_rhs(t_new, y5, p, minv, f, kx, kv, k7)
         err = 0.0
         for i in range(m):
             e = h_try * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i]
@@ -1116,3 +1114,65 @@ def dopri5_second_order(force, p, minv, y0, h_out, n_out, rtol, atol, h_max, max
             rejected = True
             h = h_try * max(0.2, 0.9 * err ** -PI_ALPHA)
     return STATUS_OK, n_acc, n_rej, h_min, t
+
+
+_BOUND: dict = {}
+
+
+def _bind(template, force, name: str, cache: bool, **extra):
+    """A numba-compiled copy of ``template`` whose global ``force`` is ``force``."""
+    import types
+
+    key = (template.__name__, force, cache)
+    if key not in _BOUND:
+        glb = dict(template.__globals__, force=force, **extra)
+        fn = types.FunctionType(template.__code__, glb, name, template.__defaults__)
+        fn.__qualname__ = name
+        fn.__doc__ = template.__doc__
+        _BOUND[key] = njit(cache=cache, error_model="numpy")(fn)
+    return _BOUND[key]
+
+
+def newmark_for(force, *, cache: bool = True):
+    """The Newmark-beta integrator compiled for one model's force function.
+
+    Parameters
+    ----------
+    force : numba function
+        ``force(t, x, v, p, f, kx, kv)``: fills the generalised force f (n,) of
+        M a + f(t, x, v) = 0 and its tangents kx = df/dx, kv = df/dv (n, n).
+    cache : bool, optional
+        Cache the machine code on disk (default True; numba keys it on this module's
+        source, so use it only for forces defined in ``ballpass.simulate``, whose
+        sources the package's cache stamp covers).
+
+    Returns
+    -------
+    callable
+        ``newmark(p, mass, x0, v0, h_out, n_sub, n_out, x_scale, newton_tol, bound,
+        out_x, out_v, out_a) -> (status, n_steps, max_iter, t_fail)``; see
+        :func:`_newmark`.
+    """
+    return _bind(_newmark, force, f"newmark_{force.__name__}", cache)
+
+
+def dopri5_for(force, *, cache: bool = True):
+    """Adaptive Dormand-Prince 5(4) compiled for one model's force function.
+
+    Parameters
+    ----------
+    force : numba function
+        As for :func:`newmark_for`.
+    cache : bool, optional
+        As for :func:`newmark_for`.
+
+    Returns
+    -------
+    callable
+        ``dopri5(p, minv, y0, h_out, n_out, rtol, atol, h_max, max_steps, out_y,
+        out_dy) -> (status, n_acc, n_rej, h_min, t_fail)``; see
+        :func:`_dopri5_second_order`.
+    """
+    rhs = _bind(_second_order_rhs, force, f"rhs_{force.__name__}", cache)
+    return _bind(_dopri5_second_order, force, f"dopri5_{force.__name__}", cache,
+                 _second_order_rhs=rhs)

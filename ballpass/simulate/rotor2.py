@@ -82,7 +82,14 @@ from ..scene import STANDARD_GRAVITY, Scene
 from . import _integrators as _I
 from . import _kernels as _K
 from ._registry import Model
-from ._shared import OVERSAMPLE, SimulationUnstableError, add_noise, check_finite, to_output_rate
+from ._shared import (
+    OVERSAMPLE,
+    SimulationUnstableError,
+    add_noise,
+    check_finite,
+    check_solver_args,
+    to_output_rate,
+)
 from .result import FaultCrossings, GroundTruth, SimulationResult
 from .sr5 import MAX_DEFLECTION_RATIO, _fault_table
 
@@ -291,6 +298,11 @@ def _loads_many(t, x, v, p, out):
             out[i, j] = _roller(j, t[i], x[i], v[i], p)[0]
 
 
+#: the integrators compiled for rotor2's force
+_newmark = _I.newmark_for(rotor2_force)
+_dopri5 = _I.dopri5_for(rotor2_force)
+
+
 # ---------------------------------------------------------------------- binding
 def elastic_limit_m(bearing) -> float:
     """Largest contact deflection rotor2 accepts, m: ``MAX_DEFLECTION_RATIO`` (1 %) of the
@@ -416,6 +428,10 @@ def _accepts(scene: Scene) -> str | None:
 def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=None,
          return_forces: bool = False, oversample: int = OVERSAMPLE) -> SimulationResult:
     """Simulate ``scene`` with rotor2 (arguments validated by :func:`simulate`)."""
+    # again with the resolved solver: simulate() checks "auto" before resolving it, so
+    # rtol with the default newmark would pass silently
+    check_solver_args("rotor2", solver, tuple(SOLVERS), ("newmark",), dt, rtol, atol,
+                      oversample)
     if params is None:
         params = Rotor2Parameters()
     elif not isinstance(params, Rotor2Parameters):
@@ -441,8 +457,8 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
         xs = np.empty((n_out, 2))
         vs = np.empty((n_out, 2))
         acc = np.empty((n_out, 2))
-        status, n_steps, max_iter, t_fail = _I.newmark(
-            rotor2_force, bound.p, mass, bound.x0, np.zeros(2), h_out, n_sub, n_out,
+        status, n_steps, max_iter, t_fail = _newmark(
+            bound.p, mass, bound.x0, np.zeros(2), h_out, n_sub, n_out,
             bound.x_scale, 1e-10, 1e4, xs, vs, acc)
         info.update(n_steps=int(n_steps), n_rejected=0, dt_s=step,
                     newton_max_iter=int(max_iter))
@@ -454,8 +470,8 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
         ys = np.empty((n_out, 4))
         dys = np.empty((n_out, 4))
         y0 = np.concatenate((bound.x0, np.zeros(2)))
-        status, n_acc, n_rej, h_min, t_fail = _I.dopri5_second_order(
-            rotor2_force, bound.p, np.linalg.inv(mass), y0, h_out, n_out, rtol_v, atol_v,
+        status, n_acc, n_rej, h_min, t_fail = _dopri5(
+            bound.p, np.linalg.inv(mass), y0, h_out, n_out, rtol_v, atol_v,
             0.5 * math.pi / bound.omega, int(200 * n_out + 10_000), ys, dys)
         xs, vs, acc = ys[:, :2], ys[:, 2:], dys[:, 2:]
         info.update(n_steps=int(n_acc), n_rejected=int(n_rej), dt_min_s=float(h_min),
