@@ -893,7 +893,7 @@ def _newmark(p, mass, x0, v0, h_out, n_sub, n_out, x_scale, newton_tol, bound,
     v = v0.copy()
     a = np.zeros(n)
     # initial acceleration from the equations of motion: M a0 = -f(0, x0, v0)
-    force(0.0, x, v, p, f, kx, kv)
+    force(0.0, x, v, p, f, kx, kv)  # noqa: F821 (bound by _bind)
     for i in range(n):
         rhs[i] = -f[i]
         for j in range(n):
@@ -928,7 +928,7 @@ def _newmark(p, mass, x0, v0, h_out, n_sub, n_out, x_scale, newton_tol, bound,
                 for i in range(n):
                     a[i] = c_a * (x[i] - xn[i] - dt * vn[i]) - an[i]
                     v[i] = c_v * (x[i] - xn[i]) - vn[i]
-                force(t1, x, v, p, f, kx, kv)
+                force(t1, x, v, p, f, kx, kv)  # noqa: F821 (bound by _bind)
                 for i in range(n):
                     r = f[i]
                     for j in range(n):
@@ -967,7 +967,7 @@ def _newmark(p, mass, x0, v0, h_out, n_sub, n_out, x_scale, newton_tol, bound,
 def _second_order_rhs(t, y, p, minv, f, kx, kv, dy):
     """dy/dt of the first-order form y = (x, v) of M a + f(t, x, v) = 0."""
     n = f.shape[0]
-    force(t, y[:n], y[n:], p, f, kx, kv)
+    force(t, y[:n], y[n:], p, f, kx, kv)  # noqa: F821 (bound by _bind)
     for i in range(n):
         dy[i] = y[n + i]
         s = 0.0

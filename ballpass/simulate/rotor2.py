@@ -10,9 +10,9 @@ system with bearing defects", NJ 305) section 3.5:
 
 with c = 200 N s/m the bearing damping of seed 003 section 3.6 (the lumped viscous
 damping of Harsha's 2-DOF rotor models, which seed 003 follows), theta the shaft angle,
-w = theta' and the unbalance term m_u e w^2 the seed's equation needs (it prints m w^2, without the unbalance mass and eccentricity; see
-shared/seeds/DIGEST.md section 1.4). Roller j sits at
-phi_j = phi_0 + 2 pi j / Z + (1 - r) theta / 2 (rigid cage at the fundamental train
+w = theta' and the unbalance term m_u e w^2 the seed's equation needs (it prints m w^2,
+without the unbalance mass and eccentricity; see shared/seeds/DIGEST.md section 1.4).
+Roller j sits at phi_j = phi_0 + 2 pi j / Z + (1 - r) theta / 2 (rigid cage at the fundamental train
 frequency, r = d cos(alpha) / d_p) and is compressed by
 
     delta_j = x cos(phi_j) + y sin(phi_j) - c_r - h_j(t)
@@ -536,8 +536,9 @@ ROTOR2 = Model(
                 "contacts with clearance, unbalance, gravity, localized defects; Newmark-beta",
     represents=frozenset({"rotor_dynamics", "contact_dynamics", "contact_forces",
                           "varying_speed"}),
-    # measured side by side with sr5 (benchmarks/seed003.py, docs/seed003.md)
-    relative_cost=0.5,
+    # wall time per simulated second against sr5, measured side by side on a healthy
+    # NJ 305 at 500 N, 48 kHz (benchmarks/seed003.py, docs/seed003.md): 7x
+    relative_cost=7.0,
     solvers=tuple(SOLVERS),
     fixed_step_solvers=("newmark",),
     reference="Dynamic behaviour of rotor roller bearing system with bearing defects "
