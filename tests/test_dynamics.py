@@ -168,3 +168,19 @@ def test_cli_bifurcation_writes_csv_and_figure(tmp_path, capsys):
     assert main(["bifurcation", "--parameter", "nope", "--values", "1", "--out",
                  str(out)]) == 2
     assert "parameter must be one of" in capsys.readouterr().err
+
+
+def test_speed_ramp_is_strobed_by_the_tachometer():
+    # rotor2 on a run-up: the strobe instants follow the shaft angle, so every whole
+    # revolution after the transient gives exactly one point, at its instant
+    scene = _rotor_scene().replace(rpm=(600.0, 1800.0))
+    res = bp.simulate(scene, model="rotor2", return_forces=True)
+    assert "varying_speed" in bp.simulate.MODELS["rotor2"].represents
+    pts = bp.dynamics.poincare_section(res, discard_s=0.05)
+    angle = res.truth.shaft_angle
+    first = math.ceil(np.interp(0.05, res.t, angle) / (2 * math.pi))
+    last = math.floor(angle[-1] / (2 * math.pi))
+    assert pts.shape == (last - first + 1, 2)
+    # the run-up raises the unbalance force (w^2) but the rotor stays on its rollers
+    static = scene.bearing.load_distribution(500.0 + 9.80665).deflection_m
+    np.testing.assert_allclose(pts[:, 0], static, atol=0.3e-6)

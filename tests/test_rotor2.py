@@ -129,12 +129,14 @@ def test_seed003_defect_lines():
         assert faulty[0] > max(faulty[1:])
 
 
-def test_static_equilibrium_matches_load_distribution():
+@pytest.mark.parametrize("name", ["NJ305", "6205"])
+def test_static_equilibrium_matches_load_distribution(name):
     # a quasi-static rotor (0.01 rpm), no unbalance, rollers not symmetric about the
     # load line (cage at 10 deg: the rotor also shifts sideways): after the start the
     # rotor must stay at the equilibrium of Bearing.load_distribution (Stribeck, solved
-    # by brentq on the same Palmgren law) and carry its roller loads
-    b = bp.Bearing.catalog("NJ305").with_clearance(0.02)
+    # by brentq on the same Palmgren law; Hertz for the balls of the 6205) and carry
+    # its element loads
+    b = bp.Bearing.catalog(name).with_clearance(0.02)
     scene = bp.Scene(bearing=b, rpm=0.01, radial_load_n=800.0, duration_s=0.05, fs=4000.0,
                      resonance_hz=1000.0)
     params = Rotor2Parameters(unbalance_mass_kg=0.0, cage_angle_deg=10.0,
@@ -173,8 +175,9 @@ def test_bad_input_refused_before_work():
     with pytest.raises(ValueError, match=r"radial_clearance_mm=-0\.2.*elastic limit"):
         bp.simulate(tight, model="rotor2")
     assert time.perf_counter() - t0 < 1.0  # refused before integrating
-    with pytest.raises(ValueError, match="rotor2.*balls"):
-        bp.simulate(bp.Scene(bearing="6205"), model="rotor2")
+    with pytest.raises(ValueError, match="misalignment_rad=0.001 needs the laminae"):
+        bp.simulate(bp.Scene(bearing="6205"), model="rotor2",
+                    params=Rotor2Parameters(misalignment_rad=1e-3))
     with pytest.raises(ValueError, match="n_laminae"):
         Rotor2Parameters(n_laminae=0)
     with pytest.raises(ValueError, match="rotor_mass_kg"):

@@ -34,6 +34,10 @@ axial position s_lambda from the roller centre is compressed by
 delta_j + s_lambda gamma cos(phi_j) and carries (K / k) delta^(10/9), which sums to
 Palmgren's law when gamma = 0 (the laminae then collapse to one exact term).
 
+Ball bearings run the same equations with Hertz point contacts, Q = K delta^(3/2) and
+K from :meth:`ballpass.Bearing.hertz_stiffness` (the 2-DOF rotor of Harsha's papers,
+DIGEST.md section 4 item 3); laminae need rollers, so a misalignment is refused there.
+
 Assumptions (where seed 003 is silent or garbled):
 
 * Rigid housing and outer ring; the sensor signal ``res.accel`` is the rotor's
@@ -359,6 +363,9 @@ def _bind(scene: Scene, params: Rotor2Parameters) -> _Bound:
     if refusal:
         raise ValueError(f"model 'rotor2' cannot take this scene: {refusal}")
     b = scene.bearing
+    if b.element != "roller" and params.misalignment_rad != 0.0:
+        raise ValueError(f"misalignment_rad={params.misalignment_rad:g} needs the laminae of "
+                         f"a roller; bearing {b.name!r} has balls (use misalignment_rad=0)")
     kh = b.hertz_stiffness()
     load = _static_load(scene, params)
     ld = b.load_distribution(load, stiffness=kh, cage_angle_deg=params.cage_angle_deg)
@@ -395,7 +402,7 @@ def _bind(scene: Scene, params: Rotor2Parameters) -> _Bound:
     p[P_PHI0] = math.radians(params.cage_angle_deg)
     p[P_TILT] = params.misalignment_rad
     p[P_NLAM] = params.n_laminae if params.misalignment_rad != 0.0 else 1
-    p[P_LEN] = b.roller_length_mm * 1e-3
+    p[P_LEN] = (b.roller_length_mm or 0.0) * 1e-3
     p[P_NF] = faults.shape[0]
     p[P_FAULTS:] = faults.ravel()
     x0 = np.array([ld.deflection_m, ld.lateral_deflection_m])
@@ -412,11 +419,9 @@ def _bind(scene: Scene, params: Rotor2Parameters) -> _Bound:
 
 
 def _accepts(scene: Scene) -> str | None:
-    """rotor2 takes roller bearings (line contact) whose clearance stays elastic."""
+    """rotor2 takes roller (line contact) and ball (point contact) bearings whose
+    clearance stays elastic."""
     b = scene.bearing
-    if b.element != "roller":
-        return ("it models the line contact of a cylindrical roller bearing (Palmgren); "
-                f"bearing {b.name!r} has balls: use sr5")
     limit = elastic_limit_m(b)
     if b.radial_clearance_m < -limit:
         return (f"radial_clearance_mm={b.radial_clearance_mm:g} is a preload beyond the "
@@ -532,8 +537,9 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
 #: the registry entry
 ROTOR2 = Model(
     name="rotor2",
-    description="seed 003 rigid rotor (2 DOF) on a cylindrical roller bearing: Palmgren line "
-                "contacts with clearance, unbalance, gravity, localized defects; Newmark-beta",
+    description="seed 003 rigid rotor (2 DOF) on a roller (Palmgren line contacts) or ball "
+                "(Hertz) bearing: clearance, unbalance, gravity, localized defects; "
+                "Newmark-beta",
     represents=frozenset({"rotor_dynamics", "contact_dynamics", "contact_forces",
                           "varying_speed"}),
     # wall time per simulated second against sr5, measured side by side on a healthy
