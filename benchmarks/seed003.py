@@ -147,7 +147,8 @@ def lines(quick: bool):
 def _sweep(base: bp.Scene, parameter: str, values, discard: float) -> pd.DataFrame:
     df = bp.dynamics.bifurcation_diagram(base, parameter, values, discard_s=discard,
                                          n_jobs=2, params=Rotor2Parameters())
-    k = {v: (bp.dynamics.zero_one_test(g["x_m"].to_numpy()) if len(g) >= 100 else np.nan)
+    k = {v: (bp.dynamics.zero_one_test(g["x_m"].to_numpy())
+             if len(g) >= bp.dynamics.MIN_POINTS_01 else np.nan)
          for v, g in df.groupby("parameter")}
     df["K"] = df["parameter"].map(k)
     return df
@@ -168,28 +169,10 @@ def bifurcation(quick: bool):
     return clear, speed
 
 
-def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--quick", action="store_true", help="shorter records, fewer values")
-    args = ap.parse_args()
-    RESULTS.mkdir(parents=True, exist_ok=True)
-    import matplotlib
-
-    matplotlib.use("Agg")
+def plot_lines(spectra: dict) -> None:
+    """The spectra figure: x amplitude at the four speeds, two set-ups."""
     import matplotlib.pyplot as plt
 
-    t0 = time.perf_counter()
-    sol = solvers(args.quick)
-    sol.to_csv(RESULTS / "seed003_solvers.csv", index=False)
-    print(sol.to_string(index=False, float_format=lambda v: f"{v:.3g}"))
-    cost = cost_ratio(args.quick)
-    pd.DataFrame([dict(model=m, median_s=v[0], spread_s=v[1]) for m, v in cost.items()]
-                 ).to_csv(RESULTS / "seed003_cost.csv", index=False)
-    print("cost (median, spread) s:", cost, "rotor2/sr5 =", cost["rotor2"][0] / cost["sr5"][0])
-
-    tab, spectra = lines(args.quick)
-    tab.to_csv(RESULTS / "seed003_lines.csv", index=False)
-    print(tab.to_string(index=False, float_format=lambda v: f"{v:.3g}"))
     fig, axes = plt.subplots(4, 2, figsize=(10, 9), layout="constrained", sharex="row")
     for j, label in enumerate(dict.fromkeys(k[0] for k in spectra)):
         for i, rpm in enumerate(SEED_TABLE):
@@ -207,9 +190,11 @@ def main() -> None:
         ax.set_xlabel("Frequency (Hz)")
     fig.savefig(DOCS / "seed003_lines.png", dpi=110)
 
-    clear, speed = bifurcation(args.quick)
-    clear.to_csv(RESULTS / "seed003_bifurcation_clearance.csv", index=False)
-    speed.to_csv(RESULTS / "seed003_bifurcation_speed.csv", index=False)
+
+def plot_bifurcations(clear: pd.DataFrame, speed: pd.DataFrame) -> None:
+    """Sections over clearance and speed; the 0-1 test K where a section is long enough."""
+    import matplotlib.pyplot as plt
+
     fig, axes = plt.subplots(2, 2, figsize=(11, 7), layout="constrained")
     for col, (df, name) in enumerate(((clear, "radial clearance (mm)"), (speed, "rpm"))):
         bp.dynamics.plot_bifurcation(df, ax=axes[0, col], s=1)
@@ -219,19 +204,62 @@ def main() -> None:
         bp.dynamics.plot_bifurcation(rel, ax=axes[1, col], s=1)
         axes[1, col].set_ylabel("x - clearance at the section (um)")
         axes[1, col].set_xlabel(name)
-        k = df.groupby("parameter")["K"].first()
-        twin = axes[1, col].twinx()
-        twin.plot(k.index, k.values, "o-", color="tab:red", ms=3, lw=0.8)
-        twin.set_ylim(-0.05, 1.05)
-        twin.set_ylabel("0-1 test K (red)")
+        k = df.groupby("parameter")["K"].first().dropna()
+        if len(k):
+            twin = axes[1, col].twinx()
+            twin.plot(k.index, k.values, "o-", color="tab:red", ms=3, lw=0.8)
+            twin.set_ylim(-0.05, 1.05)
+            twin.set_ylabel(f"0-1 test K (red; sections of >= {bp.dynamics.MIN_POINTS_01} points)")
     fig.savefig(DOCS / "seed003_bifurcation.png", dpi=110)
-    summary = {name: df.groupby("parameter").agg(points=("x_m", "size"),
-                                                 spread_um=("x_m", lambda v: np.ptp(v) * 1e6),
-                                                 K=("K", "first"))
-               for name, df in (("clearance", clear), ("speed", speed))}
-    for name, s in summary.items():
+
+
+def _print(df: pd.DataFrame, **kw) -> None:
+    print(df.to_string(float_format=lambda v: f"{v:.3g}", **kw))
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--quick", action="store_true", help="shorter records, fewer values")
+    ap.add_argument("--replot", action="store_true",
+                    help="redraw the bifurcation figure from the CSVs (no simulation)")
+    args = ap.parse_args()
+    RESULTS.mkdir(parents=True, exist_ok=True)
+    import matplotlib
+
+    matplotlib.use("Agg")
+    t0 = time.perf_counter()
+    if args.replot:
+        clear = pd.read_csv(RESULTS / "seed003_bifurcation_clearance.csv")
+        speed = pd.read_csv(RESULTS / "seed003_bifurcation_speed.csv")
+        for df, name in ((clear, "radial_clearance_mm"), (speed, "rpm")):
+            df.attrs["parameter"] = name
+            short = df.groupby("parameter")["x_m"].transform("size") < \
+                bp.dynamics.MIN_POINTS_01
+            df.loc[short, "K"] = np.nan
+            df.to_csv(RESULTS / f"seed003_bifurcation_{'clearance' if name != 'rpm' else 'speed'}"
+                      ".csv", index=False)
+    else:
+        sol = solvers(args.quick)
+        sol.to_csv(RESULTS / "seed003_solvers.csv", index=False)
+        _print(sol, index=False)
+        cost = cost_ratio(args.quick)
+        pd.DataFrame([dict(model=m, median_s=v[0], spread_s=v[1]) for m, v in cost.items()]
+                     ).to_csv(RESULTS / "seed003_cost.csv", index=False)
+        print("cost (median, spread) s:", cost, "rotor2/sr5 =",
+              cost["rotor2"][0] / cost["sr5"][0])
+        tab, spectra = lines(args.quick)
+        tab.to_csv(RESULTS / "seed003_lines.csv", index=False)
+        _print(tab, index=False)
+        plot_lines(spectra)
+        clear, speed = bifurcation(args.quick)
+        clear.to_csv(RESULTS / "seed003_bifurcation_clearance.csv", index=False)
+        speed.to_csv(RESULTS / "seed003_bifurcation_speed.csv", index=False)
+    plot_bifurcations(clear, speed)
+    for name, df in (("clearance", clear), ("speed", speed)):
         print(name)
-        print(s.to_string(float_format=lambda v: f"{v:.3g}"))
+        _print(df.groupby("parameter").agg(points=("x_m", "size"),
+                                           spread_um=("x_m", lambda v: np.ptp(v) * 1e6),
+                                           K=("K", "first")))
     print(f"total {time.perf_counter() - t0:.0f} s")
 
 

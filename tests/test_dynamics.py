@@ -141,8 +141,8 @@ def test_zero_one_test_separates_chaos_from_regular_motion():
     for i in range(y.size - 1):  # r = 3.5: period 4
         y[i + 1] = 3.5 * y[i] * (1 - y[i])
     assert bp.dynamics.zero_one_test(y[100:]) < 0.1
-    with pytest.raises(ValueError, match="100"):
-        bp.dynamics.zero_one_test(x[:50])
+    with pytest.raises(ValueError, match="300"):
+        bp.dynamics.zero_one_test(x[:299])
 
 
 def test_plots_return_axes():

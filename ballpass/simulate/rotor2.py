@@ -543,8 +543,8 @@ ROTOR2 = Model(
     represents=frozenset({"rotor_dynamics", "contact_dynamics", "contact_forces",
                           "varying_speed"}),
     # wall time per simulated second against sr5, measured side by side on a healthy
-    # NJ 305 at 500 N, 48 kHz (benchmarks/seed003.py, docs/seed003.md): 7x
-    relative_cost=7.0,
+    # NJ 305 at 500 N, 48 kHz (benchmarks/seed003.py, docs/seed003.md): 7.2x and 8.7x
+    relative_cost=8.0,
     solvers=tuple(SOLVERS),
     fixed_step_solvers=("newmark",),
     reference="Dynamic behaviour of rotor roller bearing system with bearing defects "
