@@ -799,6 +799,25 @@ NEWTON_MAX_ITER = 60
 NEWTON_FULL_ITER = 12
 
 
+#: what each status code of the integrators means, for the models' error messages
+STATUS_REASONS = {
+    STATUS_NONFINITE: "the state became non-finite or unbounded",
+    STATUS_UNDERFLOW: "the step size underflowed",
+    STATUS_MAX_STEPS: "the step budget was exhausted",
+    STATUS_NEWTON: "the Newton iterations did not converge",
+}
+
+
+@njit(cache=True, error_model="numpy")
+def _pi_factor(err, err_prev, rejected):
+    """Step-size factor of Hairer's DOPRI5 PI control (as in :func:`dopri5`): exponents
+    0.2 - 0.75 beta and beta on the previous error, safety 0.9, within [0.2, 5], no
+    growth right after a rejection."""
+    fac = 5.0 if err == 0.0 else min(5.0, max(
+        0.2, 0.9 * err ** -PI_ALPHA * err_prev ** PI_BETA))
+    return min(fac, 1.0) if rejected else fac
+
+
 @njit(cache=True, error_model="numpy")
 def _solve_small(a, b, x):
     """Solve a x = b for a small dense system by Gaussian elimination with partial
@@ -1096,10 +1115,7 @@ def _dopri5_second_order(p, minv, y0, h_out, n_out, rtol, atol, h_max, max_steps
             n_acc += 1
             if h_try < h_min:
                 h_min = h_try
-            fac = 5.0 if err == 0.0 else min(5.0, max(
-                0.2, 0.9 * err ** -PI_ALPHA * err_prev ** PI_BETA))
-            if rejected:
-                fac = min(fac, 1.0)
+            fac = _pi_factor(err, err_prev, rejected)
             rejected = False
             err_prev = max(err, 1e-4)
             # a step cut short by the grid keeps the step size the error allows

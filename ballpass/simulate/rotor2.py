@@ -163,7 +163,7 @@ class Rotor2Parameters:
         Angle of the unbalance at t = 0, degrees from the load line. Default 0.
     misalignment_rad : float, optional
         Tilt gamma of the inner ring relative to the outer about the axis perpendicular
-        to the load line, rad, |gamma| <= 0.01. Default 0 (aligned; the laminae
+        to the load line, rad, with abs(gamma) <= 0.01. Default 0 (aligned; the laminae
         collapse to Palmgren's law exactly).
     n_laminae : int, optional
         Laminae k per roller when ``misalignment_rad`` is not 0 (seed 003 eq. 6), in
@@ -483,15 +483,9 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
                     rtol=rtol_v)
         step_text = f"rtol = {rtol_v:g}"
     if status != _I.STATUS_OK:
-        reason = {
-            _I.STATUS_NONFINITE: "the state became non-finite or unbounded",
-            _I.STATUS_UNDERFLOW: "the step size underflowed",
-            _I.STATUS_MAX_STEPS: "the step budget was exhausted",
-            _I.STATUS_NEWTON: "the Newton iterations did not converge",
-        }[status]
         raise SimulationUnstableError(
             f"rotor2 with solver {solver!r} ({step_text}) failed at t = {t_fail:.6g} s: "
-            f"{reason}. Try a smaller dt / rtol. Scene: {scene!r}")
+            f"{_I.STATUS_REASONS[status]}. Try a smaller dt / rtol. Scene: {scene!r}")
     info["integration_time_s"] = time.perf_counter() - t_wall
 
     angles = np.radians([s.angle_deg for s in scene.sensors])
