@@ -168,6 +168,10 @@ def test_cli_bifurcation_writes_csv_and_figure(tmp_path, capsys):
     assert main(["bifurcation", "--parameter", "nope", "--values", "1", "--out",
                  str(out)]) == 2
     assert "parameter must be one of" in capsys.readouterr().err
+    # a bad output path is refused before any simulation
+    assert main(["bifurcation", "--parameter", "rpm", "--values", "900", "--out",
+                 str(tmp_path / "b.txt")]) == 2
+    assert "--out" in capsys.readouterr().err
 
 
 def test_speed_ramp_is_strobed_by_the_tachometer():

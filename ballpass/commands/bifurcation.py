@@ -68,8 +68,19 @@ def run(args: argparse.Namespace) -> int:
 
     import ballpass as bp
 
-    from ..signalio import atomic_write
+    from ..signalio import atomic_write_many
+    from ._output import (
+        FIGURE_SUFFIXES,
+        check_output_path,
+        compile_notice,
+        figure_writer,
+        show_progress,
+    )
 
+    # every output and value is checked before the first simulation
+    out = check_output_path(args.out, option="--out", suffixes=(".csv",))
+    plot = None if args.plot is None else check_output_path(args.plot, option="--plot",
+                                                            suffixes=FIGURE_SUFFIXES)
     if args.range is not None:
         start, stop, num = args.range
         if num != int(num) or num < 1:
@@ -85,16 +96,18 @@ def run(args: argparse.Namespace) -> int:
     # rotor2 has no structural resonance; any valid value below Nyquist will do
     scene = bp.Scene(bearing=bearing, rpm=args.rpm, radial_load_n=args.load, fault=fault,
                      duration_s=args.duration, fs=args.fs, resonance_hz=0.4 * args.fs)
+    compile_notice()
     df = bp.dynamics.bifurcation_diagram(scene, args.parameter, values, model=args.model,
                                          strobe=args.strobe, discard_s=args.discard,
-                                         n_jobs=args.jobs, progress=not args.quiet)
+                                         n_jobs=args.jobs, progress=show_progress(args))
     table = df.rename(columns={"parameter": args.parameter})
-    atomic_write(args.out, lambda tmp: table.to_csv(tmp, index=False))
-    if args.plot:
+    writes = [(out, lambda tmp: table.to_csv(tmp, index=False))]
+    if plot is not None:
         from ..plot import _pyplot
 
         fig, ax = _pyplot().subplots(figsize=(7, 4), layout="constrained")
         bp.dynamics.plot_bifurcation(df, ax=ax)
-        atomic_write(args.plot, lambda tmp: fig.savefig(tmp, dpi=120, format="png"))
-    print(f"{len(df)} section points over {len(values)} values of {args.parameter} -> {args.out}")
+        writes.append((plot, figure_writer(fig, plot)))
+    atomic_write_many(writes)
+    print(f"{len(df)} section points over {len(values)} values of {args.parameter} -> {out}")
     return 0
