@@ -29,22 +29,19 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
-import scipy.io
 
 import ballpass as bp
+from ballpass.datasets.mfpt import load_mfpt_mat
+from ballpass.datasets.real import CWRU_BEARINGS, load_cwru_mat
 from ballpass.diagnose import EnvelopeDiagnoser
 from ballpass.diagnose.rules import DEFAULT_THRESHOLD_DB
 from ballpass.features import envelope_spectrum
 from ballpass.features.bands import as_bearing
 from ballpass.signalio import atomic_write
 
-G = 9.80665  # m/s^2 per g
 FAMILIES = {"outer": "bpfo", "inner": "bpfi", "ball": "ball_defect"}
 BASELINE_BAND = (2000.0, 5000.0)
 SEGMENT_S = 1.0
-#: MFPT's NICE bearing from its dimensions (data README): 8 rollers of 0.235 in on a
-#: 1.245 in pitch circle, contact angle 0.
-NICE = bp.Bearing("NICE", n_elements=8, element_diameter_mm=5.969, pitch_diameter_mm=31.623)
 GROUPS = {
     "DE": "CWRU drive end (6205, DE sensor)",
     "FE": "CWRU fan end (6203, FE sensor)",
@@ -65,47 +62,34 @@ class Record:
     x: np.ndarray
 
 
-def _label(stem: str) -> str:
-    if stem.lower().startswith("normal"):
-        return "healthy"
-    kind = stem.split("_")[2]  # IR007, OR007@6, B007
-    return "inner" if kind.startswith("IR") else "outer" if kind.startswith("OR") else "ball"
-
-
 def cwru_records(folder: Path) -> list[Record]:
     """Every CWRU file: its faulty bearing's sensor, the other sensor, the healthy both."""
     out = []
     for path in sorted(folder.glob("*.mat")):
-        data = scipy.io.loadmat(path)
         stem = path.stem
-        rpm_key = [k for k in data if k.endswith("RPM")]
-        rpm = float(np.ravel(data[rpm_key[0]])[0]) if rpm_key else 1797.0
-        fs = 48_000.0 if "48k" in stem else 12_000.0
-        label = _label(stem)
-
-        def channel(ch, data=data):
-            key = next(k for k in data if k.endswith(f"_{ch}_time"))
-            return np.ravel(data[key]).astype(float) * G
-
         if stem.startswith("12k_DE"):
-            out.append(Record(f"{stem} DE", "DE", label, "6205", fs, rpm, channel("DE")))
-        elif stem.startswith("12k_FE"):
-            out.append(Record(f"{stem} FE", "FE", label, "6203", fs, rpm, channel("FE")))
-            out.append(Record(f"{stem} DE", "FE>DE", label, "6203", fs, rpm, channel("DE")))
+            rec = load_cwru_mat(path, channel="DE")
+            out.append(Record(f"{stem} DE", "DE", rec.label, "6205", rec.fs, rec.rpm,
+                              rec.accel))
+        elif stem.startswith("12k_FE"):  # the faulty 6203 at its own and the far sensor
+            for channel, group in (("FE", "FE"), ("DE", "FE>DE")):
+                rec = load_cwru_mat(path, channel=channel)
+                out.append(Record(f"{stem} {channel}", group, rec.label,
+                                  CWRU_BEARINGS["FE"], rec.fs, rec.rpm, rec.accel))
         else:  # the healthy baseline: both bearings, each at its own sensor
-            out.append(Record(f"{stem} DE", "DE", label, "6205", fs, rpm, channel("DE")))
-            out.append(Record(f"{stem} FE", "FE", label, "6203", fs, rpm, channel("FE")))
+            for channel in ("DE", "FE"):
+                rec = load_cwru_mat(path, channel=channel)
+                out.append(Record(f"{stem} {channel}", channel, rec.label,
+                                  CWRU_BEARINGS[channel], rec.fs, rec.rpm, rec.accel))
     return out
 
 
 def mfpt_records(folder: Path) -> list[Record]:
     out = []
     for path in sorted(folder.glob("*.mat")):
-        b = scipy.io.loadmat(path, squeeze_me=True, struct_as_record=False)["bearing"]
-        label = "inner" if path.stem.lower().startswith("inner") else (
-            "outer" if path.stem.lower().startswith("outer") else "healthy")
-        out.append(Record(path.stem, "MFPT", label, NICE, float(b.sr), 60.0 * float(b.rate),
-                          np.asarray(b.gs, float) * G))
+        rec = load_mfpt_mat(path)
+        out.append(Record(rec.name, "MFPT", rec.label, rec.bearing, rec.fs, rec.rpm,
+                          rec.accel))
     return out
 
 
