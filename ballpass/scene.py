@@ -183,7 +183,7 @@ class Fault:
         """Share of a contact's load that a round pit removes when the contact sits on it.
 
         A pit of diameter w centred under a Hertz contact ellipse of semi-axis a across
-        the track removes the strip |x| < w/2 of the patch (it covers the short axis of
+        the track removes the strip ``abs(x) < w/2`` of the patch (it covers the short axis of
         the ellipse, 2b ~ 0.2-0.5 mm, from w ~ 2b on). The Hertz pressure
         p0 sqrt(1 - x^2/a^2 - y^2/b^2) integrated over y gives a load density
         proportional to 1 - x^2/a^2 across the track (Johnson, *Contact Mechanics*,
@@ -204,7 +204,7 @@ class Fault:
         --------
         >>> from ballpass import Fault
         >>> round(Fault("outer", width_mm=0.5, geometry="pit").pit_unloading(1.0), 4)
-        0.3594
+        0.3672
         """
         a = _number("ellipse_half_width_mm", ellipse_half_width_mm, 0.0, lo_open=True)
         s = min(1.0, self.width_mm / (2.0 * a))
@@ -499,12 +499,16 @@ class Scene:
                                _number("noise_rms", self.noise_rms, 0.0, 1e6))
         if not isinstance(self.gravity, bool):
             raise TypeError(f"gravity must be a bool, got {self.gravity!r}")
-        if self.radial_load_n == 0 and not self.gravity:
-            raise ValueError("radial_load_n=0 with gravity=False leaves the bearing without "
-                             "any load: no load zone and no static equilibrium. Give a "
-                             "radial_load_n > 0 N or keep gravity=True")
         object.__setattr__(self, "needs", tuple(sorted(check_needs(self.needs))))
         self._check_realism()
+        clearance_mm = (bearing.radial_clearance_mm if self.clearance_um is None
+                        else self.clearance_um * 1e-3)
+        if self.radial_load_n == 0 and not self.gravity and clearance_mm >= 0.0:
+            # a preload (negative clearance) loads every element by itself
+            raise ValueError("radial_load_n=0 with gravity=False leaves the bearing without "
+                             "any load: no load zone and no static equilibrium. Give a "
+                             "radial_load_n > 0 N, keep gravity=True or preload the bearing "
+                             "(clearance_um < 0)")
 
     def _check_realism(self) -> None:
         """Validate and normalise waviness, clearance, extra resonances and background."""

@@ -175,7 +175,7 @@ def element_angles(t, p, walk, kin):
 
 
 @njit(cache=True, error_model="numpy")
-def profile(offset, half, depth, ramp, shape):
+def profile(offset, half, depth, ramp, shape=RAMP_COSINE):
     """Depth of a defect at angular offset ``offset`` from its centre, m.
 
     ``half`` is the half extent (rad), ``ramp`` the fraction of the extent taken by each
@@ -198,7 +198,7 @@ def profile(offset, half, depth, ramp, shape):
 
 
 @njit(cache=True, error_model="numpy")
-def profile_slope(offset, half, depth, ramp, shape):
+def profile_slope(offset, half, depth, ramp, shape=RAMP_COSINE):
     """d(profile)/d(offset), m/rad: zero outside the ramps (a sharp notch's jumps are
     events, handled by the integrators, not slopes)."""
     a = abs(offset)

@@ -69,7 +69,7 @@ def shaft_lines(scene: Scene, n_samples: int) -> np.ndarray:
     Examples
     --------
     >>> import ballpass as bp
-    >>> s = bp.Scene("6205", rpm=1800, fs=12_000, shaft_harmonics=(0.0, 0.5))
+    >>> s = bp.Scene("6205", rpm=1800, fs=12_000, resonance_hz=3500, shaft_harmonics=(0.0, 0.5))
     >>> x = shaft_lines(s, s.n_samples)
     >>> round(float(abs(np.fft.rfft(x))[60] * 2 / s.n_samples), 3)   # 2x = 60 Hz
     0.5

@@ -257,11 +257,17 @@ def _waviness_rows(scene: Scene, rng: np.random.Generator) -> list:
     return rows
 
 
-def _fault_table(scene: Scene, psi0: np.ndarray, kh: float, bearing_load: float,
-                 rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:
+def _fault_table(scene: Scene, psi0: np.ndarray, kh: float | None = None,
+                 bearing_load: float | None = None, rng: np.random.Generator | None = None
+                 ) -> tuple[np.ndarray, np.ndarray]:
     """Kernel fault table (localized faults first, then waviness rows) and the event
-    levels (rad) of each localized fault."""
+    levels (rad) of each localized fault. ``kh`` (default: the bearing's Hertz
+    constant) and ``bearing_load`` (default: the radial load) size round pits; ``rng``
+    (default: seeded by the scene) draws the per-fault seeds and ball phases."""
     b = scene.bearing
+    kh = kh or b.hertz_stiffness()
+    bearing_load = scene.radial_load_n if bearing_load is None else bearing_load
+    rng = rng or np.random.default_rng(np.random.SeedSequence(scene.seed).spawn(4)[3])
     rows, levels = [], []
     for f in scene.faults:
         if f.geometry == "pit":
