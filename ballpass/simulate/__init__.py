@@ -16,6 +16,10 @@ Models (the table behind ``auto``: ``python -m ballpass bearings`` lists bearing
     :mod:`._sr5_driver`). What a plain scene runs.
 ``sr4``
     The same without the resonator: the sensors read the housing acceleration.
+``multibody``
+    Nakhaeinejad & Bryant (2011, seed 000): every ball a body with traction, slip and
+    centrifugal load (see :mod:`.multibody`). What scenes that need ``ball_dynamics``
+    run.
 
 A new model is one file that builds a :class:`Model` and one line in :data:`MODELS`.
 """
@@ -38,6 +42,7 @@ from ._shared import OVERSAMPLE, SimulationUnstableError, check_solver_args  # n
 from ._sr5_driver import SOLVERS, SR4, SR5, build, integrate  # noqa: E402
 from .result import SimulationResult  # noqa: E402
 from .sr5 import BearingModel, SR5Parameters  # noqa: E402
+from .multibody import MULTIBODY, MultibodyParameters  # noqa: E402
 
 __all__ = [
     "simulate",
@@ -53,6 +58,7 @@ __all__ = [
     "SimulationResult",
     "SimulationUnstableError",
     "SR5Parameters",
+    "MultibodyParameters",
     "BearingModel",
     "source_fingerprint",
     "work_precision",
@@ -61,7 +67,7 @@ __all__ = [
 ]
 
 #: model name -> :class:`Model`, cheapest first
-MODELS: dict[str, Model] = {m.name: m for m in sorted((SR5, SR4),
+MODELS: dict[str, Model] = {m.name: m for m in sorted((SR5, SR4, MULTIBODY),
                                                       key=lambda m: m.relative_cost)}
 
 

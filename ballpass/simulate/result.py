@@ -71,6 +71,9 @@ class GroundTruth:
         Angle of each rolling element from the load line, rad, unwrapped (on request).
     displacement : ndarray (4, n_samples) or None
         Shaft u, v and pedestal u, v displacement, m (on request); u along the load line.
+    outer_contact_forces : ndarray (n_elements, n_samples) or None
+        Outer-race contact load of each rolling element, N (on request, from models with
+        ball dynamics; it also carries the centrifugal load). None otherwise.
     """
 
     label: str
@@ -83,6 +86,7 @@ class GroundTruth:
     contact_forces: np.ndarray | None = None
     element_angles: np.ndarray | None = None
     displacement: np.ndarray | None = None
+    outer_contact_forces: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
