@@ -647,8 +647,11 @@ def integrate(system: MultibodySystem, *, h_out: float, n_out: int, stride: int,
     dt_req = system.default_dt() if dt is None else float(dt)
     n_sub = max(1, math.ceil(h_out / dt_req - 1e-9))
     step = h_out / n_sub
-    n_pre = int(round(-system.t0 / step))
-    t0 = -n_pre * step
+    # the settling steps end exactly at t = 0 whatever the step, so that runs at
+    # different steps start from the same state
+    n_pre = math.ceil(-system.t0 / step - 1e-9)
+    t0 = system.t0
+    step_pre = -t0 / n_pre if n_pre else step
     n_rec = (n_out + stride - 1) // stride
     ns = system.sensors.shape[0]
     exc = np.zeros((n_out, ns))
@@ -672,7 +675,7 @@ def integrate(system: MultibodySystem, *, h_out: float, n_out: int, stride: int,
     bound = 1e6 * scale
     t_wall = time.perf_counter()
     status, n_steps, t_fail, n_cross = K.integrate_rk4(
-        y, system.p, system.faults, system.sensors, t0, step, n_pre, n_sub, n_out + 1,
+        y, system.p, system.faults, system.sensors, t0, step_pre, step, n_pre, n_sub, n_out + 1,
         stride, exc, rec_qi, rec_qo, rec_ang, rec_disp, rec_cage, cross_t, cross_f, cross_e,
         cross_edge, bound)
     wall = time.perf_counter() - t_wall

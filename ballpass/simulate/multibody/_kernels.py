@@ -330,10 +330,10 @@ def energy(t, y, p):
 
 
 @njit(cache=True, error_model="numpy")
-def integrate_rk4(y, p, faults, sensors, t0, dt, n_pre, n_sub, n_grid, stride,
+def integrate_rk4(y, p, faults, sensors, t0, dt_pre, dt, n_pre, n_sub, n_grid, stride,
                   exc_out, rec_qi, rec_qo, rec_ang, rec_disp, rec_cage,
                   cross_t, cross_f, cross_e, cross_edge, bound):
-    """Classical RK4 with step ``dt`` from t0 (< 0: ``n_pre`` settling steps to t = 0),
+    """Classical RK4 from t0 (< 0: ``n_pre`` settling steps of ``dt_pre`` to t = 0),
     then ``n_sub`` steps per internal grid interval for ``n_grid - 1`` intervals.
 
     Records per grid interval the mean housing acceleration at each sensor
@@ -395,6 +395,7 @@ def integrate_rk4(y, p, faults, sensors, t0, dt, n_pre, n_sub, n_grid, stride,
                 rec_i += 1
         if step == total:
             break
+        h = dt if step >= n_pre else dt_pre
         rhs(t, y, k1, p, faults, sensors, qi, qo, flags, e1, True)
         if n_faults > 0:
             for j in range(z):
@@ -414,16 +415,16 @@ def integrate_rk4(y, p, faults, sensors, t0, dt, n_pre, n_sub, n_grid, stride,
                                 n_cross += 1
                         prev[j, c] = flags[j, c]
         for k in range(n):
-            tmp[k] = y[k] + 0.5 * dt * k1[k]
-        rhs(t + 0.5 * dt, tmp, k2, p, faults, sensors, qi, qo, flags, e2, True)
+            tmp[k] = y[k] + 0.5 * h * k1[k]
+        rhs(t + 0.5 * h, tmp, k2, p, faults, sensors, qi, qo, flags, e2, True)
         for k in range(n):
-            tmp[k] = y[k] + 0.5 * dt * k2[k]
-        rhs(t + 0.5 * dt, tmp, k3, p, faults, sensors, qi, qo, flags, e3, True)
+            tmp[k] = y[k] + 0.5 * h * k2[k]
+        rhs(t + 0.5 * h, tmp, k3, p, faults, sensors, qi, qo, flags, e3, True)
         for k in range(n):
-            tmp[k] = y[k] + dt * k3[k]
-        rhs(t + dt, tmp, k4, p, faults, sensors, qi, qo, flags, e4, True)
+            tmp[k] = y[k] + h * k3[k]
+        rhs(t + h, tmp, k4, p, faults, sensors, qi, qo, flags, e4, True)
         for k in range(n):
-            y[k] += dt / 6.0 * (k1[k] + 2.0 * k2[k] + 2.0 * k3[k] + k4[k])
+            y[k] += h / 6.0 * (k1[k] + 2.0 * k2[k] + 2.0 * k3[k] + k4[k])
         if step >= n_pre:
             for s in range(ns):
                 acc[s] += dt / 6.0 * (e1[s] + 2.0 * e2[s] + 2.0 * e3[s] + e4[s])
@@ -433,5 +434,5 @@ def integrate_rk4(y, p, faults, sensors, t0, dt, n_pre, n_sub, n_grid, stride,
         elif step + 1 > n_pre:
             t = (step + 1 - n_pre) // n_sub * (n_sub * dt) + ((step + 1 - n_pre) % n_sub) * dt
         else:
-            t = t0 + (step + 1) * dt
+            t = t0 + (step + 1) * dt_pre
     return STATUS_OK, n_steps, t, n_cross
