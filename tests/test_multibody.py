@@ -137,7 +137,7 @@ def _passage_spacing(res, scene, kind):
     env = np.abs(signal.hilbert(signal.sosfiltfilt(sos, res.accel)))
     c = res.truth.fault_crossings
     q = res.truth.outer_contact_forces if kind == "outer" else res.truth.contact_forces
-    for t0, e in zip(c.time_s[c.edge == "entry"], c.element[c.edge == "entry"]):
+    for t0, e in zip(c.time_s[c.edge == "entry"], c.element[c.edge == "entry"], strict=False):
         i0 = int(t0 * scene.fs)
         if t0 < 2e-3 or math.cos(res.truth.element_angles[e, i0]) < 0.8:
             continue

@@ -40,9 +40,9 @@ from ..scene import Scene  # noqa: E402
 from ._registry import Model  # noqa: E402
 from ._shared import OVERSAMPLE, SimulationUnstableError, check_solver_args  # noqa: E402
 from ._sr5_driver import SOLVERS, SR4, SR5, build, integrate  # noqa: E402
+from .multibody import MULTIBODY, MultibodyParameters  # noqa: E402
 from .result import SimulationResult  # noqa: E402
 from .sr5 import BearingModel, SR5Parameters  # noqa: E402
-from .multibody import MULTIBODY, MultibodyParameters  # noqa: E402
 
 __all__ = [
     "simulate",

@@ -88,6 +88,23 @@ class GroundTruth:
     displacement: np.ndarray | None = None
     outer_contact_forces: np.ndarray | None = None
 
+    @classmethod
+    def of_scene(cls, scene: Scene, t: np.ndarray, crossings: FaultCrossings,
+                 **outputs) -> GroundTruth:
+        """The ground truth every model shares, from the scene (label, faults,
+        frequencies, tachometer, speed, effective depths) at sample times ``t`` (s), plus
+        the model's crossings and optional outputs (``contact_forces`` ...)."""
+        return cls(
+            label=scene.label,
+            faults=scene.faults,
+            frequencies=scene.frequencies,
+            shaft_angle=scene.speed.shaft_angle(t, scene.duration_s),
+            rpm=scene.speed.rpm_at(t, scene.duration_s) * np.ones_like(t),
+            fault_crossings=crossings,
+            effective_depth_mm=tuple(f.effective_depth_mm(scene.bearing) for f in scene.faults),
+            **outputs,
+        )
+
 
 @dataclass(frozen=True)
 class SimulationResult:

@@ -410,7 +410,8 @@ def static_equilibrium(scene: Scene, params: MultibodyParameters | None = None, 
             do = r + rb - ro
             qi = ki * max(di, 0.0) ** 1.5
             qo = ko * max(do, 0.0) ** 1.5
-            return qi * float(c @ e[j]) / dist - qo + mb * om * om * r + mb * g * e[j, 0], qi, c / dist
+            force = qi * float(c @ e[j]) / dist - qo + mb * om * om * r + mb * g * e[j, 0]
+            return force, qi, c / dist
         span = 0.02 * b.element_diameter_m + abs(d).sum()
         lo, hi = ri + rb - span, ro - rb + span
         r = optimize.brentq(lambda rr: radial(rr)[0], lo, hi, xtol=1e-16, rtol=1e-15)
@@ -733,14 +734,8 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
         outer = raw["q_outer"][:n_samples].T.copy()
         angles = ang.T.copy()
         displacement = raw["disp"][:n_samples].T.copy()
-    truth = GroundTruth(
-        label=scene.label,
-        faults=scene.faults,
-        frequencies=scene.frequencies,
-        shaft_angle=scene.speed.shaft_angle(t, scene.duration_s),
-        rpm=scene.speed.rpm_at(t, scene.duration_s) * np.ones_like(t),
-        fault_crossings=raw["crossings"],
-        effective_depth_mm=tuple(f.effective_depth_mm(scene.bearing) for f in scene.faults),
+    truth = GroundTruth.of_scene(
+        scene, t, raw["crossings"],
         contact_forces=forces,
         element_angles=angles,
         displacement=displacement,
@@ -761,7 +756,8 @@ MULTIBODY = Model(
                 "traction, centrifugal load, friction torques, notch profiles",
     represents=frozenset({"ball_dynamics", "contact_dynamics", "contact_forces", "envelope",
                           "varying_speed"}),
-    relative_cost=60.0,
+    # benchmarks/multibody_speed.py: 20-21x sr5 per simulated second, side by side
+    relative_cost=20.0,
     solvers=tuple(SOLVERS),
     fixed_step_solvers=("rk4",),
     reference="M. Nakhaeinejad, M. D. Bryant, 'Dynamic modeling of rolling element bearings "

@@ -42,6 +42,11 @@ S_COS, S_SIN, S_ATT = 0, 1, 2
 N_SCOLS = 3
 
 STATUS_OK, STATUS_NONFINITE = 0, 1
+#: slide-roll ratio of the peak of seed 000 eq. 13: d mu_bd / ds = 0 at
+#: s = 1 / 181.46 + 0.1 / 22.28 = 0.0100, where mu_bd = 0.1200
+MU_PEAK_S = 0.0100
+#: penetration over which the pocket damping grows from 0 to its value, m
+POCKET_RAMP = 1e-6
 TWO_PI = 2.0 * math.pi
 
 
@@ -124,10 +129,11 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
     """dy/dt at (t, y). The traction forces are first-order lags of seed 000's
     steady law (eq. 11-13): dF/dt = (mu(s) Q - F) u_r / L, L the relaxation length
     (creep builds up over about a contact length of rolling, Johnson, Contact
-    Mechanics, sec. 8.2); a separated contact applies none and its traction decays. Also writes the inner and outer normal contact loads of every
-    ball (N) into ``qi``/``qo``, the fault flags of every contact into ``flags`` (bit f
-    set: fault f holds the contact; column 0 outer, 1 inner) and, with ``want_exc``, the
-    housing acceleration seen by each sensor (m/s^2) into ``exc``."""
+    Mechanics, sec. 8.2); a separated contact applies none and its traction decays.
+    Also writes the inner and outer normal contact loads of every ball (N) into
+    ``qi``/``qo``, the fault flags of every contact into ``flags`` (bit f set: fault f
+    holds the contact; column 0 outer, 1 inner) and, with ``want_exc``, the housing
+    acceleration seen by each sensor (m/s^2) into ``exc``."""
     z = int(p[P_Z])
     nd = 6 + 3 * z
     rb, ri, ro = p[P_RB], p[P_RI], p[P_RO]
@@ -138,6 +144,7 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
     w_bd, hd, ufloor, weps = p[P_WBD], p[P_HD], p[P_UFLOOR], p[P_WEPS]
     has_faults = faults.shape[0] > 0
     relax = p[P_RELAX]
+    cap = mu_slide_roll(MU_PEAK_S, w_bd, hd)
 
     xi, yi, thi = y[0], y[1], y[2]
     xo, yo, thc = y[3], y[4], y[5]
@@ -211,6 +218,12 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
                     target = -target
                 f = y[2 * nd + j]
                 dydt[2 * nd + j] = (target - f) * ur / relax
+                # never beyond the adhesion limit mu_peak Q: the lagging traction vanishes
+                # with the load instead of jumping to 0 when the contact opens
+                if f > cap * q:
+                    f = cap * q
+                elif f < -cap * q:
+                    f = -cap * q
                 fxb -= f * ny
                 fyb += f * nx
                 fxi += f * ny
@@ -259,6 +272,12 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
                     target = -target
                 f = y[2 * nd + z + j]
                 dydt[2 * nd + z + j] = (target - f) * ur / relax
+                # never beyond the adhesion limit mu_peak Q: the lagging traction vanishes
+                # with the load instead of jumping to 0 when the contact opens
+                if f > cap * q:
+                    f = cap * q
+                elif f < -cap * q:
+                    f = -cap * q
                 fxb -= f * ny
                 fyb += f * nx
                 fxo += f * ny
@@ -273,7 +292,11 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
         if abs(off) > p[P_EPOCK]:
             sgn = 1.0 if off > 0.0 else -1.0
             doff = p[P_RP] * ((xb * vyb - yb * vxb) / r2 - wc)
-            fp = p[P_KPOCK] * (abs(off) - p[P_EPOCK]) + p[P_CPOCK] * doff * sgn
+            pen = abs(off) - p[P_EPOCK]
+            # the damping grows in over the first POCKET_RAMP of penetration: a force
+            # jump at engagement would cost RK4 its order (and the cage its smoothness)
+            ramp = pen / POCKET_RAMP if pen < POCKET_RAMP else 1.0
+            fp = p[P_KPOCK] * pen + p[P_CPOCK] * doff * sgn * ramp
             if fp > 0.0:
                 fs = sgn * fp * p[P_RP] / r
                 fxb += fs * yb / r
@@ -344,7 +367,6 @@ def integrate_rk4(y, p, faults, sensors, t0, dt_pre, dt, n_pre, n_sub, n_grid, s
     n_crossings); ``y`` holds the final state."""
     n = y.shape[0]
     z = int(p[P_Z])
-    nd = 6 + 3 * z
     ns = sensors.shape[0]
     k1 = np.empty(n)
     k2 = np.empty(n)
