@@ -99,7 +99,8 @@ def load_zone(md):
         ax.set_theta_zero_location("S")  # the load points down, as in the paper
         ax.set_title(name, pad=18)
         ax.legend(fontsize=7, loc="lower right")
-    fig.suptitle("mean ball load (N) around the ring; load line down", y=0.02)
+    fig.suptitle("mean ball load (N) around the ring; load line down", y=0.03)
+    fig.subplots_adjust(top=0.8, bottom=0.12)
     save(fig, "seed000_load_zone.png")
     md += ["", "Zero clearance loads half the ring whatever the load; the clearance narrows the "
            "zone, which widens with load (the mean number of loaded balls grows; 5-degree "

@@ -42,11 +42,6 @@ S_COS, S_SIN, S_ATT = 0, 1, 2
 N_SCOLS = 3
 
 STATUS_OK, STATUS_NONFINITE = 0, 1
-#: slide-roll ratio of the peak of seed 000 eq. 13: d mu_bd / ds = 0 at
-#: s = 1 / 181.46 + 0.1 / 22.28 = 0.0100, where mu_bd = 0.1200
-MU_PEAK_S = 0.0100
-#: penetration over which the pocket damping grows from 0 to its value, m
-POCKET_RAMP = 1e-6
 TWO_PI = 2.0 * math.pi
 
 
@@ -144,7 +139,6 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
     w_bd, hd, ufloor, weps = p[P_WBD], p[P_HD], p[P_UFLOOR], p[P_WEPS]
     has_faults = faults.shape[0] > 0
     relax = p[P_RELAX]
-    cap = mu_slide_roll(MU_PEAK_S, w_bd, hd)
 
     xi, yi, thi = y[0], y[1], y[2]
     xo, yo, thc = y[3], y[4], y[5]
@@ -218,12 +212,6 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
                     target = -target
                 f = y[2 * nd + j]
                 dydt[2 * nd + j] = (target - f) * ur / relax
-                # never beyond the adhesion limit mu_peak Q: the lagging traction vanishes
-                # with the load instead of jumping to 0 when the contact opens
-                if f > cap * q:
-                    f = cap * q
-                elif f < -cap * q:
-                    f = -cap * q
                 fxb -= f * ny
                 fyb += f * nx
                 fxi += f * ny
@@ -272,12 +260,6 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
                     target = -target
                 f = y[2 * nd + z + j]
                 dydt[2 * nd + z + j] = (target - f) * ur / relax
-                # never beyond the adhesion limit mu_peak Q: the lagging traction vanishes
-                # with the load instead of jumping to 0 when the contact opens
-                if f > cap * q:
-                    f = cap * q
-                elif f < -cap * q:
-                    f = -cap * q
                 fxb -= f * ny
                 fyb += f * nx
                 fxo += f * ny
@@ -292,11 +274,7 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
         if abs(off) > p[P_EPOCK]:
             sgn = 1.0 if off > 0.0 else -1.0
             doff = p[P_RP] * ((xb * vyb - yb * vxb) / r2 - wc)
-            pen = abs(off) - p[P_EPOCK]
-            # the damping grows in over the first POCKET_RAMP of penetration: a force
-            # jump at engagement would cost RK4 its order (and the cage its smoothness)
-            ramp = pen / POCKET_RAMP if pen < POCKET_RAMP else 1.0
-            fp = p[P_KPOCK] * pen + p[P_CPOCK] * doff * sgn * ramp
+            fp = p[P_KPOCK] * (abs(off) - p[P_EPOCK]) + p[P_CPOCK] * doff * sgn
             if fp > 0.0:
                 fs = sgn * fp * p[P_RP] / r
                 fxb += fs * yb / r
