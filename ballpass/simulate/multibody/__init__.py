@@ -99,8 +99,8 @@ from .._shared import SimulationUnstableError, add_noise, check_finite, to_outpu
 from ..result import FaultCrossings, GroundTruth, SimulationResult
 from . import _kernels as K
 
-__all__ = ["MULTIBODY", "MultibodyParameters", "MultibodySystem", "build", "SOLVERS",
-           "mu_traction", "static_equilibrium"]
+__all__ = ["MULTIBODY", "MultibodyParameters", "MultibodySystem", "build", "integrate",
+           "SOLVERS", "mu_traction", "static_equilibrium"]
 
 SOLVERS = {
     "rk4": "classical Runge-Kutta, fixed step (default: omega_max dt = 0.5 and "
@@ -389,6 +389,14 @@ def static_equilibrium(scene: Scene, params: MultibodyParameters | None = None, 
         ``inner`` (x, y) displacement of the inner race relative to the outer, m;
         ``radius`` (Z,) ball centre radii, m; ``q_inner``, ``q_outer`` (Z,) loads, N;
         ``angles`` (Z,) rad.
+
+    Examples
+    --------
+    >>> import ballpass as bp
+    >>> from ballpass.simulate.multibody import static_equilibrium
+    >>> eq = static_equilibrium(bp.Scene(bearing="ER-16K", rpm=2100, radial_load_n=110))
+    >>> round(float(eq["inner"][0]) * 1e6, 2), round(float(eq["q_inner"][0]), 1)  # um, N
+    (3.39, 58.4)
     """
     prm = params or MultibodyParameters()
     b = scene.bearing
@@ -634,7 +642,22 @@ def _resonator(exc: np.ndarray, h: float, f_hz: float, zeta: float) -> np.ndarra
 
 def integrate(system: MultibodySystem, *, h_out: float, n_out: int, stride: int,
               dt: float | None = None):
-    """Integrate a bound system over [t0, (n_out) h_out].
+    """Integrate a bound system over [t0, n_out h_out] with RK4 (no decimation, AC
+    coupling or noise: the integration step of the multibody model's ``simulate``).
+
+    Parameters
+    ----------
+    system : MultibodySystem
+        From :func:`build`.
+    h_out : float
+        Internal grid spacing, s.
+    n_out : int
+        Grid intervals recorded from t = 0.
+    stride : int
+        Record forces and angles at every ``stride``-th grid point.
+    dt : float, optional
+        RK4 step, s, rounded down to a divisor of ``h_out``; default
+        :meth:`MultibodySystem.default_dt`.
 
     Returns
     -------
@@ -643,6 +666,16 @@ def integrate(system: MultibodySystem, *, h_out: float, n_out: int, stride: int,
         ``q_inner``, ``q_outer``, ``angles`` (n_rec, Z) at every ``stride``-th grid
         point; ``disp`` (n_rec, 4) inner x, y and outer x, y, m; ``cage`` (n_rec,) cage
         angle, rad; ``crossings``: FaultCrossings; ``info``; ``y_end``.
+
+    Examples
+    --------
+    >>> import ballpass as bp
+    >>> from ballpass.simulate.multibody import build, integrate
+    >>> system = build(bp.Scene(bearing="ER-16K", rpm=2100, radial_load_n=110,
+    ...                         duration_s=0.005, fs=20_000, resonance_hz=5000))
+    >>> raw = integrate(system, h_out=1 / 80_000, n_out=400, stride=4)
+    >>> raw["q_inner"].shape, raw["exc"].shape
+    ((100, 9), (400, 1))
     """
     z = int(system.p[K.P_Z])
     dt_req = system.default_dt() if dt is None else float(dt)
