@@ -58,11 +58,9 @@ def _segments(x: np.ndarray) -> np.ndarray:
 
 
 def test_names_simulated_faults_at_every_speed_and_load(simulated):
-    # Margins at these points, the smallest over seeds 0-3: the true family's evidence
-    # exceeds both the 5 dB threshold and every other family by >= 0.9 dB (ball at
-    # 1200 rpm, where the FTF comb is dense: 8 Hz), >= 2.8 dB for ball at higher
-    # speeds, >= 3.1 dB for inner and >= 5.4 dB for outer; healthy stays >= 2.0 dB
-    # below the threshold. The test uses seed 0.
+    # Margins at these points (seed 0): the true family's evidence exceeds the 6 dB
+    # threshold by >= 1.9 dB (ball at 1797 rpm: 7.9 dB), >= 7 dB for inner and >= 8.9
+    # dB for outer; healthy stays >= 3 dB below the threshold.
     X, labels, rpm = simulated
     pred = EnvelopeDiagnoser(bearing="6205", fs=FS).predict(X, rpm=rpm)
     wrong = [(lab, r, p) for lab, r, p in zip(labels, rpm, pred, strict=True) if lab != p]
@@ -76,9 +74,9 @@ def test_evidence_is_where_the_physics_puts_it(simulated):
         rows = labels == kind
         assert (ev.evidence_db[kind][rows] > 7.0).all(), kind
         # the line that carried the fundamental sits within the slip search of its
-        # kinematic frequency (2 % below to 1 % above, plus one 1 Hz bin)
+        # kinematic frequency (2 % below to 0.5 % above, plus one 1 Hz bin)
         nominal, found = ev.nominal_hz[kind][rows, 0], ev.found_hz[kind][rows, 0]
-        assert np.all((found >= 0.98 * nominal - 1.0) & (found <= 1.01 * nominal + 1.0))
+        assert np.all((found >= 0.98 * nominal - 1.0) & (found <= 1.005 * nominal + 1.0))
     healthy = labels == "healthy"
     for kind in ("outer", "inner", "ball"):
         assert (ev.evidence_db[kind][healthy] < 5.0).all()
@@ -99,6 +97,19 @@ def test_names_cwru_recordings(name, label):
     assert list(diag.predict(_segments(x))) == [label] * (len(x) // round(FS))
 
 
+@pytest.mark.parametrize("name, label", [
+    ("cwru_12k_FE_OR007at6_0_FE_crop.npz", "outer"),
+    ("cwru_Normal_0_48k_FE_crop.npz", "healthy"),
+])
+def test_names_cwru_fan_end_recordings(name, label):
+    # The fan-end bearing (6203): each defect frequency lies within 2 % of a shaft
+    # harmonic, and the healthy channel carries a strong 4x line; its one-second
+    # segments must stay healthy, the outer-race fault be named.
+    x, rpm = _crop(name)
+    diag = EnvelopeDiagnoser(bearing="6203", fs=FS, rpm=rpm)
+    assert list(diag.predict(_segments(x))) == [label] * (len(x) // round(FS))
+
+
 def test_explanation_names_the_lines_of_the_cwru_inner_race_fault():
     x, rpm = _crop("cwru_12k_DE_IR007_0_DE_crop.npz")
     (exp,) = EnvelopeDiagnoser(fs=FS, rpm=rpm).explain(x[None, :12_000])
@@ -114,10 +125,10 @@ def test_explanation_names_the_lines_of_the_cwru_inner_race_fault():
 
 
 def test_white_noise_is_healthy():
-    # 3000 one-second white-noise signals gave a largest evidence of 4.0 dB (99.9th
-    # percentile) in the calibration of the 5 dB default, so none of 100 may exceed it.
+    # 600 one-second white-noise signals gave a largest evidence of 4.1 dB in the
+    # calibration of the 6 dB default, so none of 100 may exceed it.
     X = np.random.default_rng(1).standard_normal((100, 12_000))
-    assert set(EnvelopeDiagnoser(fs=FS).predict(X)) == {"healthy"}
+    assert set(EnvelopeDiagnoser(fs=FS, rpm=1797.0).predict(X)) == {"healthy"}
 
 
 def test_scores_are_consistent(simulated):
@@ -138,7 +149,8 @@ def test_fit_calibrates_thresholds_on_healthy_rows(simulated):
     assert diag.fit(X, labels, rpm=rpm) is diag
     ev = envelope_evidence(X[labels == "healthy"], FS, "6205", rpm[labels == "healthy"])
     for fault, threshold in diag.thresholds_.items():
-        assert threshold == pytest.approx(ev.evidence_db[fault].max() + 0.5)
+        # fit only raises the noise-based default (6 dB), never lowers it
+        assert threshold == pytest.approx(max(6.0, ev.evidence_db[fault].max() + 0.5))
     # calibrated, it still names everything (the faults sit well above the healthy rows)
     assert (diag.predict(X, rpm=rpm) == labels).all()
     with pytest.raises(ValueError, match="at least one healthy"):
@@ -159,9 +171,10 @@ def test_works_without_fit_and_is_an_estimator():
 def test_a_fixed_band_is_used():
     x = np.random.default_rng(0).standard_normal((2, 12_000))
     ev = envelope_evidence(x, FS, "6205", 1797.0, band=(2000, 4000))
-    np.testing.assert_array_equal(ev.band_hz, [[2000, 4000], [2000, 4000]])
-    (exp,) = EnvelopeDiagnoser(fs=FS, band=(2000, 4000)).explain(x[:1])
-    assert exp.band_hz == (2000.0, 4000.0)
+    for fault in ("outer", "inner", "ball"):
+        np.testing.assert_array_equal(ev.band_hz[fault], [[2000, 4000], [2000, 4000]])
+    (exp,) = EnvelopeDiagnoser(fs=FS, rpm=1797.0, band=(2000, 4000)).explain(x[:1])
+    assert set(exp.band_hz.values()) == {(2000.0, 4000.0)}
 
 
 @pytest.mark.parametrize("kwargs, rpm, error, match", [
@@ -173,6 +186,6 @@ def test_a_fixed_band_is_used():
     ({"bearing": 6205}, None, TypeError, "bearing must be"),
 ])
 def test_bad_arguments_are_named(kwargs, rpm, error, match):
-    x = np.random.default_rng(0).standard_normal((2, 1200))
+    x = np.random.default_rng(0).standard_normal((2, 12_000))
     with pytest.raises(error, match=match):
-        EnvelopeDiagnoser(fs=FS, **kwargs).predict(x, rpm=rpm)
+        EnvelopeDiagnoser(fs=FS, rpm=1797.0, **kwargs).predict(x, rpm=rpm)

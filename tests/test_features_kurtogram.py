@@ -169,3 +169,30 @@ def test_plot_method(tmp_path):
     ax.figure.savefig(tmp_path / "k.png")
     with pytest.raises(ValueError, match="one signal"):
         F.fast_kurtogram(np.ones((2, 1000)), FS).plot()
+
+
+# ---------------------------------------------------------------- golden references
+def _level2_band_value(x, fs, centre_hz):
+    """Kurtogram value of the level-2 band (width fs/8) centred at ``centre_hz``."""
+    res = F.fast_kurtogram(x, fs, nlevel=3)
+    row = int(np.flatnonzero(res.levels == 2.0)[0])
+    col = int(np.argmin(np.abs(res.freqs - centre_hz)))
+    return res.kurtosis[row, col]
+
+
+@pytest.mark.parametrize("tones, expected", [
+    # one tone: the complex envelope has constant modulus, E|c|^4 / (E|c|^2)^2 = 1
+    ([(2250.0, 1.0)], -1.0),
+    # two equal tones: |c|^2 = 2 + 2 cos(dw t), E|c|^2 = 2, E|c|^4 = 6 -> 6/4 - 2
+    ([(2150.0, 1.0), (2350.0, 1.0)], -0.5),
+    # AM tone, depth m = 1 (carrier 1, sidebands 1/2): (1 + 3m^2 + 3m^4/8) / (1 + m^2/2)^2 - 2
+    ([(2250.0, 1.0), (2200.0, 0.5), (2300.0, 0.5)], (1 + 3 + 3 / 8) / 1.5**2 - 2),
+])
+def test_kurtosis_of_signals_with_a_closed_form(tones, expected):
+    """Golden values: Antoni's kurtosis E|c|^4 / (E|c|^2)^2 - 2 of the complex envelope of
+    tones on exact FFT bins, inside the flat part of the level-2 band 1500-3000 Hz (the
+    raised-cosine edges start 375 Hz from its centre). Exact up to rounding."""
+    fs, n = 12_000.0, 12_000
+    t = np.arange(n) / fs
+    x = sum(a * np.cos(2 * np.pi * f * t) for f, a in tones)
+    assert _level2_band_value(x, fs, 2250.0) == pytest.approx(expected, abs=1e-9)

@@ -1,0 +1,169 @@
+"""Family evidence traps (shared harmonics, shaft harmonics, ball comb, slip, speed) and
+the diagnoser's refusals of bad input.
+
+The signals are synthetic impact trains with a known answer: impacts at a defect rate,
+each ringing a 3 kHz resonance (the CWRU drive-end rig rings at 2.5-4 kHz), optionally
+amplitude-modulated (load zone), in white noise.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import ballpass as bp
+from ballpass.diagnose import EnvelopeDiagnoser, envelope_evidence
+
+FS = 12_000.0
+RPM = 1797.0
+#: Fault orders of the 6205 computed here from its geometry (9 balls, d = 7.94 mm,
+#: D = 39.04 mm, contact angle 0), independently of the package: BPFO = Z/2 (1 - d/D)...
+_R = 7.94 / 39.04
+ORDERS_6205 = {"bpfo": 4.5 * (1 - _R), "bpfi": 4.5 * (1 + _R), "ftf": 0.5 * (1 - _R),
+               "ball_defect": 39.04 / 7.94 * (1 - _R**2)}
+
+
+def impacts(rate_hz, seconds, *, modulation=None, noise=0.2, seed=0, ring_hz=3000.0):
+    """Impacts at ``rate_hz`` ringing ``ring_hz`` (decay 800 1/s), times ``modulation(t)``."""
+    t = np.arange(round(seconds * FS)) / FS
+    since = (t * rate_hz) % 1.0 / rate_hz  # time since the last impact, s
+    x = np.exp(-800 * since) * np.sin(2 * np.pi * ring_hz * since)
+    if modulation is not None:
+        x = x * modulation(t)
+    return x + noise * np.random.default_rng(seed).standard_normal(t.size)
+
+
+def test_orders_used_by_the_test_match_the_data_readme():
+    # The CWRU README gives BPFI 5.4152, BPFO 3.5848, FTF 0.39828, 2xBSF 4.7135.
+    assert ORDERS_6205["bpfi"] == pytest.approx(5.4152, abs=2e-4)
+    assert ORDERS_6205["bpfo"] == pytest.approx(3.5848, abs=2e-4)
+    # (the README works from the inch dimensions, the catalogue from rounded mm)
+    assert ORDERS_6205["ftf"] == pytest.approx(0.39828, abs=5e-5)
+    assert ORDERS_6205["ball_defect"] == pytest.approx(4.7135, abs=2e-4)
+
+
+def test_slip_is_searched_below_the_kinematic_frequency():
+    # Slip slows the cage: the outer-race lines sit 1.5 % below BPFO. A search that
+    # only looks upwards misses them (the line window is +-1 bin = 0.1 % of 3xBPFO).
+    fr = RPM / 60
+    x = impacts(0.985 * ORDERS_6205["bpfo"] * fr, 2.0)
+    ev = envelope_evidence(x, FS, "6205", RPM)
+    assert ev.scale["outer"][0] == pytest.approx(0.985, abs=0.002)
+    assert ev.evidence_db["outer"][0] > 10.0
+    assert EnvelopeDiagnoser(fs=FS, rpm=RPM).predict(x[None])[0] == "outer"
+
+
+def test_ball_comb_is_not_an_outer_race_fault():
+    # A ball fault, carried through the load zone at the cage speed, fills the FTF comb:
+    # its BPFO = 9 x FTF line stands no higher than its +-FTF neighbours. Counting
+    # those neighbours *for* the outer race would make this an outer-race fault.
+    fr = RPM / 60
+    ftf = ORDERS_6205["ftf"] * fr
+    zone = lambda t: (1 + np.cos(2 * np.pi * ftf * t)) ** 2  # noqa: E731
+    x = impacts(ORDERS_6205["ball_defect"] * fr, 2.0, modulation=zone, noise=0.05)
+    (exp,) = EnvelopeDiagnoser(fs=FS, rpm=RPM).explain(x[None])
+    assert exp.label == "ball"
+    assert exp.evidence_db["outer"] < exp.threshold_db["outer"]
+
+
+def test_outer_race_sidebands_do_not_refute_it():
+    # Real outer-race records carry +-FTF sidebands 12-16 dB above the background
+    # (Smith & Randall 2015); a 30 % modulation at FTF gives such sidebands.
+    fr = RPM / 60
+    ftf = ORDERS_6205["ftf"] * fr
+    x = impacts(ORDERS_6205["bpfo"] * fr, 2.0,
+                modulation=lambda t: 1 + 0.3 * np.cos(2 * np.pi * ftf * t), noise=0.1)
+    (exp,) = EnvelopeDiagnoser(fs=FS, rpm=RPM).explain(x[None])
+    sidebands = exp.lines[(exp.lines.fault == "outer") & (exp.lines.role != "carrier")]
+    assert sidebands["level_db"].max() > 12.0
+    assert exp.label == "outer" and exp.grade == "Y"
+
+
+def test_harmonics_two_families_share_are_left_out():
+    # 2xBPFI = 10.830 and 3xBPFO = 10.754 orders: 0.7 % apart, inside the slip search.
+    ev = envelope_evidence(np.random.default_rng(0).standard_normal(12_000), FS, "6205", RPM)
+    # carriers are every third line (carrier, lower, upper sideband per harmonic)
+    shared = {f: [n for n, s in zip(ev.line_names[f][::3], ev.shared[f][::3], strict=True) if s]
+              for f in ev.line_names}
+    assert "3xBPFO" in shared["outer"] and "2xBPFI" in shared["inner"]
+    assert np.isnan(ev.levels_db["inner"][0, ev.line_names["inner"].index("2xBPFI")])
+    # An outer-race fault whose 3xBPFO is its only strong line gives the inner race
+    # nothing: its 2xBPFI is not counted.
+    fr = RPM / 60
+    x = impacts(ORDERS_6205["bpfo"] * fr, 2.0)
+    ev = envelope_evidence(x, FS, "6205", RPM)
+    assert ev.evidence_db["inner"][0] < 6.0 < ev.evidence_db["outer"][0]
+
+
+def test_shaft_harmonics_of_a_healthy_6203_are_not_faults():
+    # The 6203's 2xBSF (3.988 orders) lies 0.3 % from 4x shaft, BPFO (3.053) 1.8 % from
+    # 3x and BPFI (4.947) 1.1 % from 5x; a healthy fan-end channel carries a 4x line
+    # 25-29 times above background. Here: resonance noise modulated at 3x, 4x, 5x.
+    fr = RPM / 60
+    rng = np.random.default_rng(3)
+    for seconds in (1.0, 10.0):
+        t = np.arange(round(seconds * FS)) / FS
+        carrier = bp.features.bandpass(rng.standard_normal(t.size), FS, (2500, 3500))
+        mod = 1 + sum(0.5 * np.cos(2 * np.pi * k * fr * t) for k in (3, 4, 5))
+        x = carrier * mod + 0.05 * rng.standard_normal(t.size)
+        (exp,) = EnvelopeDiagnoser(bearing="6203", fs=FS, rpm=RPM).explain(x[None])
+        assert exp.label == "healthy", (seconds, exp.evidence_db)
+
+
+def test_wrong_stated_speed_is_corrected_and_said():
+    # 12k_FE_OR014@3_0 states 1774 rpm; a 1.3 % error moves 3xBPFO by 4 Hz, outside
+    # the slip search above the kinematic lines. The signal's shaft comb (harmonics
+    # 1-10 of 29.95 Hz) tells the speed.
+    fr = RPM / 60
+    t = np.arange(round(4.0 * FS)) / FS
+    shaft = sum(0.3 / k * np.cos(2 * np.pi * k * fr * t + k) for k in range(1, 11))
+    x = impacts(ORDERS_6205["bpfo"] * fr, 4.0, noise=0.3) + shaft
+    diag = EnvelopeDiagnoser(fs=FS, rpm=1774.0)
+    (exp,) = diag.explain(x[None])
+    assert exp.rpm == pytest.approx(RPM, rel=0.002)
+    assert exp.rpm_stated == 1774.0
+    assert any("speed corrected from 1774" in note for note in exp.notes)
+    assert exp.label == "outer"
+    # Trusting the stated speed misses the fault.
+    assert diag.set_params(speed_tolerance=0.0).predict(x[None])[0] != "outer"
+
+
+def test_noise_free_healthy_simulation_is_healthy():
+    # The quick dataset's healthy rows (sr5, no noise, 0.25 s): the varying-compliance
+    # line at BPFO has no high-frequency carrier, so no demodulation band holds it.
+    scene = bp.Scene(bearing="6205", rpm=RPM, duration_s=0.25, fs=FS, seed=0,
+                     resonance_hz=3000.0)
+    x = bp.simulate(scene).accel
+    (exp,) = EnvelopeDiagnoser(fs=FS, rpm=RPM).explain(x[None])
+    assert exp.label == "healthy"
+    # 0.25 s is three cage periods: too short to resolve a ball fault's +-FTF sidebands.
+    assert any(note.startswith("ball not judged") for note in exp.notes)
+    assert exp.evidence_db["ball"] == -np.inf
+
+
+# ---------------------------------------------------------------------- bad input
+def test_fs_and_rpm_are_required():
+    x = np.zeros((1, 12_000))
+    with pytest.raises(ValueError, match="fs must be given"):
+        EnvelopeDiagnoser(rpm=RPM).predict(x)
+    with pytest.raises(ValueError, match="rpm must be given"):
+        EnvelopeDiagnoser(fs=FS).predict(x)
+
+
+def test_short_records_are_refused():
+    # Two cage periods of a 6205 at 1797 rpm: 2 / (0.39828 x 29.95 Hz) = 0.168 s.
+    with pytest.raises(ValueError, match=r"at least 2 cage periods \(0\.168 s"):
+        EnvelopeDiagnoser(fs=FS, rpm=RPM).predict(np.ones((1, 2)))
+    assert EnvelopeDiagnoser(fs=FS, rpm=RPM).predict(np.ones((1, 2040))).shape == (1,)
+
+
+def test_fault_lines_above_nyquist_are_refused():
+    # 3 x BPFI + fr at 6000 rpm = 3 x 541.5 + 100 = 1725 Hz > fs/2 = 1000 Hz.
+    with pytest.raises(ValueError, match="above the Nyquist frequency fs/2 = 1000 Hz"):
+        EnvelopeDiagnoser(fs=2000.0, rpm=6000.0).predict(np.ones((1, 2000)))
+
+
+def test_fit_refuses_unknown_labels():
+    x = np.random.default_rng(0).standard_normal((2, 12_000))
+    with pytest.raises(ValueError, match=r"unknown labels \['cage'\]"):
+        EnvelopeDiagnoser(fs=FS, rpm=RPM).fit(x, ["healthy", "cage"])
