@@ -16,6 +16,9 @@ Models (the table behind ``auto``: ``python -m ballpass bearings`` lists bearing
     :mod:`._sr5_driver`). What a plain scene runs.
 ``sr4``
     The same without the resonator: the sensors read the housing acceleration.
+``gearbox``
+    A gear pair (seed 004) whose pinion sits on the bearing's shaft, coupled to the sr5
+    bearing-pedestal model (see :mod:`.gearbox`); what a scene with ``gears`` runs.
 
 A new model is one file that builds a :class:`Model` and one line in :data:`MODELS`.
 """
@@ -36,6 +39,7 @@ from ..scene import Scene  # noqa: E402
 from ._registry import Model  # noqa: E402
 from ._shared import OVERSAMPLE, SimulationUnstableError, check_solver_args  # noqa: E402
 from ._sr5_driver import SOLVERS, SR4, SR5, build, integrate  # noqa: E402
+from .gearbox import GEARBOX  # noqa: E402
 from .result import SimulationResult  # noqa: E402
 from .sr5 import BearingModel, SR5Parameters  # noqa: E402
 
@@ -61,7 +65,7 @@ __all__ = [
 ]
 
 #: model name -> :class:`Model`, cheapest first
-MODELS: dict[str, Model] = {m.name: m for m in sorted((SR5, SR4),
+MODELS: dict[str, Model] = {m.name: m for m in sorted((SR5, SR4, GEARBOX),
                                                       key=lambda m: m.relative_cost)}
 
 

@@ -71,6 +71,9 @@ class GroundTruth:
         Angle of each rolling element from the load line, rad, unwrapped (on request).
     displacement : ndarray (4, n_samples) or None
         Shaft u, v and pedestal u, v displacement, m (on request); u along the load line.
+    gear : GearTruth or None
+        The gear pair's ground truth (mesh force, stiffness, transmission error, tooth
+        fault entries) for the ``gearbox`` model; None otherwise.
     """
 
     label: str
@@ -83,6 +86,7 @@ class GroundTruth:
     contact_forces: np.ndarray | None = None
     element_angles: np.ndarray | None = None
     displacement: np.ndarray | None = None
+    gear: object | None = None
 
 
 @dataclass(frozen=True)

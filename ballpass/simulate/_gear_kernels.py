@@ -1,0 +1,207 @@
+"""Numba kernels of the ``gearbox`` model: mesh stiffness, transmission error, the
+coupled gear-bearing right-hand side and its fixed-step RK4 integrator.
+
+The bearing part is the sr5 shaft-pedestal core, called through :mod:`._kernels`
+(kinematics, contact loads, pedestal and housing forces); this module adds the gear
+mesh. State layout (``N_STATE`` = 14)::
+
+    y = [u_s, v_s, u_p, v_p, th_p, x_g, th_g,  du_s, dv_s, du_p, dv_p, dth_p, dx_g, dth_g]
+
+u_s, v_s: shaft (and pinion) centre; u_p, v_p: pedestal; th_p: pinion torsion relative
+to the drive's nominal angle (rad); x_g: gear centre along the line of action (m); th_g:
+gear torsion, positive in the gear's direction of rotation (rad). The line of action is
+the bearing's load line u: the mesh force N pushes the pinion shaft along +u (into the
+load zone, adding to the scene's radial load) and the gear along -u.
+
+Gear parameters ``g`` (indices ``G_*``) and the static transmission error's harmonics
+``te`` (rows: amplitude (m), phase (rad), one per mesh harmonic) are float64 arrays.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from . import _kernels as K
+
+G_EPS_A, G_EPS_B, G_ZP, G_ZG = 0, 1, 2, 3
+G_KM, G_CM, G_RBP, G_RBG, G_IP, G_IG = 4, 5, 6, 7, 8, 9
+G_MG, G_KG, G_CG, G_KT, G_CT, G_TP = 10, 11, 12, 13, 14, 15
+G_ECCP, G_ECCG = 16, 17
+G_FGEAR, G_FTOOTH, G_FLOSS = 18, 19, 20
+N_GPARAMS = 21
+#: fault-wheel codes in G_FGEAR
+FAULT_NONE, FAULT_PINION, FAULT_GEAR = 0, 1, 2
+
+N_STATE = 14
+N_POS = 7
+
+
+@njit(cache=True, error_model="numpy")
+def _count_integral(x, eps_a):
+    """Integral over [0, x] of the number of tooth pairs in contact of a spur slice at
+    mesh phase v (teeth passed): floor(eps_a) + 1 while frac(v) < frac(eps_a), else
+    floor(eps_a)."""
+    whole = math.floor(eps_a)
+    a = eps_a - whole
+    fx = math.floor(x)
+    return whole * x + fx * a + min(x - fx, a)
+
+
+@njit(cache=True, error_model="numpy")
+def _tooth_integral(x, z, eps_a):
+    """Integral over [0, x] of the indicator that tooth 0 of a wheel of z teeth is in
+    contact at mesh phase v: it meshes for v mod z in [0, eps_a)."""
+    fz = math.floor(x / z)
+    return fz * eps_a + min(x - fz * z, eps_a)
+
+
+@njit(cache=True, error_model="numpy")
+def mesh_stiffness(u, g):
+    """Mesh stiffness at mesh phase u (teeth passed since t = 0), N/m.
+
+    k = k_mean / eps_alpha * (n(u) - loss * m(u)): n is the number of tooth pairs in
+    contact averaged over the face (spur slices staggered over eps_beta mesh periods),
+    m the share of the faulty tooth in it.
+    """
+    eps_a = g[G_EPS_A]
+    eps_b = g[G_EPS_B]
+    if eps_b > 0.0:
+        n = (_count_integral(u + eps_b, eps_a) - _count_integral(u, eps_a)) / eps_b
+    else:
+        whole = math.floor(eps_a)
+        n = whole + (1.0 if u - math.floor(u) < eps_a - whole else 0.0)
+    wheel = int(g[G_FGEAR])
+    if wheel != FAULT_NONE:
+        z = g[G_ZP] if wheel == FAULT_PINION else g[G_ZG]
+        x = u - g[G_FTOOTH]
+        if eps_b > 0.0:
+            m = (_tooth_integral(x + eps_b, z, eps_a) - _tooth_integral(x, z, eps_a)) / eps_b
+        else:
+            m = 1.0 if x - z * math.floor(x / z) < eps_a else 0.0
+        n -= g[G_FLOSS] * m
+    return g[G_KM] / eps_a * n
+
+
+@njit(cache=True, error_model="numpy")
+def transmission_error(theta, w, g, te):
+    """Static transmission error e (m) and its rate de/dt (m/s) at pinion angle
+    ``theta`` (rad) turning at ``w`` (rad/s): mesh harmonics plus the once-per-turn
+    runout of pinion and gear, e_p sin(theta) + e_g sin(theta z_p / z_g)."""
+    zp = g[G_ZP]
+    rg = zp / g[G_ZG]
+    e = g[G_ECCP] * math.sin(theta) + g[G_ECCG] * math.sin(theta * rg)
+    de = w * (g[G_ECCP] * math.cos(theta) + g[G_ECCG] * rg * math.cos(theta * rg))
+    for h in range(te.shape[0]):
+        arg = (h + 1) * zp * theta + te[h, 1]
+        e += te[h, 0] * math.cos(arg)
+        de -= te[h, 0] * (h + 1) * zp * w * math.sin(arg)
+    return e, de
+
+
+@njit(cache=True, error_model="numpy")
+def mesh_force(t, y, p, g, te):
+    """Mesh force N along the line of action (N, >= 0; exactly 0 when the teeth
+    separate), the mesh stiffness (N/m) and the static transmission error (m) at (t, y).
+
+    delta = r_bp th_p - r_bg th_g - (u_s - x_g) - e(t);  N = k(t) delta + c_m d(delta)/dt.
+    """
+    theta = K.shaft_angle(t, p)
+    w = K.shaft_rate(t, p)
+    k = mesh_stiffness(g[G_ZP] * theta / K.TWO_PI, g)
+    e, de = transmission_error(theta, w, g, te)
+    delta = g[G_RBP] * y[4] - g[G_RBG] * y[6] - (y[0] - y[5]) - e
+    if delta <= 0.0:
+        return 0.0, k, e
+    ddelta = g[G_RBP] * y[N_POS + 4] - g[G_RBG] * y[N_POS + 6] - (y[N_POS] - y[N_POS + 5]) - de
+    return max(k * delta + g[G_CM] * ddelta, 0.0), k, e
+
+
+@njit(cache=True, error_model="numpy")
+def rhs(t, y, dydt, p, walk, faults, g, te, kin, yc, dc):
+    """dy/dt of the coupled gear-bearing model (layout above) into ``dydt``; returns
+    the mesh force, N. ``yc``, ``dc`` are length-8 scratch for the bearing core.
+
+    Bearing core: the sr5 equations (Sawalhi & Randall 2008; seed 004 eqs. 7-16 with
+    the shaft damping, loads and sprung mass restored), plus N on the shaft along u.
+    Pinion (seed 004 eq. 5): I_p th_p'' = T_p - k_t th_p - c_t th_p' - r_bp N.
+    Gear (eqs. 2, 6): I_g th_g'' = r_bg N - T_g,  m_g x_g'' = -k_g x_g - c_g x_g' - N,
+    with T_g = T_p r_bg / r_bp (the load torque that balances the input torque).
+    """
+    for i in range(4):
+        yc[i] = y[i]
+        yc[4 + i] = y[N_POS + i]
+    K.kinematics(t, p, walk, faults, kin)
+    K.core_forces(yc, p, kin, dc)
+    n, _k, _e = mesh_force(t, y, p, g, te)
+    for i in range(4):
+        dydt[i] = dc[i]
+        dydt[N_POS + i] = dc[4 + i]
+    dydt[N_POS] += n / p[K.P_MS]
+    for i in range(4, N_POS):
+        dydt[i] = y[N_POS + i]
+    tp = g[G_TP]
+    dydt[N_POS + 4] = (tp - g[G_KT] * y[4] - g[G_CT] * y[N_POS + 4] - g[G_RBP] * n) / g[G_IP]
+    dydt[N_POS + 5] = (-g[G_KG] * y[5] - g[G_CG] * y[N_POS + 5] - n) / g[G_MG]
+    dydt[N_POS + 6] = (g[G_RBG] * n - tp * g[G_RBG] / g[G_RBP]) / g[G_IG]
+    return n
+
+
+@njit(cache=True, error_model="numpy")
+def rk4(y0, p, walk, faults, sensors, g, te, h_out, n_sub, n_out, bound, out, forces, states):
+    """Classical RK4 with ``n_sub`` steps per output interval ``h_out`` (s).
+
+    Writes, at t = k h_out: the housing acceleration along each sensor (m/s^2) into
+    ``out[k]``, the mesh force (N), stiffness (N/m) and static transmission error (m)
+    into ``forces[k]`` and, if ``states`` has rows, the state into ``states[k]``.
+    Returns (status, t_fail): status 0 = ok, 1 = the state left ``bound`` or became
+    non-finite.
+    """
+    z = int(p[K.P_Z])
+    kin = K.kinematics_scratch(z)
+    yc = np.empty(8)
+    dc = np.empty(8)
+    acc = np.empty((1, sensors.shape[0]))
+    n = y0.shape[0]
+    y = y0.copy()
+    k1 = np.empty(n)
+    k2 = np.empty(n)
+    k3 = np.empty(n)
+    k4 = np.empty(n)
+    tmp = np.empty(n)
+    dt = h_out / n_sub
+    keep = states.shape[0] > 0
+    for k in range(n_out):
+        t = k * h_out
+        f = rhs(t, y, k1, p, walk, faults, g, te, kin, yc, dc)
+        K.housing_accel(yc, dc, p, sensors, kin, 0.0, acc, 0, False)
+        out[k, :] = acc[0, :]
+        _n, km, em = mesh_force(t, y, p, g, te)
+        forces[k, 0] = f
+        forces[k, 1] = km
+        forces[k, 2] = em
+        if keep:
+            states[k, :] = y
+        for i in range(n):
+            if not (abs(y[i]) <= bound[i]):
+                return 1, t
+        if k == n_out - 1:
+            break
+        for s in range(n_sub):
+            ts = t + s * dt
+            if s > 0:
+                rhs(ts, y, k1, p, walk, faults, g, te, kin, yc, dc)
+            for i in range(n):
+                tmp[i] = y[i] + 0.5 * dt * k1[i]
+            rhs(ts + 0.5 * dt, tmp, k2, p, walk, faults, g, te, kin, yc, dc)
+            for i in range(n):
+                tmp[i] = y[i] + 0.5 * dt * k2[i]
+            rhs(ts + 0.5 * dt, tmp, k3, p, walk, faults, g, te, kin, yc, dc)
+            for i in range(n):
+                tmp[i] = y[i] + dt * k3[i]
+            rhs(ts + dt, tmp, k4, p, walk, faults, g, te, kin, yc, dc)
+            for i in range(n):
+                y[i] += dt / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
+    return 0, n_out * h_out
