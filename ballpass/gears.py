@@ -39,7 +39,7 @@ Examples
 >>> g.teeth, round(g.mesh_frequency(2000 / 60), 2)
 ((15, 32), 500.0)
 >>> round(g.contact_ratio, 3), round(g.overlap_ratio, 3)
-(1.337, 1.024)
+(1.326, 1.024)
 """
 
 from __future__ import annotations
@@ -161,10 +161,13 @@ class GearPair:
     support_stiffness_n_per_m, support_damping_ns_per_m : float, optional
         Lateral stiffness (N/m) and damping (N s/m) of the gear's shaft and bearings.
         Defaults 1e8 and 2000.
-    drive_stiffness_nm_per_rad : float, optional
-        Torsional stiffness of the input shaft between the drive (turning at
-        Scene.rpm) and the pinion, N m/rad. Default 1e5 (a 40 mm steel shaft 200 mm
-        long: G J / L = 8e10 * pi * 0.04^4 / 32 / 0.2).
+    drive_stiffness_nm_per_rad, output_stiffness_nm_per_rad : float, optional
+        Torsional stiffness of the input shaft (drive to pinion) and of the output
+        shaft (gear to the load, which turns at the nominal speed), N m/rad. Defaults
+        1e5 (a 40 mm steel shaft 200 mm long: G J / L = 8e10 * pi * 0.04^4 / 32 / 0.2).
+    drive_inertia_kgm2 : float, optional
+        Inertia of the drive (motor rotor, clutch) that applies ``torque_nm``, kg m^2.
+        Default 0.02 (the rotor of a 5-10 kW four-pole induction motor).
     fault : GearFault or None, optional
         A cracked or spalled tooth. Default None (healthy).
     name : str, optional
@@ -175,7 +178,7 @@ class GearPair:
     >>> import ballpass as bp
     >>> g = bp.GearPair((20, 40), module_mm=2.0, face_width_mm=15.0)
     >>> round(g.contact_ratio, 3), g.overlap_ratio, round(g.base_radius_m[0] * 1e3, 3)
-    (1.636, 0.0, 18.794)
+    (1.635, 0.0, 18.794)
     """
 
     teeth: tuple[int, int]
@@ -193,6 +196,8 @@ class GearPair:
     support_stiffness_n_per_m: float = 1e8
     support_damping_ns_per_m: float = 2000.0
     drive_stiffness_nm_per_rad: float = 1e5
+    output_stiffness_nm_per_rad: float = 1e5
+    drive_inertia_kgm2: float = 0.02
     fault: GearFault | None = None
     name: str = field(default="user", compare=False)
 
@@ -230,8 +235,9 @@ class GearPair:
         check_number("support_stiffness_n_per_m", self.support_stiffness_n_per_m, 0.0,
                      lo_open=True)
         check_number("support_damping_ns_per_m", self.support_damping_ns_per_m, 0.0)
-        check_number("drive_stiffness_nm_per_rad", self.drive_stiffness_nm_per_rad, 0.0,
-                     lo_open=True)
+        for name in ("drive_stiffness_nm_per_rad", "output_stiffness_nm_per_rad",
+                     "drive_inertia_kgm2"):
+            check_number(name, getattr(self, name), 0.0, lo_open=True)
         if self.fault is not None:
             if not isinstance(self.fault, GearFault):
                 raise TypeError(f"fault must be a GearFault or None, got {self.fault!r}")
@@ -310,7 +316,7 @@ class GearPair:
         a_t = self.transverse_pressure_angle_rad
         m_n = self.module_mm * 1e-3
         path = sum(math.sqrt((r + m_n) ** 2 - rb**2)
-                   for r, rb in zip(self.pitch_radius_m, self.base_radius_m))
+                   for r, rb in zip(self.pitch_radius_m, self.base_radius_m, strict=True))
         path -= self.centre_distance_m * math.sin(a_t)
         return path / (math.pi * self.transverse_module_m * math.cos(a_t))
 
@@ -334,7 +340,7 @@ class GearPair:
         m r^2 / 2)."""
         if self.inertias_kgm2 is not None:
             return self.inertias_kgm2
-        return tuple(0.5 * m * r * r for m, r in zip(self.masses, self.pitch_radius_m))
+        return tuple(0.5 * m * r * r for m, r in zip(self.masses, self.pitch_radius_m, strict=True))
 
     @property
     def mesh_stiffness(self) -> float:

@@ -5,11 +5,12 @@ The bearing part is the sr5 shaft-pedestal core, called through :mod:`._kernels`
 (kinematics, contact loads, pedestal and housing forces); this module adds the gear
 mesh. State layout (``N_STATE`` = 14)::
 
-    y = [u_s, v_s, u_p, v_p, th_p, x_g, th_g,  du_s, dv_s, du_p, dv_p, dth_p, dx_g, dth_g]
+    y = [u_s, v_s, u_p, v_p, th_p, x_g, th_g, th_m,  (their rates in the same order)]
 
 u_s, v_s: shaft (and pinion) centre; u_p, v_p: pedestal; th_p: pinion torsion relative
-to the drive's nominal angle (rad); x_g: gear centre along the line of action (m); th_g:
-gear torsion, positive in the gear's direction of rotation (rad). The line of action is
+to its nominal angle (rad); x_g: gear centre along the line of action (m); th_g: gear
+torsion relative to the load's nominal angle, positive in the gear's direction of
+rotation (rad); th_m: the drive's (motor rotor's) torsion (rad). The line of action is
 the bearing's load line u: the mesh force N pushes the pinion shaft along +u (into the
 load zone, adding to the scene's radial load) and the gear along -u.
 
@@ -31,12 +32,13 @@ G_KM, G_CM, G_RBP, G_RBG, G_IP, G_IG = 4, 5, 6, 7, 8, 9
 G_MG, G_KG, G_CG, G_KT, G_CT, G_TP = 10, 11, 12, 13, 14, 15
 G_ECCP, G_ECCG = 16, 17
 G_FGEAR, G_FTOOTH, G_FLOSS = 18, 19, 20
-N_GPARAMS = 21
+G_IM, G_KO, G_CO, G_D0 = 21, 22, 23, 24
+N_GPARAMS = 25
 #: fault-wheel codes in G_FGEAR
 FAULT_NONE, FAULT_PINION, FAULT_GEAR = 0, 1, 2
 
-N_STATE = 14
-N_POS = 7
+N_STATE = 16
+N_POS = 8
 
 
 @njit(cache=True, error_model="numpy")
@@ -106,13 +108,15 @@ def mesh_force(t, y, p, g, te):
     """Mesh force N along the line of action (N, >= 0; exactly 0 when the teeth
     separate), the mesh stiffness (N/m) and the static transmission error (m) at (t, y).
 
-    delta = r_bp th_p - r_bg th_g - (u_s - x_g) - e(t);  N = k(t) delta + c_m d(delta)/dt.
+    delta = r_bp th_p - r_bg th_g - (u_s - x_g) - e(t) + delta_0;
+    N = k(t) delta + c_m d(delta)/dt; delta_0 (``g[G_D0]``) sets the angular references
+    so that the static state has th_p = th_g = 0.
     """
     theta = K.shaft_angle(t, p)
     w = K.shaft_rate(t, p)
     k = mesh_stiffness(g[G_ZP] * theta / K.TWO_PI, g)
     e, de = transmission_error(theta, w, g, te)
-    delta = g[G_RBP] * y[4] - g[G_RBG] * y[6] - (y[0] - y[5]) - e
+    delta = g[G_RBP] * y[4] - g[G_RBG] * y[6] - (y[0] - y[5]) - e + g[G_D0]
     if delta <= 0.0:
         return 0.0, k, e
     ddelta = g[G_RBP] * y[N_POS + 4] - g[G_RBG] * y[N_POS + 6] - (y[N_POS] - y[N_POS + 5]) - de
@@ -126,9 +130,12 @@ def rhs(t, y, dydt, p, walk, faults, g, te, kin, yc, dc):
 
     Bearing core: the sr5 equations (Sawalhi & Randall 2008; seed 004 eqs. 7-16 with
     the shaft damping, loads and sprung mass restored), plus N on the shaft along u.
-    Pinion (seed 004 eq. 5): I_p th_p'' = T_p - k_t th_p - c_t th_p' - r_bp N.
-    Gear (eqs. 2, 6): I_g th_g'' = r_bg N - T_g,  m_g x_g'' = -k_g x_g - c_g x_g' - N,
-    with T_g = T_p r_bg / r_bp (the load torque that balances the input torque).
+    Drive: I_m th_m'' = T_p - M_t, M_t = k_t (th_m - th_p) + c_t (th_m' - th_p') (shaft
+    torque, pre-twisted by T_p / k_t).
+    Pinion (seed 004 eq. 5): I_p th_p'' = M_t - r_bp N.
+    Gear (eqs. 2, 6): I_g th_g'' = r_bg N - T_g - k_o th_g - c_o th_g',
+    m_g x_g'' = -k_g x_g - c_g x_g' - N, with the load torque T_g = T_p r_bg / r_bp and
+    the output shaft (k_o, c_o) to a load turning at the nominal speed.
     """
     for i in range(4):
         yc[i] = y[i]
@@ -143,9 +150,12 @@ def rhs(t, y, dydt, p, walk, faults, g, te, kin, yc, dc):
     for i in range(4, N_POS):
         dydt[i] = y[N_POS + i]
     tp = g[G_TP]
-    dydt[N_POS + 4] = (tp - g[G_KT] * y[4] - g[G_CT] * y[N_POS + 4] - g[G_RBP] * n) / g[G_IP]
+    m_t = g[G_KT] * (y[7] - y[4]) + g[G_CT] * (y[N_POS + 7] - y[N_POS + 4])
+    dydt[N_POS + 4] = (m_t - g[G_RBP] * n) / g[G_IP]
     dydt[N_POS + 5] = (-g[G_KG] * y[5] - g[G_CG] * y[N_POS + 5] - n) / g[G_MG]
-    dydt[N_POS + 6] = (g[G_RBG] * n - tp * g[G_RBG] / g[G_RBP]) / g[G_IG]
+    dydt[N_POS + 6] = (g[G_RBG] * n - tp * g[G_RBG] / g[G_RBP] - g[G_KO] * y[6]
+                       - g[G_CO] * y[N_POS + 6]) / g[G_IG]
+    dydt[N_POS + 7] = (tp - m_t) / g[G_IM]
     return n
 
 

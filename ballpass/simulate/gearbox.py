@@ -12,13 +12,15 @@ supported shaft. Degrees of freedom (kernels in :mod:`._gear_kernels`):
   damping, gravity, radial load and the sprung mass of eq. 11 restored; see
   :mod:`.sr5`). The pinion's lateral motion is the shaft's, and its mass is added to
   the shaft's;
-* pinion torsion th_p (eq. 5): I_p th_p'' = T_p - k_t th_p - c_t th_p' - r_bp N, the drive
-  turning at ``Scene.rpm`` through the input shaft's torsional stiffness k_t (c_t: 5 %
-  of critical for the drive mode, assumed);
+* drive (motor rotor) torsion th_m: I_m th_m'' = T_p - M_t, driven by the input torque
+  T_p and connected to the pinion by the input shaft, M_t = k_t (th_m - th_p) + c_t (..)';
+* pinion torsion th_p (eq. 5): I_p th_p'' = M_t - r_bp N;
 * gear torsion th_g and lateral x_g along the line of action (eqs. 4, 6):
-  I_g th_g'' = r_bg N - T_g, m_g x_g'' = -k_g x_g - c_g x_g' - N, with the load torque
-  T_g = T_p r_bg / r_bp, so that the mean mesh force is T_p / r_bp (torque is an input,
-  not only speed);
+  I_g th_g'' = r_bg N - T_g - k_o th_g - c_o th_g', m_g x_g'' = -k_g x_g - c_g x_g' - N,
+  with the load torque T_g = T_p r_bg / r_bp and the output shaft (k_o) to a load turning
+  at the nominal speed ``Scene.rpm * teeth[0] / teeth[1]``. Torque is an input: the
+  mean mesh force is T_p / r_bp in steady state (the drive's and the pinion's torque
+  balances). c_t, c_o: 5 % of critical for each shaft on its wheel (assumed);
 * mesh force along the line of action N = k(t) delta + c_m delta' for delta > 0, exactly
   0 when the teeth separate, with delta = r_bp th_p - r_bg th_g - (u_s - x_g) - e(t):
   the time-varying mesh stiffness k(t) from the transverse contact ratio and the
@@ -182,10 +184,12 @@ def build_gearbox(scene: Scene, params: SR5Parameters | None = None) -> GearboxM
     g[G.G_MG] = m_g
     g[G.G_KG] = pair.support_stiffness_n_per_m
     g[G.G_CG] = pair.support_damping_ns_per_m
-    k_t = pair.drive_stiffness_nm_per_rad
-    i_drive = i_p + i_g * (rbp / rbg) ** 2
+    k_t, k_o = pair.drive_stiffness_nm_per_rad, pair.output_stiffness_nm_per_rad
     g[G.G_KT] = k_t
-    g[G.G_CT] = 2.0 * DRIVE_DAMPING_RATIO * math.sqrt(k_t * i_drive)
+    g[G.G_CT] = 2.0 * DRIVE_DAMPING_RATIO * math.sqrt(k_t * i_p)
+    g[G.G_IM] = pair.drive_inertia_kgm2
+    g[G.G_KO] = k_o
+    g[G.G_CO] = 2.0 * DRIVE_DAMPING_RATIO * math.sqrt(k_o * i_g)
     g[G.G_TP] = pair.torque_nm
     g[G.G_ECCP], g[G.G_ECCG] = (1e-6 * e for e in pair.eccentricity_um)
     if pair.fault is not None:
@@ -195,15 +199,16 @@ def build_gearbox(scene: Scene, params: SR5Parameters | None = None) -> GearboxM
     te = np.zeros((max(len(pair.transmission_error_um), 0), 2))
     te[:, 0] = 1e-6 * np.asarray(pair.transmission_error_um, dtype=float)
 
-    # static state: pre-twisted drive (th_p = 0), gear shaft deflected by -N0/k_g, mesh
-    # compressed so that k(0) delta + c_m delta' = N0 with the wheels at rest
+    # static state: input shaft pre-twisted by T_p / k_t, gear shaft deflected by
+    # -N0/k_g, mesh compressed so that k(0) delta + c_m delta' = N0 with the wheels at
+    # rest at th_p = th_g = 0 (delta_0 sets the angular references)
     y0 = np.zeros(G.N_STATE)
     y0[:4] = bm.y0[:4]
     k0 = G.mesh_stiffness(0.0, g)
     e0, de0 = G.transmission_error(0.0, bm.p[K.P_W0], g, te)
-    delta0 = (n0 + g[G.G_CM] * de0) / k0
     y0[5] = -n0 / g[G.G_KG]
-    y0[6] = (-(y0[0] - y0[5]) - e0 - delta0) / rbg
+    y0[7] = pair.torque_nm / k_t
+    g[G.G_D0] = (n0 + g[G.G_CM] * de0) / k0 + (y0[0] - y0[5]) + e0
 
     k_max = pair.mesh_stiffness * (math.floor(pair.contact_ratio) + 1) / pair.contact_ratio
     w_c = float(bm.scale[4] / bm.scale[0])  # bearing contact mode (sr4 scales)
@@ -211,7 +216,7 @@ def build_gearbox(scene: Scene, params: SR5Parameters | None = None) -> GearboxM
     omega = max(w_c, math.sqrt(k_max / pair.equivalent_mass),
                 math.sqrt(w_c**2 + (k_max + params.shaft_stiffness) / m_s),
                 math.sqrt((k_max + pair.support_stiffness_n_per_m) / m_g),
-                math.sqrt(k_t / i_p))
+                math.sqrt(k_t / i_p), math.sqrt(k_o / i_g))
     return GearboxModel(bearing=bm, g=g, te=te, y0=y0, omega_max=omega)
 
 
@@ -262,9 +267,9 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None,
                       f"spacing {h_out:.6g} s; res.info['dt_s'] holds the step used",
                       stacklevel=4)
     bound = np.full(G.N_STATE, 1e4 * float(np.max(np.abs(gm.y0[:4]))) + 1e-3)
-    bound[[4, 6, 11, 13]] = 1e6  # angles (rad) and angular rates (rad/s)
-    bound[7:11] = 1e4 * float(bm.scale[4]) + 1.0
-    bound[12] = bound[7]
+    bound[[4, 6, 7, 12, 14, 15]] = 1e6  # angles (rad) and angular rates (rad/s)
+    bound[8:12] = 1e4 * float(bm.scale[4]) + 1.0
+    bound[13] = bound[8]
     n_sensors = len(scene.sensors)
     out = np.empty((n_out, n_sensors))
     forces = np.empty((n_out, 3))

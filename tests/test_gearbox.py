@@ -1,0 +1,201 @@
+"""The gearbox model (seed 004 gear pair on the sr5 bearing), GearPair geometry, the
+seed 004 bearing table, and a bearing fault masked by gear lines found after
+discrete/random separation."""
+
+import math
+
+import numpy as np
+import pytest
+
+import ballpass as bp
+from ballpass.features import envelope_spectrum, separate_discrete
+
+FS = 12_000.0
+# 1740 rpm: the 15/29 spur pair of seed 004 (1st speed) turns its shafts at exactly 29
+# and 15 Hz and meshes at 435 Hz, so every line falls on a bin of a 1 s spectrum
+RPM = 1740.0
+
+
+def _simulate(ecc=(0.0, 0.0), **changes):
+    pair = bp.GearPair.preset("seed004-1st", eccentricity_um=ecc, **changes)
+    scene = bp.Scene(bearing="6208", rpm=RPM, gears=pair, duration_s=1.0, fs=FS,
+                     resonance_hz=3000.0)
+    return bp.simulate(scene)
+
+
+@pytest.fixture(scope="module")
+def eccentric():
+    return _simulate(ecc=(10.0, 10.0))
+
+
+@pytest.fixture(scope="module")
+def concentric():
+    return _simulate()
+
+
+def _spectrum(x):
+    return np.abs(np.fft.rfft(x * np.hanning(x.size))) / x.size  # 1 Hz bins
+
+
+def test_registry_picks_gearbox_for_a_scene_with_gears(concentric):
+    assert concentric.info["model"] == "gearbox"
+    assert "gear_mesh" in bp.simulate.MODELS["gearbox"].represents
+    assert bp.simulate.MODELS["sr5"].represents <= bp.simulate.MODELS["gearbox"].represents
+    assert bp.simulate.resolve_model(bp.Scene(bearing="6208")) == "sr5"
+    with pytest.raises(ValueError, match="no gear pair"):
+        bp.simulate(bp.Scene(bearing="6208", duration_s=0.01), model="gearbox")
+
+
+def test_mesh_frequency_and_harmonics(concentric):
+    g = concentric.truth.gear
+    assert g.mesh_frequency_hz == pytest.approx(15 * RPM / 60)  # teeth x shaft frequency
+    spec = _spectrum(concentric.accel)
+    floor = np.median(spec[100:3000])
+    # the mesh frequency and its first harmonics stand > 300x above the spectrum's
+    # median (measured 900-90000x); a wrong tooth count moves them off
+    for h in (1, 2, 3, 4):
+        assert spec[int(h * 435)] > 300 * floor, h
+
+
+def test_sidebands_at_both_shaft_frequencies_with_eccentricity(eccentric, concentric):
+    se, s0 = _spectrum(eccentric.accel), _spectrum(concentric.accel)
+    floor = np.median(s0[100:3000])
+    for f_shaft in (29, 15):  # pinion and gear shafts
+        for side in (-1, 1):
+            f = 435 + side * f_shaft
+            # runout modulates the mesh load: the sidebands rise > 5x above the
+            # concentric pair's level at the same bin (measured 6-50x) and above the floor
+            assert se[f] > 5 * s0[f], (f_shaft, side)
+            assert se[f] > 5 * floor, (f_shaft, side)
+
+
+def test_mean_mesh_force_is_torque_over_base_radius():
+    res = _simulate(torque_nm=80.0, transmission_error_um=(2.0, 0.5))
+    pair = res.scene.gears
+    n = res.truth.gear.mesh_force
+    # steady state (after 0.2 s), over an integer number of gear revolutions (15 Hz)
+    steady = n[int(0.2 * FS):int(0.2 * FS) + int(FS * 12 / 15)]
+    expected = 80.0 / pair.base_radius_m[0]
+    # the torque balances of drive and pinion make the mean exact in steady state;
+    # 0.5 % allows the start-up transient's residue and the window's end
+    assert steady.mean() == pytest.approx(expected, rel=5e-3)
+    assert (n >= 0.0).all()
+
+
+def test_bearing_carries_the_mesh_force():
+    res = bp.simulate(bp.Scene(bearing="6208", rpm=RPM, gears=bp.GearPair.preset(
+        "seed004", torque_nm=60.0), duration_s=0.3, fs=FS, radial_load_n=300.0,
+        resonance_hz=3000.0), return_forces=True)
+    q = res.truth.contact_forces  # (Z, n)
+    angles = res.truth.element_angles
+    along_u = np.sum(q * np.cos(angles), axis=0)[int(0.1 * FS):]
+    m_s = bp.simulate.SR5Parameters().shaft_mass + res.scene.gears.masses[0]
+    expected = 300.0 + 60.0 / res.scene.gears.base_radius_m[0] + m_s * 9.80665
+    # the bearing reaction along the load line is the radial load, the shaft's weight
+    # and the mesh force (the line of action is the load line); 1 % for the
+    # dynamic part of the mesh force and the shaft's inertia
+    assert along_u.mean() == pytest.approx(expected, rel=1e-2)
+
+
+def test_tooth_crack_loses_stiffness_once_per_pinion_turn():
+    fault = bp.GearFault("crack", tooth=3, stiffness_loss=0.5)
+    res = _simulate(fault=fault)
+    g = res.truth.gear
+    entries = g.fault_entries_s
+    np.testing.assert_allclose(np.diff(entries), 1 / 29.0, rtol=1e-9)
+    healthy = _simulate()
+    k_drop = healthy.truth.gear.mesh_stiffness - g.mesh_stiffness
+    # the stiffness is lower only while tooth 3 meshes: eps_alpha (1.56) mesh periods
+    # after each entry; the signal differs from the healthy pair's mostly then
+    window = (1.56 + 0.2) / 435
+    t = res.t
+    inside = np.zeros(t.size, bool)
+    for t0 in entries:
+        inside |= (t >= t0) & (t < t0 + window)
+    assert k_drop[~inside].max() < 1e-6 * k_drop.max()
+    diff = (res.accel - healthy.accel)[int(0.1 * FS):]
+    lagged = np.zeros(t.size, bool)
+    for t0 in entries:  # the response rings for a few ms after the stiffness loss
+        lagged |= (t >= t0) & (t < t0 + window + 0.006)
+    share = np.sum(diff[lagged[int(0.1 * FS):]] ** 2) / np.sum(diff**2)
+    assert share > 0.6  # those windows cover 33 % of the time
+
+
+def test_bearing_fault_masked_by_gear_lines_found_after_separation():
+    pair = bp.GearPair.preset("seed004-1st", eccentricity_um=(5.0, 5.0))
+    scene = bp.Scene(bearing="6208", rpm=2000.0, gears=pair, duration_s=1.0, fs=24_000.0,
+                     resonance_hz=3000.0, fault=bp.Fault("inner", width_mm=0.5, depth_mm=0.1))
+    x = bp.simulate(scene).accel
+    bpfi = scene.frequencies.bpfi
+    assert bpfi == pytest.approx(179.72, abs=0.01)  # seed 004's 6208 at 2000 rpm
+
+    def prominence(y):
+        f, a = envelope_spectrum(y, scene.fs, band=scene.demodulation_band)
+        near = (np.abs(f - bpfi) < 30) & (np.abs(f - bpfi) > 3)
+        return a[np.abs(f - bpfi) <= 1.0].max() / np.median(a[near])
+
+    # found = the SES line at BPFI 10x above its neighbourhood (a healthy bearing in
+    # the same gearbox: ~2)
+    assert prominence(x) < 10
+    _d, residual = separate_discrete(x, scene.fs, rpm=[2000.0, 2000.0 * 15 / 29])
+    assert prominence(residual) > 10
+
+
+def test_gear_geometry_closed_forms():
+    # spur, standard teeth: eps_alpha in module units (an independent form of ISO 21771)
+    z1, z2, a = 20, 40, math.radians(20.0)
+    eps = (math.sqrt((z1 + 2) ** 2 - (z1 * math.cos(a)) ** 2)
+           + math.sqrt((z2 + 2) ** 2 - (z2 * math.cos(a)) ** 2)
+           - (z1 + z2) * math.sin(a)) / (2 * math.pi * math.cos(a))
+    g = bp.GearPair((z1, z2), module_mm=2.0, face_width_mm=15.0)
+    assert g.contact_ratio == pytest.approx(eps, rel=1e-12)
+    assert g.overlap_ratio == 0.0
+    s = bp.GearPair.preset("seed004")
+    assert s.overlap_ratio == pytest.approx(20 * math.sin(math.radians(28.85)) / (3 * math.pi))
+    assert s.mean_mesh_force == pytest.approx(s.torque_nm / s.base_radius_m[0])
+
+
+def test_seed004_table1_presets():
+    table = {"seed004": ((15, 32), 3.0, 20.0, 28.85),
+             "seed004-1st": ((15, 29), 3.5, 20.0, 0.0),
+             "seed004-2nd": ((21, 26), 3.0, 20.0, 28.85),
+             "seed004-3rd": ((27, 20), 3.0, 20.0, 28.85),
+             "seed004-reverse": ((15, 19), 3.5, 15.0, 0.0)}
+    for name, (teeth, module, face, helix) in table.items():
+        g = bp.GearPair.preset(name)
+        assert (g.teeth, g.module_mm, g.face_width_mm, g.helix_angle_deg) == \
+            (teeth, module, face, helix)
+
+
+@pytest.mark.parametrize("name, bpfo, bpfi", [
+    ("6208", 120.28, 179.72), ("NU 2204", 147.86, 218.80), ("3207", 194.38, 272.29),
+    ("6307", 102.05, 164.62), ("6306", 102.85, 163.82), ("6305", 86.89, 146.45)])
+def test_seed004_bearing_table(name, bpfo, bpfi):
+    # DIGEST section 2.1 [D] values at 2000 rpm from seed 004 Table 2's geometry
+    f = bp.Bearing.catalog(name).frequencies(2000 / 60)
+    assert (f.bpfo, f.bpfi) == pytest.approx((bpfo, bpfi), abs=0.01)
+
+
+@pytest.mark.parametrize("kwargs, exc, match", [
+    (dict(teeth=(4, 30)), ValueError, "teeth must be >= 6"),
+    (dict(teeth=(15.0, 30)), TypeError, "teeth must hold ints"),
+    (dict(teeth=(15, 32), module_mm=-1), ValueError, "module_mm"),
+    (dict(teeth=(15, 32), helix_angle_deg=50), ValueError, "helix_angle_deg"),
+    (dict(teeth=(15, 32), torque_nm=0), ValueError, "torque_nm"),
+    (dict(teeth=(15, 32), eccentricity_um=(-1, 0)), ValueError, "eccentricity_um"),
+    (dict(teeth=(15, 32), fault=bp.GearFault("spall", tooth=20)), ValueError, "fault.tooth"),
+])
+def test_bad_gear_input(kwargs, exc, match):
+    with pytest.raises(exc, match=match):
+        bp.GearPair(**kwargs)
+
+
+def test_bad_input_other():
+    with pytest.raises(ValueError, match="stiffness_loss"):
+        bp.GearFault("crack", stiffness_loss=1.5)
+    with pytest.raises(ValueError, match="kind must be"):
+        bp.GearFault("pitting")
+    with pytest.raises(ValueError, match="unknown gear preset"):
+        bp.GearPair.preset("seed005")
+    with pytest.raises(TypeError, match="gears must be a GearPair"):
+        bp.Scene(bearing="6208", gears=42)
