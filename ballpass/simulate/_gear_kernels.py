@@ -160,8 +160,69 @@ def rhs(t, y, dydt, p, walk, faults, g, te, kin, yc, dc):
 
 
 @njit(cache=True, error_model="numpy")
+def _next_jump(u0, u1, g):
+    """Smallest mesh phase in (u0, u1] where the stiffness of a spur pair jumps (a tooth
+    pair enters or leaves contact, or the faulty tooth does), or -1 if none: helical
+    stiffness is continuous (its kinks need no split)."""
+    if g[G_EPS_B] > 0.0:
+        return -1.0
+    eps_a = g[G_EPS_A]
+    a = eps_a - math.floor(eps_a)
+    best = -1.0
+    # a pair enters at integer phases and one leaves at integer + frac(eps_a)
+    for off in (0.0, a):
+        v = math.floor(u0 - off) + 1.0 + off
+        if v <= u1 and (best < 0.0 or v < best):
+            best = v
+    wheel = int(g[G_FGEAR])
+    if wheel != FAULT_NONE:
+        z = g[G_ZP] if wheel == FAULT_PINION else g[G_ZG]
+        for off in (0.0, eps_a):
+            base = g[G_FTOOTH] + off
+            v = base + z * (math.floor((u0 - base) / z) + 1.0)
+            if v <= u1 and (best < 0.0 or v < best):
+                best = v
+    return best
+
+
+@njit(cache=True, error_model="numpy")
+def _phase_time(v, p, zp, t_lo, t_hi):
+    """Bracket (before, after) of the time in [t_lo, t_hi] at which the mesh phase
+    z_p theta / (2 pi) reaches v: adjacent floating-point numbers with the phase below
+    v at ``before`` and at or above it at ``after`` (bisection; the phase increases)."""
+    for _ in range(200):
+        mid = 0.5 * (t_lo + t_hi)
+        if mid <= t_lo or mid >= t_hi:
+            break
+        if zp * K.shaft_angle(mid, p) / K.TWO_PI >= v:
+            t_hi = mid
+        else:
+            t_lo = mid
+    return t_lo, t_hi
+
+
+@njit(cache=True, error_model="numpy")
+def _rk4_step(t, h, y, p, walk, faults, g, te, kin, yc, dc, k1, k2, k3, k4, tmp):
+    """One classical RK4 step of length h from (t, y), in place."""
+    n = y.shape[0]
+    rhs(t, y, k1, p, walk, faults, g, te, kin, yc, dc)
+    for i in range(n):
+        tmp[i] = y[i] + 0.5 * h * k1[i]
+    rhs(t + 0.5 * h, tmp, k2, p, walk, faults, g, te, kin, yc, dc)
+    for i in range(n):
+        tmp[i] = y[i] + 0.5 * h * k2[i]
+    rhs(t + 0.5 * h, tmp, k3, p, walk, faults, g, te, kin, yc, dc)
+    for i in range(n):
+        tmp[i] = y[i] + h * k3[i]
+    rhs(t + h, tmp, k4, p, walk, faults, g, te, kin, yc, dc)
+    for i in range(n):
+        y[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
+
+
+@njit(cache=True, error_model="numpy")
 def rk4(y0, p, walk, faults, sensors, g, te, h_out, n_sub, n_out, bound, out, forces, states):
-    """Classical RK4 with ``n_sub`` steps per output interval ``h_out`` (s).
+    """Classical RK4 with ``n_sub`` steps per output interval ``h_out`` (s), split at
+    the stiffness jumps of a spur mesh.
 
     Writes, at t = k h_out: the housing acceleration along each sensor (m/s^2) into
     ``out[k]``, the mesh force (N), stiffness (N/m) and static transmission error (m)
@@ -182,6 +243,7 @@ def rk4(y0, p, walk, faults, sensors, g, te, h_out, n_sub, n_out, bound, out, fo
     k4 = np.empty(n)
     tmp = np.empty(n)
     dt = h_out / n_sub
+    zp = g[G_ZP]
     keep = states.shape[0] > 0
     for k in range(n_out):
         t = k * h_out
@@ -201,17 +263,23 @@ def rk4(y0, p, walk, faults, sensors, g, te, h_out, n_sub, n_out, bound, out, fo
             break
         for s in range(n_sub):
             ts = t + s * dt
-            if s > 0:
-                rhs(ts, y, k1, p, walk, faults, g, te, kin, yc, dc)
-            for i in range(n):
-                tmp[i] = y[i] + 0.5 * dt * k1[i]
-            rhs(ts + 0.5 * dt, tmp, k2, p, walk, faults, g, te, kin, yc, dc)
-            for i in range(n):
-                tmp[i] = y[i] + 0.5 * dt * k2[i]
-            rhs(ts + 0.5 * dt, tmp, k3, p, walk, faults, g, te, kin, yc, dc)
-            for i in range(n):
-                tmp[i] = y[i] + dt * k3[i]
-            rhs(ts + dt, tmp, k4, p, walk, faults, g, te, kin, yc, dc)
-            for i in range(n):
-                y[i] += dt / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
+            te_ = ts + dt
+            # split the step where a spur pair's stiffness jumps: RK4 across a jump
+            # is only first-order accurate
+            while True:
+                u0 = zp * K.shaft_angle(ts, p) / K.TWO_PI
+                u1 = zp * K.shaft_angle(te_, p) / K.TWO_PI
+                v = _next_jump(u0, u1, g)
+                if v < 0.0:
+                    break
+                before, after = _phase_time(v, p, zp, ts, te_)
+                if before > ts:  # up to the last instant before the jump
+                    _rk4_step(ts, before - ts, y, p, walk, faults, g, te, kin, yc, dc,
+                              k1, k2, k3, k4, tmp)
+                ts = after
+                if ts >= te_:
+                    break
+            if te_ > ts:
+                _rk4_step(ts, te_ - ts, y, p, walk, faults, g, te, kin, yc, dc,
+                          k1, k2, k3, k4, tmp)
     return 0, n_out * h_out
