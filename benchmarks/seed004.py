@@ -24,7 +24,7 @@ This script runs the ``gearbox`` model on that set-up and on the 1st-speed spur 
     python benchmarks/seed004.py                 # ~2 min on 2 cores
     python benchmarks/seed004.py --repeats 1     # quick look
 
-Writes ``docs/seed004.csv``, ``docs/seed004_table.md``, ``docs/seed004_mesh.png`` and
+Writes ``docs/seed004.csv``, ``benchmarks/results/seed004.md``, ``docs/seed004_mesh.png`` and
 ``docs/seed004_ses.png``.
 """
 
@@ -210,7 +210,7 @@ def main() -> None:
             "## Cost", "",
             "Wall time for 1 s at 48 kHz, the seed 004 scene with gears (gearbox) and without "
             "(sr5), median over the runs:", "", *[f"* {v}" for v in timing.values()], ""]
-    (ROOT / "docs" / "seed004_table.md").write_text("\n".join(text))
+    (ROOT / "benchmarks" / "results" / "seed004.md").write_text("\n".join(text))
     plot(spectra, example)
     print("\n".join(text))
 
