@@ -32,9 +32,9 @@ import importlib
 _NAMES = {
     "LABELS": "_names",
     "EnvelopeDiagnoser": "rules",
-    "EnvelopeEvidence": "rules",
+    "EnvelopeEvidence": "evidence",
     "Explanation": "rules",
-    "envelope_evidence": "rules",
+    "envelope_evidence": "evidence",
     "CLASSIFIERS": "_names",
     "FEATURE_SETS": "_names",
     "make_classifier": "pipelines",
