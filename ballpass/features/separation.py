@@ -49,7 +49,7 @@ from scipy import signal as _signal
 from ._validation import check_fs, check_positive_int, check_signal
 from .order import shaft_revolutions
 
-__all__ = ["separate_discrete", "SEPARATION_METHODS"]
+__all__ = ["separate_discrete", "SEPARATION_METHODS", "separated_rows", "check_separate"]
 
 SEPARATION_METHODS = ("auto", "tsa", "lp", "drs")
 #: upsampling before the angular resampling of "tsa": keeps the cubic-spline
@@ -233,3 +233,36 @@ def separate_discrete(x, fs: float, rpm=None, method: str = "auto", *, tacho=Non
         residual = xv - _drs(xv, nperseg, delay)
     discrete = xv - residual
     return np.moveaxis(discrete, -1, axis), np.moveaxis(residual, -1, axis)
+
+
+def check_separate(separate, other_shafts) -> str | None:
+    """Validate the ``separate``/``other_shafts`` options of the diagnoser and the
+    fault-band features; returns the method (``None`` = no separation)."""
+    if separate is not False and separate is not True and separate not in ("tsa", "lp", "drs"):
+        raise ValueError(f"separate must be False, True, 'tsa', 'lp' or 'drs', got {separate!r}")
+    try:
+        ratios = np.asarray(other_shafts, dtype=float).ravel()
+    except (TypeError, ValueError):
+        raise TypeError(f"other_shafts must be a sequence of speed ratios, got "
+                        f"{other_shafts!r}") from None
+    if not (np.isfinite(ratios).all() and (ratios > 0).all()):
+        raise ValueError(f"other_shafts must be speed ratios > 0, got {other_shafts!r}")
+    if separate is False:
+        return None
+    return "tsa" if separate is True else separate
+
+
+def separated_rows(X: np.ndarray, fs: float, rpm_rows: np.ndarray, separate,
+                   other_shafts=()) -> np.ndarray:
+    """Residual of each row of ``X`` (n_signals, n_samples) after
+    :func:`separate_discrete`: ``"tsa"`` removes the shaft at each row's rpm and the
+    ``other_shafts`` (speed ratios to it); ``"lp"``/``"drs"`` need no speed. ``X``
+    unchanged when ``separate`` is False."""
+    method = check_separate(separate, other_shafts)
+    if method is None:
+        return X
+    if method != "tsa":
+        return separate_discrete(X, fs, method=method)[1]
+    ratios = [1.0, *np.asarray(other_shafts, dtype=float).ravel()]
+    return np.stack([separate_discrete(row, fs, rpm=[r * s for s in ratios])[1]
+                     for row, r in zip(X, np.broadcast_to(rpm_rows, (len(X),)), strict=True)])
