@@ -42,9 +42,13 @@ Assumptions and deviations from seed 004, stated:
 * the gear's own bearings are a linear support (k_g, c_g of :class:`GearPair`), not
   Hertz contacts; the sensors sit on the input bearing's housing, which the mesh
   reaches through that bearing;
-* the solver is a fixed-step RK4 without splitting at fault edges (the sr5 driver's
-  event handling is not repeated here): keep the default ``"ramped"`` fault edges, or a
-  small ``dt`` for sharp ones;
+* the solver is a fixed-step RK4, default step 0.35 / (fastest linearised mode; the
+  mesh's torsional mode, ~10 kHz, sets ~5.6 us), split at the stiffness jumps of a spur
+  mesh but not at bearing fault edges (the sr5 driver's event handling is not repeated
+  here): keep the default ``"ramped"`` fault edges, or a small ``dt`` for sharp ones.
+  Against scipy's DOP853 at rtol 1e-11 the mesh force's largest error is 4e-4 of its
+  standard deviation for the helical seed 004 pair and 3 % for the 15/29 spur pair
+  (whose jumps ring the mesh mode), 0.1 % at dt = 0.5 us (``tests/test_gearbox.py``);
 * the simulation starts from the static equilibrium under the mean mesh force; the
   torsional modes' start-up transient decays within a few ms (5-7 % damping).
 """
