@@ -282,3 +282,21 @@ def test_rk4_matches_scipy(preset, dt, tol):
         warnings.simplefilter("ignore")  # dt rounded to a divisor of the output grid
         n = bp.simulate(scene, dt=dt).truth.gear.mesh_force
     assert np.max(np.abs(n - ref)) < tol * np.std(ref)
+
+
+def test_cli_simulates_a_gearbox(tmp_path, capsys):
+    from ballpass.cli import main
+    from ballpass.signalio import read_signal
+
+    out = tmp_path / "g.npz"
+    args = ["simulate", "--bearing", "6208", "--rpm", "1740", "--fault", "healthy",
+            "--gears", "seed004-1st", "--torque", "80", "--duration", "0.1", "--fs", "12000",
+            "--resonance", "3000", "--out", str(out)]
+    assert main(args) == 0
+    assert "model gearbox" in capsys.readouterr().out
+    expected = bp.simulate(bp.Scene(bearing="6208", rpm=1740.0, duration_s=0.1, fs=FS,
+                                    resonance_hz=3000.0,
+                                    gears=bp.GearPair.preset("seed004-1st", torque_nm=80.0)))
+    np.testing.assert_array_equal(read_signal(out).accel[0], expected.accel)
+    with pytest.raises(SystemExit):
+        main([*args[:-2], "--gears", "seed005", "--out", str(out)])
