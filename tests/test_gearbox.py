@@ -300,3 +300,23 @@ def test_cli_simulates_a_gearbox(tmp_path, capsys):
     np.testing.assert_array_equal(read_signal(out).accel[0], expected.accel)
     with pytest.raises(SystemExit):
         main([*args[:-2], "--gears", "seed005", "--out", str(out)])
+
+
+def test_speed_ramp_takes_the_inertial_torque():
+    # 1500 -> 2100 rpm in 0.4 s: alpha = 157 rad/s^2; the drive and pinion inertias
+    # take (I_m + I_p) alpha of the input torque before the mesh sees it
+    pair = bp.GearPair.preset("seed004", torque_nm=20.0)
+    scene = bp.Scene(bearing="6208", rpm=(1500.0, 2100.0), duration_s=0.4, fs=FS,
+                     resonance_hz=3000.0, gears=pair)
+    res = bp.simulate(scene)
+    alpha = (2100.0 - 1500.0) * math.pi / 30.0 / 0.4
+    expected = (20.0 - (pair.drive_inertia_kgm2 + pair.inertias[0]) * alpha) \
+        / pair.base_radius_m[0]
+    n = res.truth.gear.mesh_force[int(0.1 * FS):]
+    # (I_m + I_p) alpha = 3.2 N m, 16 % of the torque: a missing inertial term fails;
+    # 1 % covers the mesh force's ripple averaged over 0.3 s
+    assert n.mean() == pytest.approx(expected, rel=1e-2)
+    # the mesh frequency follows the ramp: the truth's mesh phase ends at
+    # teeth x revolutions
+    assert res.truth.gear.gear_shaft_angle[-1] == pytest.approx(
+        res.truth.shaft_angle[-1] * 15 / 32)

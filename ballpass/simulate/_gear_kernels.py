@@ -130,6 +130,8 @@ def rhs(t, y, dydt, p, walk, faults, g, te, kin, yc, dc):
 
     Bearing core: the sr5 equations (Sawalhi & Randall 2008; seed 004 eqs. 7-16 with
     the shaft damping, loads and sprung mass restored), plus N on the shaft along u.
+    Angles are relative to the nominal motion (a speed ramp's angular acceleration
+    alpha adds -alpha, -alpha z_p / z_g to each wheel's th'').
     Drive: I_m th_m'' = T_p - M_t, M_t = k_t (th_m - th_p) + c_t (th_m' - th_p') (shaft
     torque, pre-twisted by T_p / k_t).
     Pinion (seed 004 eq. 5): I_p th_p'' = M_t - r_bp N.
@@ -151,11 +153,15 @@ def rhs(t, y, dydt, p, walk, faults, g, te, kin, yc, dc):
         dydt[i] = y[N_POS + i]
     tp = g[G_TP]
     m_t = g[G_KT] * (y[7] - y[4]) + g[G_CT] * (y[N_POS + 7] - y[N_POS + 4])
-    dydt[N_POS + 4] = (m_t - g[G_RBP] * n) / g[G_IP]
+    # the angles are relative to the nominal motion: its angular acceleration (a speed
+    # ramp) enters as an inertial torque on each wheel
+    alpha = (p[K.P_W1] - p[K.P_W0]) / p[K.P_T]
+    alpha_g = alpha * g[G_ZP] / g[G_ZG]
+    dydt[N_POS + 4] = (m_t - g[G_RBP] * n) / g[G_IP] - alpha
     dydt[N_POS + 5] = (-g[G_KG] * y[5] - g[G_CG] * y[N_POS + 5] - n) / g[G_MG]
     dydt[N_POS + 6] = (g[G_RBG] * n - tp * g[G_RBG] / g[G_RBP] - g[G_KO] * y[6]
-                       - g[G_CO] * y[N_POS + 6]) / g[G_IG]
-    dydt[N_POS + 7] = (tp - m_t) / g[G_IM]
+                       - g[G_CO] * y[N_POS + 6]) / g[G_IG] - alpha_g
+    dydt[N_POS + 7] = (tp - m_t) / g[G_IM] - alpha
     return n
 
 

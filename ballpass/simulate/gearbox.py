@@ -20,7 +20,9 @@ supported shaft. Degrees of freedom (kernels in :mod:`._gear_kernels`):
   with the load torque T_g = T_p r_bg / r_bp and the output shaft (k_o) to a load turning
   at the nominal speed ``Scene.rpm * teeth[0] / teeth[1]``. Torque is an input: the
   mean mesh force is T_p / r_bp in steady state (the drive's and the pinion's torque
-  balances). c_t, c_o: 5 % of critical for each shaft on its wheel (assumed);
+  balances); during a speed ramp the angles are relative to the nominal motion and its
+  angular acceleration alpha takes (I_m + I_p) alpha of the input torque.
+  c_t, c_o: 5 % of critical for each shaft on its wheel (assumed);
 * mesh force along the line of action N = k(t) delta + c_m delta' for delta > 0, exactly
   0 when the teeth separate, with delta = r_bp th_p - r_bg th_g - (u_s - x_g) - e(t):
   the time-varying mesh stiffness k(t) from the transverse contact ratio and the
