@@ -20,6 +20,7 @@ from __future__ import annotations
 import importlib
 
 from .bearing import Bearing, BearingFrequencies
+from .gears import GearFault, GearPair
 from .scene import Fault, Scene, Sensor, SpeedProfile
 
 __version__ = "0.1.0"
@@ -28,6 +29,8 @@ __all__ = [
     "Bearing",
     "BearingFrequencies",
     "Fault",
+    "GearFault",
+    "GearPair",
     "Scene",
     "Sensor",
     "SpeedProfile",

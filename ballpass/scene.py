@@ -20,6 +20,7 @@ from dataclasses import dataclass, field, replace
 
 from ._validation import check_number as _number
 from .bearing import Bearing, BearingFrequencies
+from .gears import GearPair
 from .phenomena import check_needs
 
 __all__ = ["Fault", "Sensor", "SpeedProfile", "Scene", "wrap_deg"]
@@ -305,6 +306,10 @@ class Scene:
         cheapest model that covers them. Empty (default) asks for ``envelope`` and
         ``contact_dynamics``; ``("envelope",)`` asks for the envelope-level signature
         only (the cheap ``impulse`` model). See :func:`ballpass.simulate.scene_needs`.
+    gears : GearPair or str or None, optional
+        A gear pair whose pinion sits on the bearing's shaft and turns at ``rpm`` (a
+        :class:`~ballpass.GearPair` or a preset name such as ``"seed004"``); the scene
+        then needs ``gear_mesh`` (the ``gearbox`` model). Default None.
 
     Examples
     --------
@@ -329,6 +334,7 @@ class Scene:
     noise_rms: float | None = None
     gravity: bool = True
     needs: tuple[str, ...] = ()
+    gears: GearPair | str | None = None
 
     def __post_init__(self) -> None:
         bearing = self.bearing
@@ -416,6 +422,10 @@ class Scene:
                              "any load: no load zone and no static equilibrium. Give a "
                              "radial_load_n > 0 N or keep gravity=True")
         object.__setattr__(self, "needs", tuple(sorted(check_needs(self.needs))))
+        if isinstance(self.gears, str):
+            object.__setattr__(self, "gears", GearPair.preset(self.gears))
+        elif self.gears is not None and not isinstance(self.gears, GearPair):
+            raise TypeError(f"gears must be a GearPair, a preset name or None, got {self.gears!r}")
 
     # ------------------------------------------------------------------ derived
     @property

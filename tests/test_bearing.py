@@ -309,8 +309,10 @@ def test_force_balance_catalogue():
         for load in (0.5, 300.0, 3e4):
             ld = b.load_distribution(load)
             psi = np.radians(ld.element_angles_deg)
-            assert np.sum(ld.element_loads_n * np.cos(psi)) == pytest.approx(load, rel=1e-9)
-            assert abs(np.sum(ld.element_loads_n * np.sin(psi))) <= 1e-9 * load
+            # element loads act along the contact angle: radial parts Q cos(alpha)
+            radial = ld.element_loads_n * np.cos(np.radians(b.contact_angle_deg))
+            assert np.sum(radial * np.cos(psi)) == pytest.approx(load, rel=1e-9)
+            assert abs(np.sum(radial * np.sin(psi))) <= 1e-9 * load
 
 
 @settings(max_examples=60, deadline=None)

@@ -25,6 +25,9 @@ Models (the table behind ``auto``: ``python -m ballpass bearings`` lists bearing
     Nakhaeinejad & Bryant (2011, seed 000): every ball a body with traction, slip and
     centrifugal load (see :mod:`.multibody`). What scenes that need ``ball_dynamics``
     run.
+``gearbox``
+    A gear pair (seed 004) whose pinion sits on the bearing's shaft, coupled to the sr5
+    bearing-pedestal model (see :mod:`.gearbox`); what a scene with ``gears`` runs.
 
 A new model is one file that builds a :class:`Model` and one line in :data:`MODELS`.
 """
@@ -45,6 +48,7 @@ from ..scene import Scene  # noqa: E402
 from ._registry import Model  # noqa: E402
 from ._shared import OVERSAMPLE, SimulationUnstableError, check_solver_args  # noqa: E402
 from ._sr5_driver import SOLVERS, SR4, SR5, build, integrate  # noqa: E402
+from .gearbox import GEARBOX  # noqa: E402
 from .multibody import MULTIBODY, MultibodyParameters  # noqa: E402
 from .result import SimulationResult  # noqa: E402
 from .rotor2 import ROTOR2, Rotor2Parameters  # noqa: E402
@@ -74,7 +78,7 @@ __all__ = [
 ]
 
 #: model name -> :class:`Model`, cheapest first
-MODELS: dict[str, Model] = {m.name: m for m in sorted((SR5, SR4, ROTOR2, MULTIBODY),
+MODELS: dict[str, Model] = {m.name: m for m in sorted((SR5, SR4, ROTOR2, MULTIBODY, GEARBOX),
                                                       key=lambda m: m.relative_cost)}
 
 

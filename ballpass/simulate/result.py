@@ -75,6 +75,9 @@ class GroundTruth:
     outer_contact_forces : ndarray (n_elements, n_samples) or None
         Outer-race contact load of each rolling element, N (on request, from models with
         ball dynamics; it also carries the centrifugal load). None otherwise.
+    gear : GearTruth or None
+        The gear pair's ground truth (mesh force, stiffness, transmission error, tooth
+        fault entries) for the ``gearbox`` model; None otherwise.
     """
 
     label: str
@@ -88,6 +91,7 @@ class GroundTruth:
     element_angles: np.ndarray | None = None
     displacement: np.ndarray | None = None
     outer_contact_forces: np.ndarray | None = None
+    gear: object | None = None
 
     @classmethod
     def of_scene(cls, scene: Scene, t: np.ndarray, crossings: FaultCrossings,
