@@ -27,6 +27,7 @@ import threading
 import time
 import warnings
 from collections import Counter
+from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -365,6 +366,9 @@ def _dispatch(specs: list[ShardSpec], n_workers: int, executor):
     try:
         for fut in cf.as_completed(futures):
             yield fut.result()
+    except BrokenProcessPool:
+        raise RuntimeError("a worker process died (killed, or out of memory?); complete "
+                           "shards are kept, run generate again to resume") from None
     finally:
         for fut in futures:
             fut.cancel()
@@ -393,17 +397,17 @@ def _resolved_models(grid: Grid) -> list[tuple[str, Run]]:
 
 
 def _source_fingerprint() -> str:
-    # TODO(datasets): use ballpass.simulate.source_fingerprint once it is on main
-    try:
-        from ..simulate import source_fingerprint
-    except ImportError:
-        package = Path(__file__).resolve().parent.parent / "simulate"
-        digest = hashlib.sha256()
-        for path in sorted(package.rglob("*.py")):
-            digest.update(path.relative_to(package).as_posix().encode() + b"\0")
-            digest.update(path.read_bytes() + b"\0")
-        return digest.hexdigest()
-    return source_fingerprint()
+    # TODO(datasets): call ballpass.simulate.source_fingerprint directly once it is on main
+    from .. import simulate
+
+    if hasattr(simulate, "source_fingerprint"):
+        return simulate.source_fingerprint()
+    package = Path(simulate.__file__).resolve().parent
+    digest = hashlib.sha256()
+    for path in sorted(package.rglob("*.py")):
+        digest.update(path.relative_to(package).as_posix().encode() + b"\0")
+        digest.update(path.read_bytes() + b"\0")
+    return digest.hexdigest()
 
 
 def simulator_fingerprint(models: list[tuple[str, Run]]) -> dict[str, str]:
@@ -621,9 +625,9 @@ def _verify(folder: Path, shard: dict, key: str) -> bool:
         if problem is None:
             size, shard[key] = path.stat().st_size, file_sha256(path)
             shard["features_bytes" if key == "features_sha256" else "bytes"] = size
-    if problem is not None and path.exists():
+    if problem is not None and (path.exists() or shard.get(key) is not None):
         warnings.warn(f"shard {path} {problem}; generating it again", stacklevel=4)
-        path.unlink()
+        path.unlink(missing_ok=True)
     return problem is None
 
 
