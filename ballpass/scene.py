@@ -21,6 +21,7 @@ from dataclasses import dataclass, field, replace
 from . import _resources
 from ._validation import check_number as _number
 from .bearing import Bearing, BearingFrequencies
+from .phenomena import check_needs
 
 __all__ = ["Fault", "Sensor", "SpeedProfile", "Scene", "wrap_deg"]
 
@@ -295,13 +296,19 @@ class Scene:
     gravity : bool, optional
         Add the weight of shaft and pedestal along the load line (g = 9.80665 m/s^2).
         Default True.
+    needs : sequence of str, optional
+        Phenomena the simulation must represent, beyond what the other fields already
+        say (names in :data:`ballpass.phenomena.PHENOMENA`); ``model="auto"`` runs the
+        cheapest model that covers them. Empty (default) asks for ``envelope`` and
+        ``contact_dynamics``; ``("envelope",)`` asks for the envelope-level signature
+        only (the cheap ``impulse`` model). See :func:`ballpass.simulate.scene_needs`.
 
     Examples
     --------
     >>> import ballpass as bp
     >>> s = bp.Scene(bearing="6205", rpm=1797, fault=bp.Fault("inner"), fs=48_000)
     >>> round(s.frequencies.bpfi, 2)
-    162.18
+    162.19
     """
 
     bearing: Bearing | str
@@ -318,6 +325,7 @@ class Scene:
     snr_db: float | None = None
     noise_rms: float | None = None
     gravity: bool = True
+    needs: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         bearing = self.bearing
@@ -401,6 +409,7 @@ class Scene:
                                _number("noise_rms", self.noise_rms, 0.0, 1e6))
         if not isinstance(self.gravity, bool):
             raise TypeError(f"gravity must be a bool, got {self.gravity!r}")
+        object.__setattr__(self, "needs", tuple(sorted(check_needs(self.needs))))
 
     def _check_fits_in_memory(self) -> None:
         """Refuse a scene whose simulation would not fit in this machine's free memory."""

@@ -1,345 +1,205 @@
-"""Simulate bearing vibration with exact ground truth.
+"""Simulate bearing vibration with exact ground truth: "model only what a scene needs".
 
 :func:`simulate` runs a :class:`~ballpass.Scene` through one of the models in
-:data:`MODELS` with a fixed-step (``"rk4"``) or adaptive (``"dopri5"``) integrator
-and returns a :class:`SimulationResult`.
+:data:`MODELS` and returns a :class:`SimulationResult`. Each model declares the
+phenomena it represents (vocabulary: :data:`ballpass.phenomena.PHENOMENA`) and its cost
+relative to ``sr5``; :func:`scene_needs` says what a scene asks for, and
+``model="auto"`` (:func:`resolve_model`) runs the cheapest model that can take the
+scene and covers its needs, recording why in ``res.info["model_reason"]``.
 
-Models
-------
+Models (the table behind ``auto``: ``python -m ballpass bearings`` lists bearings,
+:func:`model_table` the models):
+
 ``sr5``
     Sawalhi & Randall (2008) bearing-pedestal model with a high-frequency resonator per
-    sensor: shaft x/y, pedestal x/y, resonator(s). The default (see :mod:`.sr5`).
+    sensor: shaft x/y, pedestal x/y, resonator(s) (see :mod:`.sr5`,
+    :mod:`._sr5_driver`). What a plain scene runs.
 ``sr4``
     The same without the resonator: the sensors read the housing acceleration.
 
-Integration: the nonlinear shaft-pedestal core (4 DOF, Hertz contacts) is stepped by
-the chosen Runge-Kutta method, split at every fault edge and slip-walk knot; the sensor
-resonators, linear and one-way coupled, are advanced exactly for the cubic Hermite
-interpolant of their excitation (an exponential integrator, see
-:mod:`._integrators`), so the 15 kHz resonance does not limit the step. Which solver
-for which purpose: docs/solvers.md; speed against error: :func:`work_precision`.
-
-``model="auto"`` picks the cheapest model that represents the scene. Every scene has a
-structural resonance (``resonance_hz``), which only ``sr5`` represents, so ``auto``
-resolves to ``sr5``; the resolved name is stored in ``res.info["model"]``.
+A new model is one file that builds a :class:`Model` and one line in :data:`MODELS`.
 """
 
 from __future__ import annotations
 
-import math
 import sys
-import time
 import types
-from dataclasses import dataclass
 
-import numpy as np
-from scipy import signal as _signal
+from ._cache import clear_stale_cache, source_fingerprint
 
-from ..scene import Scene
-from . import _integrators as _I
-from . import _kernels as _K
-from .result import FaultCrossings, GroundTruth, SimulationResult
-from .sr5 import BearingModel, SR5Parameters, build_model
+# before any kernel module is imported: numba must not load kernels compiled from
+# other sources (see ._cache)
+clear_stale_cache()
+
+from ..phenomena import DEFAULT_NEEDS, PHENOMENA  # noqa: E402
+from ..scene import Scene  # noqa: E402
+from ._registry import Model  # noqa: E402
+from ._shared import OVERSAMPLE, SimulationUnstableError, check_solver_args  # noqa: E402
+from ._sr5_driver import SOLVERS, SR4, SR5, build, integrate  # noqa: E402
+from .result import SimulationResult  # noqa: E402
+from .sr5 import BearingModel, SR5Parameters  # noqa: E402
 
 __all__ = [
     "simulate",
     "integrate",
+    "scene_needs",
     "resolve_model",
+    "model_table",
     "build",
+    "Model",
     "MODELS",
+    "PHENOMENA",
     "SOLVERS",
     "SimulationResult",
     "SimulationUnstableError",
     "SR5Parameters",
     "BearingModel",
+    "source_fingerprint",
     "work_precision",
     "speedup",
     "plot_work_precision",
 ]
 
-#: model name -> one-line description
-MODELS = {
-    "sr5": "Sawalhi-Randall 5-DOF: shaft, pedestal and a high-frequency resonator per sensor",
-    "sr4": "Sawalhi-Randall 4-DOF: shaft and pedestal, sensors read the housing acceleration",
-}
-#: solver name -> description
-SOLVERS = {
-    "rk4": "classical Runge-Kutta on the shaft-pedestal core, fixed step, split at fault "
-           "edges; sensor resonators integrated exactly",
-    "dopri5": "Dormand-Prince 5(4) on the core, adaptive step with error control, split at "
-              "fault edges; sensor resonators integrated exactly",
-}
-
-#: internal output rate = OVERSAMPLE * fs before the anti-alias decimation
-OVERSAMPLE = 4
-#: default RK4 step = DT_DEFAULT_OMEGA / omega_contact (see :func:`simulate`): the
-#: largest step at which RK4 keeps the output's relative L2 error below 1e-3 on the
-#: work-precision scenes (docs/work_precision.md), with a margin of ~2
-DT_DEFAULT_OMEGA = 0.35
+#: model name -> :class:`Model`, cheapest first
+MODELS: dict[str, Model] = {m.name: m for m in sorted((SR5, SR4),
+                                                      key=lambda m: m.relative_cost)}
 
 
-class SimulationUnstableError(RuntimeError):
-    """The integration diverged (non-finite or unbounded state) or could not proceed."""
+def scene_needs(scene: Scene, *, return_forces: bool = False) -> frozenset:
+    """The phenomena a scene asks a model to represent.
+
+    Derived from the scene's fields (a speed ramp needs ``varying_speed``, waviness
+    ``waviness``, gears ``gear_mesh``) plus ``Scene(needs=...)`` for what the fields
+    cannot say; a scene that states no needs asks for ``envelope`` and
+    ``contact_dynamics``. ``return_forces=True`` adds ``contact_forces``.
+
+    Parameters
+    ----------
+    scene : Scene
+    return_forces : bool, optional
+        Whether per-element contact forces are requested as output.
+
+    Returns
+    -------
+    frozenset of str
+
+    Examples
+    --------
+    >>> import ballpass as bp
+    >>> sorted(bp.simulate.scene_needs(bp.Scene(bearing="6205")))
+    ['contact_dynamics', 'envelope']
+    >>> sorted(bp.simulate.scene_needs(bp.Scene(bearing="6205", rpm=(600, 1800),
+    ...                                         needs=("envelope",))))
+    ['envelope', 'varying_speed']
+    """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"scene must be a ballpass.Scene, got {type(scene).__name__}")
+    needs = set(scene.needs) if scene.needs else set(DEFAULT_NEEDS)
+    if not scene.speed.is_constant:
+        needs.add("varying_speed")
+    if getattr(scene, "waviness", ()):
+        needs.add("waviness")
+    if getattr(scene, "gears", None) is not None:
+        needs.add("gear_mesh")
+    if return_forces:
+        needs.add("contact_forces")
+    return frozenset(needs)
 
 
-def resolve_model(scene: Scene, model: str = "auto") -> str:
+def _choose(scene: Scene, model: str, return_forces: bool) -> tuple[Model, str]:
+    """The model to run and the reason (for ``res.info["model_reason"]``)."""
+    if not isinstance(model, str):
+        raise TypeError(f"model must be a str, got {type(model).__name__}")
+    needs = scene_needs(scene, return_forces=return_forces)
+    if model != "auto":
+        if model not in MODELS:
+            raise ValueError(f"model must be 'auto' or one of {list(MODELS)}, got {model!r}")
+        chosen = MODELS[model]
+        refusal = chosen.accepts(scene)
+        if refusal:
+            raise ValueError(f"model {model!r} cannot take this scene: {refusal}")
+        missing = needs - chosen.represents
+        note = (f"; it does not represent {', '.join(sorted(missing))}, which the scene "
+                "asks for" if missing else "")
+        return chosen, f"requested by the caller{note}"
+    passed = []
+    for candidate in MODELS.values():  # cheapest first
+        refusal = candidate.accepts(scene)
+        missing = needs - candidate.represents
+        if refusal is None and not missing:
+            why = f"cheapest model that represents {', '.join(sorted(needs))}"
+            if passed:
+                why += "; cheaper ones: " + "; ".join(passed)
+            return candidate, why
+        passed.append(f"{candidate.name} " + (refusal if refusal else
+                                              "lacks " + ", ".join(sorted(missing))))
+    raise ValueError(
+        f"no model represents everything this scene needs ({', '.join(sorted(needs))}): "
+        + "; ".join(passed))
+
+
+def resolve_model(scene: Scene, model: str = "auto", *, return_forces: bool = False) -> str:
     """Name of the model :func:`simulate` will run for ``scene``.
 
     Parameters
     ----------
     scene : Scene
-    model : str
-        ``"auto"`` or one of :data:`MODELS`.
+    model : str, optional
+        ``"auto"`` (the cheapest model that can take the scene and represents
+        :func:`scene_needs`) or a name in :data:`MODELS`.
+    return_forces : bool, optional
+        Whether contact forces will be requested (they are a need of their own).
 
     Returns
     -------
     str
+
+    Raises
+    ------
+    ValueError
+        Unknown model name, a model that cannot take the scene, or (``auto``) no model
+        that covers the needs; the message says what each model lacks.
+
+    Examples
+    --------
+    >>> import ballpass as bp
+    >>> bp.simulate.resolve_model(bp.Scene(bearing="6205"))
+    'sr5'
     """
-    if not isinstance(model, str):
-        raise TypeError(f"model must be a str, got {type(model).__name__}")
-    if model == "auto":
-        return "sr5"
-    if model not in MODELS:
-        raise ValueError(f"model must be 'auto' or one of {sorted(MODELS)}, got {model!r}")
-    return model
+    return _choose(scene, model, return_forces)[0].name
 
 
-def build(scene: Scene, model: str = "auto", params: SR5Parameters | None = None
-          ) -> BearingModel:
-    """Bind ``scene`` to a model without integrating (e.g. to call ``.rhs`` from scipy)."""
-    name = resolve_model(scene, model)
-    return build_model(scene, params, resonator=(name == "sr5"))
-
-
-def _core_omega(bm: BearingModel) -> float:
-    """Linearised contact natural frequency of the core (shaft on its contacts), rad/s:
-    the fastest mode the Runge-Kutta step must resolve (the resonators are integrated
-    exactly and do not constrain it)."""
-    nd = 4 + bm.n_res
-    return float(bm.scale[nd] / bm.scale[0])
-
-
-def _events(bm: BearingModel, t_end: float):
-    """Fault-edge crossings in [0, t_end], by time: brackets (s), fault, element and
-    level indices."""
-    n_faults = bm.levels.shape[0]
-    # Scan so that every offset moves by at most 0.5 rad per interval: each offset is
-    # monotone in time and the levels lie within 1 rad of the fault centre (a race
-    # fault is narrower than the element spacing, a ball fault than the ball), so a
-    # sign change against a level is never missed and a wrap at +-pi never mistaken
-    # for one. Offset speeds: the cage (with its steepest slip increment), the inner
-    # race relative to it (< shaft speed) or the ball spin.
-    p, walk = bm.p, bm.walk
-    z = int(p[_K.P_Z])
-    w_max = max(p[_K.P_W0], p[_K.P_W1])
-    slope = float(np.max(np.abs(np.diff(walk)))) * z / (2.0 * math.pi) if walk.size > 1 else 0.0
-    cage = p[_K.P_CAGE] * w_max * (1.0 + slope)
-    rates = {_K.KIND_OUTER: cage, _K.KIND_INNER: w_max, _K.KIND_BALL: p[_K.P_SPIN] * cage}
-    kinds = bm.faults[:, _K.F_KIND].astype(int)
-    rate = max((rates[k] for k in kinds), default=0.0)
-    n_scan = max(2, math.ceil(t_end * rate / 0.5) + 1)
-    # at most one crossing of each level per turn of the offset, on every path
-    capacity = sum(4 * (2 if k == _K.KIND_BALL else z)
-                   * (math.ceil(rates[k] * t_end / (2.0 * math.pi)) + 2) for k in kinds)
-    before, after = np.empty(capacity), np.empty(capacity)
-    index = np.empty((capacity, 3), dtype=np.int64)
-    n = _K.find_crossings(p, walk, bm.faults, np.linspace(0.0, t_end, n_scan), bm.levels,
-                          before, after, index) if n_faults else 0
-    if n < 0:
-        raise RuntimeError(f"more fault crossings than the kinematic bound {capacity}")
-    order = np.argsort(before[:n], kind="stable")
-    index = index[:n][order]
-    return before[:n][order], after[:n][order], index[:, 0], index[:, 1], index[:, 2]
-
-
-def _ramp_times(bm: BearingModel) -> tuple[float, float]:
-    """Shortest time an element takes to cross a defect ramp, s (inf without ramps), at
-    the top speed: ramp fraction times the defect's angular extent over the speed of
-    its paths (cage; inner race relative to the cage; ball spin). First over all
-    defects, then over those deep enough to unload an element completely (depth beyond
-    the static contact deflection), whose ramps end in impacts."""
-    p = bm.p
-    w_max = max(p[_K.P_W0], p[_K.P_W1])
-    cage = p[_K.P_CAGE] * w_max
-    rate = {_K.KIND_OUTER: cage, _K.KIND_INNER: w_max - cage, _K.KIND_BALL: p[_K.P_SPIN] * cage}
-    every, deep = math.inf, math.inf
-    for row in bm.faults:
-        if row[_K.F_RAMP] > 0.0:
-            t = row[_K.F_RAMP] * 2.0 * row[_K.F_HALF] / rate[int(row[_K.F_KIND])]
-            every = min(every, t)
-            if row[_K.F_DEPTH] > bm.static_deflection:
-                deep = min(deep, t)
-    return every, deep
-
-
-def _split_times(bm: BearingModel, t_end: float, ev_before: np.ndarray | None = None,
-                 ev_after: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
-    """Brackets (s) of every time where the right-hand side is not smooth and the
-    integrators split their steps: the fault-edge crossings and the knots of the slip
-    walk, where the cage speed jumps. Sorted."""
-    if ev_before is None:
-        ev_before, ev_after = _events(bm, t_end)[:2]
-    knot_before, knot_after = _K.find_knots(bm.p, t_end)
-    before = np.concatenate((ev_before, knot_before))
-    order = np.argsort(before, kind="stable")
-    return before[order], np.concatenate((ev_after, knot_after))[order]
-
-
-def _to_output_rate(out: np.ndarray, n_samples: int, oversample: int) -> np.ndarray:
-    """Internal-grid output (n_out, n_sensors) to what a sensor delivers: anti-alias
-    decimation by ``oversample`` and AC coupling; (n_sensors, n_samples), m/s^2."""
-    # padtype="line": extend the record by its end trend instead of zeros, otherwise the
-    # sensor's DC level (a static load seen through the transfer path) rings the
-    # anti-alias filter into a spike on the first and last samples
-    accel = (_signal.resample_poly(out, 1, oversample, axis=0, padtype="line")
-             if oversample > 1 else out)
-    accel = accel[:n_samples].T.copy()
-    accel -= accel.mean(axis=1, keepdims=True)  # AC-coupled accelerometers
-    return accel
-
-
-def _edge_names(bm: BearingModel, fault: np.ndarray, level: np.ndarray) -> np.ndarray:
-    forward = np.array(["entry", "ramp_end", "ramp_start", "exit"])
-    backward = forward[::-1]
-    inner = np.array([f.kind == "inner" for f in bm.scene.faults], dtype=bool)
-    names = np.where(inner[fault], backward[level], forward[level]) if fault.size else \
-        np.empty(0, dtype=forward.dtype)
-    return names
-
-
-def _validate_solver_args(solver, dt, rtol, atol, oversample):
-    if solver not in ("auto", *SOLVERS):
-        raise ValueError(f"solver must be 'auto' or one of {sorted(SOLVERS)}, got {solver!r}")
-    if dt is not None and not (isinstance(dt, (int, float)) and 1e-10 <= dt <= 1e-3):
-        raise ValueError(f"dt must be a step size in [1e-10, 1e-3] s, got {dt!r}")
-    if rtol is not None and not (isinstance(rtol, (int, float)) and 1e-13 <= rtol <= 1e-1):
-        raise ValueError(f"rtol must be in [1e-13, 0.1], got {rtol!r}")
-    if atol is not None and not (isinstance(atol, (int, float)) and atol > 0):
-        raise ValueError(f"atol must be a positive number (scale factor), got {atol!r}")
-    if not (isinstance(oversample, int) and 1 <= oversample <= 64):
-        raise ValueError(f"oversample must be an int in [1, 64], got {oversample!r}")
-
-
-@dataclass(frozen=True)
-class RawIntegration:
-    """Output of :func:`integrate` on the internal grid, before decimation.
-
-    Attributes
-    ----------
-    output : ndarray (n_out, n_sensors)
-        Sensor output at t = k h_out, m/s^2 (not AC-coupled).
-    states : ndarray (n_out, n_state) or (0, n_state)
-        States at the grid times when requested.
-    h_out : float
-        Grid spacing, s.
-    crossings : FaultCrossings
-    info : dict
-        Solver statistics.
-    """
-
-    output: np.ndarray
-    states: np.ndarray
-    h_out: float
-    crossings: FaultCrossings
-    info: dict
-
-
-def integrate(bm: BearingModel, solver: str, *, h_out: float, n_out: int,
-              dt: float | None = None, rtol: float | None = None, atol: float | None = None,
-              keep_states: bool = False) -> RawIntegration:
-    """Integrate a bound model and return the sensor output on a uniform grid.
-
-    This is the integration step of :func:`simulate` without decimation, AC coupling
-    or noise; useful to compare solvers with each other and with scipy.
-
-    Parameters
-    ----------
-    bm : BearingModel
-        From :func:`build`.
-    solver : {"rk4", "dopri5"}
-    h_out : float
-        Grid spacing of the output, s.
-    n_out : int
-        Number of grid points (t = 0 .. (n_out - 1) h_out).
-    dt, rtol, atol
-        As in :func:`simulate`.
-    keep_states : bool
-        Also return the state at every grid point.
+def model_table():
+    """The registry as a table: one row per model, cheapest first.
 
     Returns
     -------
-    RawIntegration
+    pandas.DataFrame
+        Columns ``model``, ``relative_cost``, ``solvers``, one boolean column per
+        phenomenon, ``description``, ``reference``.
+
+    Examples
+    --------
+    >>> import ballpass as bp
+    >>> table = bp.simulate.model_table()
+    >>> bool(table.set_index("model").loc["sr5", "envelope"])
+    True
     """
-    scene = bm.scene
-    _validate_solver_args(solver, dt, rtol, atol, OVERSAMPLE)
-    if solver == "auto":
-        solver = "rk4"
-    t_wall = time.perf_counter()
-    t_end = (n_out - 1) * h_out
-    ev_before, ev_after, ev_fault, ev_elem, ev_level = _events(bm, t_end)
-    split_before, split_after = _split_times(bm, t_end, ev_before, ev_after)
-    out = np.empty((n_out, len(scene.sensors)))
-    states = np.empty((n_out if keep_states else 0, bm.n_state))
-    nd = 4 + bm.n_res
-    bound = np.empty(bm.n_state)
-    bound[:nd] = 1e4 * np.maximum(bm.scale[:nd], 1e-6)
-    bound[nd:] = 1e4 * bm.scale[nd:] + 1e3
-    omega = _core_omega(bm)
-    t_ramp, t_impact = _ramp_times(bm)
-    info = {"solver": solver, "internal_fs": 1.0 / h_out, "n_events": int(ev_before.shape[0])}
-    if solver == "rk4":
-        dt_req = dt if dt is not None else DT_DEFAULT_OMEGA / omega
-        # step ends on the output grid: a multiple or a divisor of h_out (1e-9: a dt
-        # meant as an exact multiple/divisor must not round the other way)
-        if dt_req >= h_out:
-            mult, n_sub = math.floor(dt_req / h_out + 1e-9), 1
-        else:
-            mult, n_sub = 1, math.ceil(h_out / dt_req - 1e-9)
-        status, n_steps, t_fail = _I.rk4(bm.y0, *bm.model, bm.n_res, h_out, mult, n_sub, n_out,
-                                         split_before, split_after, t_ramp, t_impact, bound,
-                                         out, states)
-        step = h_out * mult / n_sub
-        info.update(n_steps=int(n_steps), n_rejected=0, dt_s=step)
-        step_text = f"dt = {step:.3g} s"
-    else:
-        rtol_v = 1e-6 if rtol is None else float(rtol)
-        core_scale = np.concatenate((bm.scale[:4], bm.scale[nd:nd + 4]))
-        atol_v = rtol_v * (1.0 if atol is None else float(atol)) * core_scale
-        # the resonator excitation's scale: the resonator deflection scale times w_r^2
-        w_r = bm.p[_K.P_WR]
-        atol_in = rtol_v * (1.0 if atol is None else float(atol)) * (
-            bm.scale[4] * w_r**2 if bm.n_res else 1.0)
-        h_max = 0.5 * math.pi / omega  # at least 4 steps per period of the contact mode
-        max_steps = int(50 * n_out + 100 * split_before.shape[0] + 10_000)
-        status, n_acc, n_rej, h_min, t_fail = _I.dopri5(
-            bm.y0, *bm.model, bm.n_res, h_out, n_out, split_before, split_after, t_ramp, bound,
-            rtol_v, atol_v, atol_in, h_max, max_steps, out, states)
-        info.update(n_steps=int(n_acc), n_rejected=int(n_rej), dt_min_s=float(h_min),
-                    rtol=rtol_v)
-        step_text = f"rtol = {rtol_v:g}, smallest step {h_min:.3g} s"
-    if status != _I.STATUS_OK:
-        reason = {
-            _I.STATUS_NONFINITE: "the state became non-finite or unbounded",
-            _I.STATUS_UNDERFLOW: "the step size underflowed",
-            _I.STATUS_MAX_STEPS: "the step budget was exhausted",
-        }[status]
-        raise SimulationUnstableError(
-            f"simulation with solver {solver!r} ({step_text}) failed at t = {t_fail:.6g} s: "
-            f"{reason}. Try a smaller dt / rtol or solver='dopri5'. Scene: {scene!r}"
-        )
-    info["integration_time_s"] = time.perf_counter() - t_wall
-    crossings = FaultCrossings(
-        time_s=ev_before.copy(), fault=ev_fault, element=ev_elem,
-        edge=_edge_names(bm, ev_fault, ev_level),
-    )
-    return RawIntegration(output=out, states=states, h_out=h_out, crossings=crossings,
-                          info=info)
+    import pandas as pd
+
+    rows = []
+    for m in MODELS.values():
+        row = {"model": m.name, "relative_cost": m.relative_cost,
+               "solvers": ", ".join(m.solvers)}
+        row.update({p: p in m.represents for p in PHENOMENA})
+        row.update(description=m.description, reference=m.reference)
+        rows.append(row)
+    return pd.DataFrame(rows)
 
 
 def simulate(scene: Scene, model: str = "auto", solver: str = "auto", *, dt: float | None = None,
-             rtol: float | None = None, atol: float | None = None,
-             params: SR5Parameters | None = None, return_forces: bool = False,
-             oversample: int = OVERSAMPLE) -> SimulationResult:
+             rtol: float | None = None, atol: float | None = None, params=None,
+             return_forces: bool = False, oversample: int = OVERSAMPLE) -> SimulationResult:
     """Simulate the vibration of a scene.
 
     Parameters
@@ -347,26 +207,29 @@ def simulate(scene: Scene, model: str = "auto", solver: str = "auto", *, dt: flo
     scene : Scene
         What to simulate (validated on construction).
     model : str, optional
-        ``"auto"`` (default) or a name in :data:`MODELS`.
-    solver : {"auto", "rk4", "dopri5"}, optional
-        ``"auto"`` is ``"rk4"`` with the automatic step.
+        ``"auto"`` (default): the cheapest model in :data:`MODELS` that can take the
+        scene and represents :func:`scene_needs`; or a model name.
+    solver : str, optional
+        ``"auto"`` (the model's default) or one of the model's ``solvers``
+        (``"rk4"``, ``"dopri5"`` for sr5).
     dt : float, optional
-        RK4 step of the shaft-pedestal core, s, rounded down to a multiple of the
-        internal output spacing (or, below it, to a divisor). Default:
-        0.35 / omega_c with omega_c the linearised contact natural frequency (rad/s):
-        about 20 us for a 6205 at 500 N, a relative L2 error below 1e-3 (see
-        docs/solvers.md). The sensor resonators are integrated exactly and do not
-        limit the step.
+        Step of a fixed-step solver, s (refused with an adaptive one). sr5's RK4 rounds
+        it down to a multiple of the internal output spacing (or, below it, to a
+        divisor), with a warning; default 0.35 / omega_c with omega_c the linearised
+        contact natural frequency (rad/s): about 20 us for a 6205 at 500 N, a relative
+        L2 error below 1e-3 (see docs/solvers.md).
     rtol : float, optional
-        Relative tolerance of ``dopri5`` (default 1e-6).
+        Relative tolerance of an adaptive solver (default 1e-6); refused with a
+        fixed-step one.
     atol : float, optional
-        Absolute tolerance of ``dopri5`` as a multiple of ``rtol`` times each state
-        component's characteristic scale (default 1).
-    params : SR5Parameters, optional
-        Structural parameters; defaults in :class:`SR5Parameters`.
+        Absolute tolerance of an adaptive solver as a multiple of ``rtol`` times each
+        state component's characteristic scale (default 1).
+    params : object, optional
+        The model's structural parameters (:class:`SR5Parameters` for sr5/sr4).
     return_forces : bool, optional
         Also return every element's contact load at the output samples
-        (``res.truth.contact_forces``).
+        (``res.truth.contact_forces``); asks for a model that represents
+        ``contact_forces``.
     oversample : int, optional
         Internal output rate as a multiple of ``scene.fs`` before the anti-alias
         decimation (default 4).
@@ -374,12 +237,13 @@ def simulate(scene: Scene, model: str = "auto", solver: str = "auto", *, dt: flo
     Returns
     -------
     SimulationResult
-        ``accel`` in m/s^2, shape (n_samples,) or (n_sensors, n_samples).
+        ``accel`` in m/s^2, shape (n_samples,) or (n_sensors, n_samples);
+        ``info["model"]`` and ``info["model_reason"]`` say which model ran and why.
 
     Raises
     ------
     ValueError
-        Bad arguments (before any work).
+        Bad arguments (before any work), or no model covers the scene's needs.
     SimulationUnstableError
         The integration diverged; the message names the scene and the step size.
 
@@ -389,74 +253,21 @@ def simulate(scene: Scene, model: str = "auto", solver: str = "auto", *, dt: flo
     >>> scene = bp.Scene(bearing="6205", rpm=1797, fault=bp.Fault("outer"),
     ...                  duration_s=0.1, fs=48_000)
     >>> res = bp.simulate(scene)
-    >>> res.accel.shape
-    (4800,)
+    >>> res.accel.shape, res.info["model"]
+    ((4800,), 'sr5')
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a ballpass.Scene, got {type(scene).__name__}")
-    name = resolve_model(scene, model)
-    _validate_solver_args(solver, dt, rtol, atol, oversample)
-    solver = "rk4" if solver == "auto" else solver
-    t_wall = time.perf_counter()
-
-    bm = build_model(scene, params, resonator=(name == "sr5"))
-    n_samples = scene.n_samples
-    raw = integrate(bm, solver, h_out=1.0 / (scene.fs * oversample),
-                    n_out=n_samples * oversample, dt=dt, rtol=rtol, atol=atol,
-                    keep_states=return_forces)
-    out, states, info = raw.output, raw.states, raw.info
-    info["model"] = name
-    h_out = raw.h_out
-    n_sensors = len(scene.sensors)
-
-    accel = _add_noise(scene, _to_output_rate(out, n_samples, oversample))
-    if not np.all(np.isfinite(accel)):
-        raise SimulationUnstableError(f"non-finite output for scene {scene!r}")
-
-    t = np.arange(n_samples) / scene.fs
-    forces = angles = displacement = None
-    if return_forces:
-        idx = np.arange(n_samples) * oversample
-        forces = _K.contact_loads_many(idx * h_out, states[idx], *bm.model[:3]).T.copy()
-        angles = _K.element_angles_many(idx * h_out, bm.p, bm.walk,
-                                        scene.bearing.n_elements).T.copy()
-        displacement = states[idx][:, :4].T.copy()
-    truth = GroundTruth(
-        label=scene.label,
-        faults=scene.faults,
-        frequencies=scene.frequencies,
-        shaft_angle=scene.speed.shaft_angle(t, scene.duration_s),
-        rpm=scene.speed.rpm_at(t, scene.duration_s) * np.ones_like(t),
-        fault_crossings=raw.crossings,
-        effective_depth_mm=tuple(f.effective_depth_mm(scene.bearing) for f in scene.faults),
-        contact_forces=forces,
-        element_angles=angles,
-        displacement=displacement,
-    )
-    info["wall_time_s"] = time.perf_counter() - t_wall
-    return SimulationResult(
-        accel=accel[0] if n_sensors == 1 else accel,
-        fs=scene.fs,
-        t=t,
-        scene=scene,
-        sensor_names=tuple(s.name for s in scene.sensors),
-        truth=truth,
-        info=info,
-    )
-
-
-def _add_noise(scene: Scene, accel: np.ndarray) -> np.ndarray:
-    """White Gaussian measurement noise from the scene's own noise stream."""
-    if scene.snr_db is None and scene.noise_rms is None:
-        return accel
-    _slip_seed, noise_seed = np.random.SeedSequence(scene.seed).spawn(2)
-    rng = np.random.default_rng(noise_seed)
-    if scene.noise_rms is not None:
-        sigma = np.full((accel.shape[0], 1), scene.noise_rms)
-    else:
-        rms = np.sqrt(np.mean(accel**2, axis=1, keepdims=True))
-        sigma = rms * 10.0 ** (-scene.snr_db / 20.0)
-    return accel + sigma * rng.standard_normal(accel.shape)
+    chosen, reason = _choose(scene, model, return_forces)
+    check_solver_args(chosen.name, solver, chosen.solvers, chosen.fixed_step_solvers,
+                      dt, rtol, atol, oversample)
+    solver = chosen.default_solver if solver == "auto" else solver
+    res = chosen.run(scene, solver, dt=dt, rtol=rtol, atol=atol, params=params,
+                     return_forces=return_forces, oversample=oversample)
+    res.info["model"] = chosen.name
+    res.info["model_reason"] = reason
+    res.info.setdefault("solver", solver)
+    return res
 
 
 from .work_precision import plot_work_precision, speedup, work_precision  # noqa: E402

@@ -33,16 +33,10 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..scene import Scene
-from . import (
-    OVERSAMPLE,
-    _core_omega,
-    _split_times,
-    _to_output_rate,
-    build,
-    integrate,
-    resolve_model,
-)
 from . import _kernels as _K
+from ._shared import OVERSAMPLE
+from ._shared import to_output_rate as _to_output_rate
+from ._sr5_driver import _core_omega, _split_times, build, integrate
 
 if TYPE_CHECKING:  # pandas is imported when a table is made, not with the simulator
     import pandas as pd
@@ -308,7 +302,7 @@ def work_precision(scene: Scene, *, model: str = "auto", rk4_dt=None, dopri5_rto
     import pandas as pd
 
     table = pd.DataFrame(rows, columns=COLUMNS)
-    table.attrs.update(scene=repr(scene), model=resolve_model(scene, model),
+    table.attrs.update(scene=repr(scene), model="sr4" if bm.n_res == 0 else "sr5",
                        reference=f"ballpass dopri5 rtol={reference_rtol:g}",
                        reference_wall_s=ref_wall, duration_s=scene.duration_s,
                        band_hz=judge.band, lines=judge.level_names)

@@ -1,0 +1,114 @@
+"""Pieces every simulation model shares: solver-argument checks, the sensor's
+anti-alias decimation and AC coupling, measurement noise, the ground-truth time base."""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy import signal as _signal
+
+from ..scene import Scene
+
+__all__ = [
+    "SimulationUnstableError",
+    "OVERSAMPLE",
+    "check_solver_args",
+    "to_output_rate",
+    "add_noise",
+    "check_finite",
+]
+
+#: internal output rate = OVERSAMPLE * fs before the anti-alias decimation
+OVERSAMPLE = 4
+
+
+class SimulationUnstableError(RuntimeError):
+    """The integration diverged (non-finite or unbounded state) or could not proceed."""
+
+
+def check_solver_args(model: str, solver: str, solvers: tuple[str, ...], fixed_step: tuple,
+                      dt, rtol, atol, oversample) -> None:
+    """Refuse solver options before any work: unknown solvers, out-of-range values and
+    options the chosen solver would silently ignore.
+
+    Parameters
+    ----------
+    model : str
+        Model name, for the messages.
+    solver : str
+        Requested solver (``"auto"`` or a name).
+    solvers : tuple of str
+        Solvers the model supports.
+    fixed_step : tuple of str
+        Those of ``solvers`` that take ``dt``; the others are adaptive and take
+        ``rtol``/``atol``.
+    dt, rtol, atol, oversample
+        As in :func:`ballpass.simulate.simulate`.
+    """
+    if not isinstance(solver, str) or solver not in ("auto", *solvers):
+        raise ValueError(f"solver must be 'auto' or one of {list(solvers)} for model "
+                         f"{model!r}, got {solver!r}")
+    if dt is not None and not (isinstance(dt, (int, float)) and not isinstance(dt, bool)
+                               and 1e-10 <= dt <= 1e-3):
+        raise ValueError(f"dt must be a step size in [1e-10, 1e-3] s, got {dt!r}")
+    if rtol is not None and not (isinstance(rtol, (int, float)) and 1e-13 <= rtol <= 1e-1):
+        raise ValueError(f"rtol must be in [1e-13, 0.1], got {rtol!r}")
+    if atol is not None and not (isinstance(atol, (int, float)) and atol > 0):
+        raise ValueError(f"atol must be a positive number (scale factor), got {atol!r}")
+    if not (isinstance(oversample, int) and 1 <= oversample <= 64):
+        raise ValueError(f"oversample must be an int in [1, 64], got {oversample!r}")
+    if solver == "auto":
+        return
+    adaptive = solver not in fixed_step
+    if adaptive and dt is not None:
+        raise ValueError(f"dt={dt!r} applies to the fixed-step solvers {list(fixed_step)}; "
+                         f"solver {solver!r} chooses its own steps: give rtol/atol instead")
+    if not adaptive and (rtol is not None or atol is not None):
+        raise ValueError(f"rtol/atol apply to adaptive solvers; solver {solver!r} takes a "
+                         "fixed step: give dt instead (or solver='dopri5')")
+
+
+def to_output_rate(out: np.ndarray, n_samples: int, oversample: int) -> np.ndarray:
+    """Internal-grid output (n_out, n_sensors) to what a sensor delivers: anti-alias
+    decimation by ``oversample`` and AC coupling; (n_sensors, n_samples), m/s^2."""
+    # padtype="line": extend the record by its end trend instead of zeros, otherwise the
+    # sensor's DC level (a static load seen through the transfer path) rings the
+    # anti-alias filter into a spike on the first and last samples
+    accel = (_signal.resample_poly(out, 1, oversample, axis=0, padtype="line")
+             if oversample > 1 else out)
+    accel = accel[:n_samples].T.copy()
+    accel -= accel.mean(axis=1, keepdims=True)  # AC-coupled accelerometers
+    return accel
+
+
+def add_noise(scene: Scene, accel: np.ndarray) -> np.ndarray:
+    """White Gaussian measurement noise from the scene's own noise stream.
+
+    Parameters
+    ----------
+    scene : Scene
+        Gives ``snr_db`` or ``noise_rms`` and the seed (the second child of
+        ``SeedSequence(scene.seed)``; the first drives the slip).
+    accel : ndarray (n_sensors, n_samples)
+        Noise-free signals, m/s^2.
+
+    Returns
+    -------
+    ndarray (n_sensors, n_samples)
+    """
+    if scene.snr_db is None and scene.noise_rms is None:
+        return accel
+    _slip_seed, noise_seed = np.random.SeedSequence(scene.seed).spawn(2)
+    rng = np.random.default_rng(noise_seed)
+    if scene.noise_rms is not None:
+        sigma = np.full((accel.shape[0], 1), scene.noise_rms)
+    else:
+        rms = np.sqrt(np.mean(accel**2, axis=1, keepdims=True))
+        sigma = rms * 10.0 ** (-scene.snr_db / 20.0)
+    return accel + sigma * rng.standard_normal(accel.shape)
+
+
+def check_finite(scene: Scene, accel: np.ndarray, model: str) -> None:
+    """Raise :class:`SimulationUnstableError` if any output sample is not finite."""
+    if not np.all(np.isfinite(accel)):
+        raise SimulationUnstableError(f"model {model!r} produced non-finite output for "
+                                      f"scene {scene!r}")

@@ -1,0 +1,381 @@
+"""Running the Sawalhi-Randall models ``sr5`` and ``sr4``: the fault-edge event scan,
+step splitting, the integrator calls and the assembly of the result.
+
+The models themselves (parameters, kernel binding, static equilibrium) are in
+:mod:`.sr5`; the compiled right-hand side in :mod:`._kernels`; the integrators in
+:mod:`._integrators`.
+
+Integration: the nonlinear shaft-pedestal core (4 DOF, Hertz contacts) is stepped by
+the chosen Runge-Kutta method, split at every fault edge and slip-walk knot; the sensor
+resonators, linear and one-way coupled, are advanced exactly for the cubic Hermite
+interpolant of their excitation (an exponential integrator, see
+:mod:`._integrators`), so the 15 kHz resonance does not limit the step. Which solver
+for which purpose: docs/solvers.md; speed against error: :func:`work_precision`.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..phenomena import DEFAULT_NEEDS
+from ..scene import Scene
+from . import _integrators as _I
+from . import _kernels as _K
+from ._registry import Model
+from ._shared import (
+    OVERSAMPLE,
+    SimulationUnstableError,
+    add_noise,
+    check_finite,
+    check_solver_args,
+    to_output_rate,
+)
+from .result import FaultCrossings, GroundTruth, SimulationResult
+from .sr5 import BearingModel, SR5Parameters, build_model
+
+__all__ = ["SR5", "SR4", "SOLVERS", "DT_DEFAULT_OMEGA", "RawIntegration", "integrate",
+           "build"]
+
+#: solver name -> description
+SOLVERS = {
+    "rk4": "classical Runge-Kutta on the shaft-pedestal core, fixed step, split at fault "
+           "edges; sensor resonators integrated exactly",
+    "dopri5": "Dormand-Prince 5(4) on the core, adaptive step with error control, split at "
+              "fault edges; sensor resonators integrated exactly",
+}
+
+#: default RK4 step = DT_DEFAULT_OMEGA / omega_contact (see :func:`simulate`): the
+#: largest step at which RK4 keeps the output's relative L2 error below 1e-3 on the
+#: work-precision scenes (docs/work_precision.md), with a margin of ~2
+DT_DEFAULT_OMEGA = 0.35
+
+
+def build(scene: Scene, model: str = "sr5", params: SR5Parameters | None = None
+          ) -> BearingModel:
+    """Bind ``scene`` to the sr5 (or ``model="sr4"``) kernels without integrating
+    (e.g. to call ``.rhs`` from scipy).
+
+    Parameters
+    ----------
+    scene : Scene
+    model : {"sr5", "sr4", "auto"}, optional
+        ``"auto"`` is ``"sr5"`` here.
+    params : SR5Parameters, optional
+
+    Returns
+    -------
+    BearingModel
+    """
+    if model not in ("auto", "sr5", "sr4"):
+        raise ValueError(f"build binds the sr5/sr4 kernels: model must be 'sr5' or 'sr4', "
+                         f"got {model!r}")
+    return build_model(scene, params, resonator=(model != "sr4"))
+
+
+def _core_omega(bm: BearingModel) -> float:
+    """Linearised contact natural frequency of the core (shaft on its contacts), rad/s:
+    the fastest mode the Runge-Kutta step must resolve (the resonators are integrated
+    exactly and do not constrain it)."""
+    nd = 4 + bm.n_res
+    return float(bm.scale[nd] / bm.scale[0])
+
+
+def _events(bm: BearingModel, t_end: float):
+    """Fault-edge crossings in [0, t_end], by time: brackets (s), fault, element and
+    level indices."""
+    n_faults = bm.levels.shape[0]
+    # Scan so that every offset moves by at most 0.5 rad per interval: each offset is
+    # monotone in time and the levels lie within 1 rad of the fault centre (a race
+    # fault is narrower than the element spacing, a ball fault than the ball), so a
+    # sign change against a level is never missed and a wrap at +-pi never mistaken
+    # for one. Offset speeds: the cage (with its steepest slip increment), the inner
+    # race relative to it (< shaft speed) or the ball spin.
+    p, walk = bm.p, bm.walk
+    z = int(p[_K.P_Z])
+    w_max = max(p[_K.P_W0], p[_K.P_W1])
+    slope = float(np.max(np.abs(np.diff(walk)))) * z / (2.0 * math.pi) if walk.size > 1 else 0.0
+    cage = p[_K.P_CAGE] * w_max * (1.0 + slope)
+    rates = {_K.KIND_OUTER: cage, _K.KIND_INNER: w_max, _K.KIND_BALL: p[_K.P_SPIN] * cage}
+    kinds = bm.faults[:, _K.F_KIND].astype(int)
+    rate = max((rates[k] for k in kinds), default=0.0)
+    n_scan = max(2, math.ceil(t_end * rate / 0.5) + 1)
+    # at most one crossing of each level per turn of the offset, on every path
+    capacity = sum(4 * (2 if k == _K.KIND_BALL else z)
+                   * (math.ceil(rates[k] * t_end / (2.0 * math.pi)) + 2) for k in kinds)
+    before, after = np.empty(capacity), np.empty(capacity)
+    index = np.empty((capacity, 3), dtype=np.int64)
+    n = _K.find_crossings(p, walk, bm.faults, np.linspace(0.0, t_end, n_scan), bm.levels,
+                          before, after, index) if n_faults else 0
+    if n < 0:
+        raise RuntimeError(f"more fault crossings than the kinematic bound {capacity}")
+    order = np.argsort(before[:n], kind="stable")
+    index = index[:n][order]
+    return before[:n][order], after[:n][order], index[:, 0], index[:, 1], index[:, 2]
+
+
+def _ramp_times(bm: BearingModel) -> tuple[float, float]:
+    """Shortest time an element takes to cross a defect ramp, s (inf without ramps), at
+    the top speed: ramp fraction times the defect's angular extent over the speed of
+    its paths (cage; inner race relative to the cage; ball spin). First over all
+    defects, then over those deep enough to unload an element completely (depth beyond
+    the static contact deflection), whose ramps end in impacts."""
+    p = bm.p
+    w_max = max(p[_K.P_W0], p[_K.P_W1])
+    cage = p[_K.P_CAGE] * w_max
+    rate = {_K.KIND_OUTER: cage, _K.KIND_INNER: w_max - cage, _K.KIND_BALL: p[_K.P_SPIN] * cage}
+    every, deep = math.inf, math.inf
+    for row in bm.faults:
+        if row[_K.F_RAMP] > 0.0:
+            t = row[_K.F_RAMP] * 2.0 * row[_K.F_HALF] / rate[int(row[_K.F_KIND])]
+            every = min(every, t)
+            if row[_K.F_DEPTH] > bm.static_deflection:
+                deep = min(deep, t)
+    return every, deep
+
+
+def _split_times(bm: BearingModel, t_end: float, ev_before: np.ndarray | None = None,
+                 ev_after: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Brackets (s) of every time where the right-hand side is not smooth and the
+    integrators split their steps: the fault-edge crossings and the knots of the slip
+    walk, where the cage speed jumps. Sorted."""
+    if ev_before is None:
+        ev_before, ev_after = _events(bm, t_end)[:2]
+    knot_before, knot_after = _K.find_knots(bm.p, t_end)
+    before = np.concatenate((ev_before, knot_before))
+    order = np.argsort(before, kind="stable")
+    return before[order], np.concatenate((ev_after, knot_after))[order]
+
+
+def _edge_names(bm: BearingModel, fault: np.ndarray, level: np.ndarray) -> np.ndarray:
+    forward = np.array(["entry", "ramp_end", "ramp_start", "exit"])
+    backward = forward[::-1]
+    inner = np.array([f.kind == "inner" for f in bm.scene.faults], dtype=bool)
+    names = np.where(inner[fault], backward[level], forward[level]) if fault.size else \
+        np.empty(0, dtype=forward.dtype)
+    return names
+
+
+@dataclass(frozen=True)
+class RawIntegration:
+    """Output of :func:`integrate` on the internal grid, before decimation.
+
+    Attributes
+    ----------
+    output : ndarray (n_out, n_sensors)
+        Sensor output at t = k h_out, m/s^2 (not AC-coupled).
+    states : ndarray (n_out, n_state) or (0, n_state)
+        States at the grid times when requested.
+    h_out : float
+        Grid spacing, s.
+    crossings : FaultCrossings
+    info : dict
+        Solver statistics.
+    """
+
+    output: np.ndarray
+    states: np.ndarray
+    h_out: float
+    crossings: FaultCrossings
+    info: dict
+
+
+def integrate(bm: BearingModel, solver: str, *, h_out: float, n_out: int,
+              dt: float | None = None, rtol: float | None = None, atol: float | None = None,
+              keep_states: bool = False) -> RawIntegration:
+    """Integrate a bound model and return the sensor output on a uniform grid.
+
+    This is the integration step of :func:`simulate` without decimation, AC coupling
+    or noise; useful to compare solvers with each other and with scipy.
+
+    Parameters
+    ----------
+    bm : BearingModel
+        From :func:`build`.
+    solver : {"rk4", "dopri5"}
+    h_out : float
+        Grid spacing of the output, s.
+    n_out : int
+        Number of grid points (t = 0 .. (n_out - 1) h_out).
+    dt, rtol, atol
+        As in :func:`simulate`.
+    keep_states : bool
+        Also return the state at every grid point.
+
+    Returns
+    -------
+    RawIntegration
+    """
+    scene = bm.scene
+    check_solver_args("sr5", solver, SOLVERS, ("rk4",), dt, rtol, atol, OVERSAMPLE)
+    if solver == "auto":
+        solver = "rk4"
+    t_wall = time.perf_counter()
+    t_end = (n_out - 1) * h_out
+    ev_before, ev_after, ev_fault, ev_elem, ev_level = _events(bm, t_end)
+    split_before, split_after = _split_times(bm, t_end, ev_before, ev_after)
+    out = np.empty((n_out, len(scene.sensors)))
+    states = np.empty((n_out if keep_states else 0, bm.n_state))
+    nd = 4 + bm.n_res
+    bound = np.empty(bm.n_state)
+    bound[:nd] = 1e4 * np.maximum(bm.scale[:nd], 1e-6)
+    bound[nd:] = 1e4 * bm.scale[nd:] + 1e3
+    omega = _core_omega(bm)
+    t_ramp, t_impact = _ramp_times(bm)
+    info = {"solver": solver, "internal_fs": 1.0 / h_out, "n_events": int(ev_before.shape[0])}
+    if solver == "rk4":
+        dt_req = dt if dt is not None else DT_DEFAULT_OMEGA / omega
+        # step ends on the output grid: a multiple or a divisor of h_out (1e-9: a dt
+        # meant as an exact multiple/divisor must not round the other way)
+        if dt_req >= h_out:
+            mult, n_sub = math.floor(dt_req / h_out + 1e-9), 1
+        else:
+            mult, n_sub = 1, math.ceil(h_out / dt_req - 1e-9)
+        status, n_steps, t_fail = _I.rk4(bm.y0, *bm.model, bm.n_res, h_out, mult, n_sub, n_out,
+                                         split_before, split_after, t_ramp, t_impact, bound,
+                                         out, states)
+        step = h_out * mult / n_sub
+        if dt is not None and abs(step - dt) > 1e-6 * dt:
+            warnings.warn(f"dt={dt:g} s rounded to {step:.6g} s so that the steps end on the "
+                          f"internal output grid (spacing {h_out:.6g} s); res.info['dt_s'] "
+                          "holds the step used", stacklevel=5)
+        info.update(n_steps=int(n_steps), n_rejected=0, dt_s=step)
+        step_text = f"dt = {step:.3g} s"
+    else:
+        rtol_v = 1e-6 if rtol is None else float(rtol)
+        core_scale = np.concatenate((bm.scale[:4], bm.scale[nd:nd + 4]))
+        atol_v = rtol_v * (1.0 if atol is None else float(atol)) * core_scale
+        # the resonator excitation's scale: the resonator deflection scale times w_r^2
+        w_r = bm.p[_K.P_WR]
+        atol_in = rtol_v * (1.0 if atol is None else float(atol)) * (
+            bm.scale[4] * w_r**2 if bm.n_res else 1.0)
+        h_max = 0.5 * math.pi / omega  # at least 4 steps per period of the contact mode
+        max_steps = int(50 * n_out + 100 * split_before.shape[0] + 10_000)
+        status, n_acc, n_rej, h_min, t_fail = _I.dopri5(
+            bm.y0, *bm.model, bm.n_res, h_out, n_out, split_before, split_after, t_ramp, bound,
+            rtol_v, atol_v, atol_in, h_max, max_steps, out, states)
+        info.update(n_steps=int(n_acc), n_rejected=int(n_rej), dt_min_s=float(h_min),
+                    rtol=rtol_v)
+        step_text = f"rtol = {rtol_v:g}, smallest step {h_min:.3g} s"
+    if status != _I.STATUS_OK:
+        reason = {
+            _I.STATUS_NONFINITE: "the state became non-finite or unbounded",
+            _I.STATUS_UNDERFLOW: "the step size underflowed",
+            _I.STATUS_MAX_STEPS: "the step budget was exhausted",
+        }[status]
+        raise SimulationUnstableError(
+            f"simulation with solver {solver!r} ({step_text}) failed at t = {t_fail:.6g} s: "
+            f"{reason}. Try a smaller dt / rtol or solver='dopri5'. Scene: {scene!r}"
+        )
+    info["integration_time_s"] = time.perf_counter() - t_wall
+    crossings = FaultCrossings(
+        time_s=ev_before.copy(), fault=ev_fault, element=ev_elem,
+        edge=_edge_names(bm, ev_fault, ev_level),
+    )
+    return RawIntegration(output=out, states=states, h_out=h_out, crossings=crossings,
+                          info=info)
+
+
+def _run(scene: Scene, solver: str, *, resonator: bool, dt=None, rtol=None, atol=None,
+         params: SR5Parameters | None = None, return_forces: bool = False,
+         oversample: int = OVERSAMPLE) -> SimulationResult:
+    """Simulate ``scene`` with sr5 (``resonator=True``) or sr4 (arguments validated)."""
+    if params is not None and not isinstance(params, SR5Parameters):
+        raise TypeError(f"params must be SR5Parameters for the sr4/sr5 models, got "
+                        f"{type(params).__name__}")
+    t_wall = time.perf_counter()
+    bm = build_model(scene, params, resonator=resonator)
+    n_samples = scene.n_samples
+    raw = integrate(bm, solver, h_out=1.0 / (scene.fs * oversample),
+                    n_out=n_samples * oversample, dt=dt, rtol=rtol, atol=atol,
+                    keep_states=return_forces)
+    out, states, info = raw.output, raw.states, raw.info
+    h_out = raw.h_out
+    n_sensors = len(scene.sensors)
+
+    accel = add_noise(scene, to_output_rate(out, n_samples, oversample))
+    check_finite(scene, accel, "sr5" if resonator else "sr4")
+
+    t = np.arange(n_samples) / scene.fs
+    forces = angles = displacement = None
+    if return_forces:
+        idx = np.arange(n_samples) * oversample
+        forces = _K.contact_loads_many(idx * h_out, states[idx], *bm.model[:3]).T.copy()
+        angles = _K.element_angles_many(idx * h_out, bm.p, bm.walk,
+                                        scene.bearing.n_elements).T.copy()
+        displacement = states[idx][:, :4].T.copy()
+    truth = GroundTruth(
+        label=scene.label,
+        faults=scene.faults,
+        frequencies=scene.frequencies,
+        shaft_angle=scene.speed.shaft_angle(t, scene.duration_s),
+        rpm=scene.speed.rpm_at(t, scene.duration_s) * np.ones_like(t),
+        fault_crossings=raw.crossings,
+        effective_depth_mm=tuple(f.effective_depth_mm(scene.bearing) for f in scene.faults),
+        contact_forces=forces,
+        element_angles=angles,
+        displacement=displacement,
+    )
+    info["wall_time_s"] = time.perf_counter() - t_wall
+    return SimulationResult(
+        accel=accel[0] if n_sensors == 1 else accel,
+        fs=scene.fs,
+        t=t,
+        scene=scene,
+        sensor_names=tuple(s.name for s in scene.sensors),
+        truth=truth,
+        info=info,
+    )
+
+
+def _run_sr5(scene: Scene, solver: str, **kwargs) -> SimulationResult:
+    return _run(scene, solver, resonator=True, **kwargs)
+
+
+def _run_sr4(scene: Scene, solver: str, **kwargs) -> SimulationResult:
+    return _run(scene, solver, resonator=False, **kwargs)
+
+
+def _accepts(scene: Scene) -> str | None:
+    """sr4/sr5 take every scene: balls or rollers, any sensors, constant or ramped speed."""
+    return None
+
+
+_REFERENCE = ("N. Sawalhi, R. B. Randall, 'Simulating gear and bearing interactions in the "
+              "presence of faults: Part I', MSSP 22 (2008) 1924-1951 (equations as printed in "
+              "seed 004, with the sprung mass restored; see ballpass.simulate.sr5)")
+
+#: the 5-DOF model with the high-frequency resonator per sensor
+SR5 = Model(
+    name="sr5",
+    description="Sawalhi-Randall 5-DOF: shaft, pedestal and a high-frequency resonator per "
+                "sensor; Hertz contacts, clearance, slip, localized faults",
+    represents=DEFAULT_NEEDS | {"contact_forces", "varying_speed"},
+    relative_cost=1.0,
+    solvers=tuple(SOLVERS),
+    fixed_step_solvers=("rk4",),
+    reference=_REFERENCE,
+    accepts=_accepts,
+    run=_run_sr5,
+)
+
+#: the same without the resonator: the sensors read the housing acceleration, so the
+#: envelope signature lacks its resonance carrier
+SR4 = Model(
+    name="sr4",
+    description="Sawalhi-Randall 4-DOF: shaft and pedestal, sensors read the housing "
+                "acceleration (no resonator)",
+    represents=frozenset({"contact_dynamics", "contact_forces", "varying_speed"}),
+    # measured by benchmarks/models_cost.py (the resonators cost little: they are
+    # advanced exactly between steps)
+    relative_cost=0.9,
+    solvers=tuple(SOLVERS),
+    fixed_step_solvers=("rk4",),
+    reference=_REFERENCE,
+    accepts=_accepts,
+    run=_run_sr4,
+)

@@ -1,0 +1,156 @@
+"""The model registry, scene needs, model="auto", solver-option checks and the kernel
+cache stamp (issue 10 items 1-3; issue 16 item 6; issue 9 item 5 "stale kernels")."""
+
+from __future__ import annotations
+
+import shutil
+import warnings
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import ballpass as bp
+from ballpass.phenomena import DEFAULT_NEEDS, PHENOMENA
+from ballpass.simulate import MODELS, resolve_model, scene_needs
+from ballpass.simulate._cache import clear_stale_cache, source_fingerprint
+
+
+@pytest.mark.parametrize("name", list(MODELS))
+def test_registry_contract(name):
+    m = MODELS[name]
+    assert m.name == name
+    assert m.represents <= set(PHENOMENA)
+    assert m.relative_cost > 0 and m.description and m.reference
+    assert m.default_solver in m.solvers
+    assert set(m.fixed_step_solvers) <= set(m.solvers)
+    scene = bp.Scene(bearing="6205", duration_s=0.01)
+    verdict = m.accepts(scene)
+    assert verdict is None or (isinstance(verdict, str) and verdict)
+
+
+def test_registry_is_sorted_by_cost_with_sr5_as_unit():
+    costs = [m.relative_cost for m in MODELS.values()]
+    assert costs == sorted(costs)
+    assert MODELS["sr5"].relative_cost == 1.0
+
+
+def test_scene_needs_from_fields():
+    plain = bp.Scene(bearing="6205")
+    assert scene_needs(plain) == DEFAULT_NEEDS
+    ramp = bp.Scene(bearing="6205", rpm=(600.0, 1800.0))
+    assert "varying_speed" in scene_needs(ramp)
+    assert "contact_forces" in scene_needs(plain, return_forces=True)
+    only = bp.Scene(bearing="6205", needs=("envelope",))
+    assert scene_needs(only) == {"envelope"}
+
+
+def test_unknown_need_is_refused_with_the_vocabulary():
+    with pytest.raises(ValueError, match=r"unknown phenomenon 'sparks'.*envelope"):
+        bp.Scene(bearing="6205", needs=("sparks",))
+    with pytest.raises(TypeError, match="needs"):
+        bp.Scene(bearing="6205", needs=(3,))
+
+
+def test_plain_scene_resolves_to_sr5_and_says_why():
+    scene = bp.Scene(bearing="6205", fault=bp.Fault("outer"), duration_s=0.02)
+    res = bp.simulate(scene)
+    assert res.info["model"] == "sr5"
+    # sr4 is cheaper but has no resonator: the reason must say what it lacked
+    assert "sr4 lacks envelope" in res.info["model_reason"]
+
+
+def test_requested_model_that_lacks_a_need_is_run_but_the_reason_says_so():
+    scene = bp.Scene(bearing="6205", duration_s=0.02)
+    res = bp.simulate(scene, model="sr4")
+    assert res.info["model"] == "sr4"
+    assert "does not represent envelope" in res.info["model_reason"]
+
+
+def _cheapest_covering(needs):
+    for m in MODELS.values():
+        if needs <= m.represents:
+            return m.name
+    return None
+
+
+@settings(max_examples=60, deadline=None)
+@given(needs=st.sets(st.sampled_from(sorted(PHENOMENA))),
+       ramp=st.booleans(), forces=st.booleans())
+def test_auto_picks_the_cheapest_covering_model(needs, ramp, forces):
+    scene = bp.Scene(bearing="6205", rpm=(900.0, 1800.0) if ramp else 1797.0,
+                     needs=tuple(needs))
+    wanted = set(needs or DEFAULT_NEEDS) | ({"varying_speed"} if ramp else set()) \
+        | ({"contact_forces"} if forces else set())
+    expected = _cheapest_covering(frozenset(wanted))
+    if expected is None:
+        with pytest.raises(ValueError, match="no model represents"):
+            resolve_model(scene, return_forces=forces)
+    else:
+        got = resolve_model(scene, return_forces=forces)
+        assert got == expected
+        assert wanted <= MODELS[got].represents
+
+
+def test_unknown_model_is_refused():
+    with pytest.raises(ValueError, match=r"model must be 'auto' or one of"):
+        resolve_model(bp.Scene(bearing="6205"), "sr9")
+
+
+@pytest.mark.parametrize(("solver", "kwargs", "match"), [
+    ("dopri5", {"dt": 1e-5}, "dt=1e-05 applies to the fixed-step solvers"),
+    ("rk4", {"rtol": 1e-9}, "rtol/atol apply to adaptive solvers"),
+    ("rk4", {"atol": 2.0}, "rtol/atol apply to adaptive solvers"),
+    ("euler", {}, "solver must be 'auto' or one of"),
+])
+def test_solver_options_the_solver_would_ignore_are_refused(solver, kwargs, match):
+    scene = bp.Scene(bearing="6205", duration_s=0.01)
+    with pytest.raises(ValueError, match=match):
+        bp.simulate(scene, solver=solver, **kwargs)
+
+
+def test_rounded_step_is_announced():
+    scene = bp.Scene(bearing="6205", duration_s=0.01, fs=48_000)
+    with pytest.warns(UserWarning, match=r"dt=1e-05 s rounded to"):
+        res = bp.simulate(scene, solver="rk4", dt=1e-5)
+    # 1e-5 s is not a divisor of the 5.2 us internal grid: the step used is the next
+    # divisor below, 5.2083 us / 1, and info reports it
+    assert res.info["dt_s"] == pytest.approx(1.0 / (4 * 48_000.0) / 1, rel=1e-12)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        bp.simulate(scene, solver="rk4", dt=1.0 / (4 * 48_000.0))  # exact: silent
+
+
+def _copy_package(tmp_path):
+    src = bp.simulate.__file__.rsplit("/", 1)[0]
+    dst = tmp_path / "simulate"
+    shutil.copytree(src, dst, ignore=shutil.ignore_patterns("__pycache__"))
+    return dst
+
+
+def test_fingerprint_follows_every_source_file(tmp_path):
+    pkg = _copy_package(tmp_path)
+    before = source_fingerprint(pkg)
+    assert before == source_fingerprint(pkg)
+    kernels = pkg / "_kernels.py"
+    kernels.write_text(kernels.read_text() + "\n# an edit\n")
+    assert source_fingerprint(pkg) != before
+
+
+def test_stale_kernel_cache_is_cleared_and_a_current_one_kept(tmp_path):
+    pkg = _copy_package(tmp_path)
+    cache = pkg / "__pycache__"
+    cache.mkdir()
+    assert clear_stale_cache(pkg) == []  # nothing cached yet; stamps the folder
+    cached = [cache / "_integrators.rk4-10.py311.nbi", cache / "_integrators.rk4-10.py311.1.nbc"]
+    for f in cached:
+        f.write_bytes(b"machine code")
+    assert clear_stale_cache(pkg) == []  # sources unchanged: the cache is kept
+    assert all(f.exists() for f in cached)
+    # the bug this guards against: an edit of _kernels.py left _integrators' kernels,
+    # which inline it, cached
+    kernels = pkg / "_kernels.py"
+    kernels.write_text(kernels.read_text().replace("import", "import", 1) + "\nX = 2\n")
+    deleted = clear_stale_cache(pkg)
+    assert sorted(deleted) == sorted(cached)
+    assert not any(f.exists() for f in cached)
