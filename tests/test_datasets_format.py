@@ -115,8 +115,7 @@ def test_changed_simulator_refuses_resume_and_touches_nothing(dataset, monkeypat
     import ballpass.simulate
 
     if change == "sources":
-        monkeypatch.setattr(ballpass.simulate, "source_fingerprint", lambda: "0" * 64,
-                            raising=False)
+        monkeypatch.setattr(ballpass.simulate, "source_fingerprint", lambda: "0" * 64)
     elif change == "numba":
         monkeypatch.setattr(numba, "__version__", "0.0.1")
     else:   # a changed Scene default (here the repr every point's scene is hashed from)

@@ -396,20 +396,6 @@ def _resolved_models(grid: Grid) -> list[tuple[str, Run]]:
     return out
 
 
-def _source_fingerprint() -> str:
-    # TODO(datasets): call ballpass.simulate.source_fingerprint directly once it is on main
-    from .. import simulate
-
-    if hasattr(simulate, "source_fingerprint"):
-        return simulate.source_fingerprint()
-    package = Path(simulate.__file__).resolve().parent
-    digest = hashlib.sha256()
-    for path in sorted(package.rglob("*.py")):
-        digest.update(path.relative_to(package).as_posix().encode() + b"\0")
-        digest.update(path.read_bytes() + b"\0")
-    return digest.hexdigest()
-
-
 def simulator_fingerprint(models: list[tuple[str, Run]]) -> dict[str, str]:
     """What decides the signals of a grid, besides its seeds: stored in the manifest so
     that a resume with anything else is refused.
@@ -432,12 +418,12 @@ def simulator_fingerprint(models: list[tuple[str, Run]]) -> dict[str, str]:
     import numba
     import scipy
 
-    from .. import __version__
+    from .. import __version__, simulate
 
     scenes = hashlib.sha256()
     for model, run in models:
         scenes.update(f"{model}\0{run.build_scene()!r}\0".encode())
-    return {"ballpass": __version__, "simulator_sources": _source_fingerprint(),
+    return {"ballpass": __version__, "simulator_sources": simulate.source_fingerprint(),
             "scenes": scenes.hexdigest(), "numpy": np.__version__,
             "scipy": scipy.__version__, "numba": numba.__version__}
 
