@@ -2,7 +2,8 @@
 grids too large to build, runaway worker counts, a killed parent, bad rows and filters.
 
 Each case ends in a clear error (or a repair) before any work, and leaves nothing
-behind. Signals are tiny (0.05 s at 12 kHz) so the file runs in about 15 s.
+behind. Signals are short (0.5 s at 12 kHz, so that the middle of a shard lies in its
+signal pages) and the file runs in about 15 s.
 """
 
 import json
@@ -24,7 +25,7 @@ from ballpass.datasets.store import CorruptShardError
 GEN = sys.modules["ballpass.datasets.generate"]   # the module (the package exports the function)
 
 GRID = {
-    "dataset": {"duration_s": 0.05, "fs": 12000, "seed": 2, "shard_size": 1},
+    "dataset": {"duration_s": 0.5, "fs": 12000, "seed": 2, "shard_size": 1},
     "grid": {"bearing": ["6205"], "fault": ["outer", "inner", "ball"], "fault_width_mm": [0.5],
              "rpm": [1797], "resonance_hz": [3000]},
 }
@@ -56,7 +57,13 @@ def copy(reference, tmp_path):
 def damage(path: Path, how: str) -> None:
     data = bytearray(path.read_bytes())
     if how == "flip":            # 200 bytes in the middle, inside the signal pages
+        import pyarrow.parquet as pq
+
         mid = len(data) // 2
+        chunk = pq.read_metadata(path).row_group(0).column(0)      # the signal column
+        assert chunk.path_in_schema == "signal.list.element"
+        assert chunk.data_page_offset < mid < mid + 200 < chunk.data_page_offset + \
+            chunk.total_compressed_size
         data[mid:mid + 200] = bytes(b ^ 0xFF for b in data[mid:mid + 200])
         path.write_bytes(bytes(data))
     elif how == "truncate":
