@@ -5,6 +5,7 @@ Signals are tiny (0.02 s at 12 kHz) so the file runs in a few seconds. Signal
 comparisons are exact: a stored row is a pure function of its scene and seed.
 """
 
+import io
 import json
 import shutil
 from pathlib import Path
@@ -52,6 +53,14 @@ def test_layout_hides_everything_but_the_signal_shards(dataset):
     assert manifest["format_version"] == 2
     assert all(len(s["sha256"]) == 64 and len(s["features_sha256"]) == 64
                for s in manifest["shards"])
+
+
+def test_cli_features_reads_the_new_layout(dataset, capsys):
+    from ballpass.cli import main
+
+    assert main(["features", str(dataset)]) == 0
+    table = pd.read_csv(io.StringIO(capsys.readouterr().out))
+    assert len(table) == N_ROWS
 
 
 def test_pandas_and_pyarrow_read_the_folder(dataset):

@@ -23,7 +23,7 @@ inputs:
                       records 97-100) are 48 kHz -- not 12 kHz; pass --fs when a name does
                       not tell. rpm comes from the file; the bearing defaults to the rig's
                       (DE: 6205, FE: 6203).
-  DIR                 a dataset folder with manifest.json (`ballpass generate`)
+  DIR                 a dataset folder with _manifest.json (`ballpass generate`)
 
 columns: source, channel, segment, start_s, fs, bearing, rpm, label (when known), the
 demodulation band chosen by the kurtogram (band_lo_hz, band_hi_hz, kurtogram_sk), the
@@ -213,8 +213,9 @@ def load_inputs(args) -> list[Signal]:
     for raw in args.inputs:
         path = Path(raw)
         if path.is_dir():
-            if not (path / "manifest.json").is_file():
-                raise ValueError(f"{path} is a folder without manifest.json: not a dataset")
+            if not any((path / name).is_file() for name in ("_manifest.json", "manifest.json")):
+                raise ValueError(f"{path} is a folder without manifest.json or "
+                                 "_manifest.json: not a dataset")
             signals += _from_dataset(path, args)
         elif not path.exists():
             raise FileNotFoundError(f"no such file or folder: {path}")
