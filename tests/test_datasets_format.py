@@ -161,3 +161,17 @@ def test_one_and_two_jobs_write_identical_files(dataset, tmp_path):
     for name in ("part-00000.parquet", "_features/part-00002.parquet"):
         assert (dataset / name).read_bytes() == (tmp_path / "two" / name).read_bytes()
     assert read_grid(GRID).n_rows == N_ROWS
+
+
+def test_damaged_feature_shard_named_and_remade(dataset, tmp_path):
+    out = tmp_path / "ds"
+    shutil.copytree(dataset, out)
+    name = "_features/part-00001.parquet"
+    good = (out / name).read_bytes()
+    (out / name).write_bytes(good[: len(good) // 2])
+    with pytest.raises(ValueError, match="part-00001.parquet has .* bytes where the manifest"):
+        load_features(out)
+    with pytest.warns(UserWarning, match="part-00001.parquet"):
+        summary = generate(GRID, out, progress=False)     # no features=True: still remade
+    assert summary.rows_written == 0 and summary.feature_shards_written == 1
+    assert (out / name).read_bytes() == good

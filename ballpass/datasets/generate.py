@@ -631,9 +631,12 @@ def _plan(grid: Grid, folder: Path, manifest: dict, features: bool) -> list[Shar
             folder / FEATURES_DIR / shard["file"]).exists()
         shard["features_complete"] = bool(
             shard["complete"] and has_features and _verify(folder, shard, "features_sha256"))
-        if not shard["features_complete"] and (folder / FEATURES_DIR / shard["file"]).exists():
-            (folder / FEATURES_DIR / shard["file"]).unlink()   # stale: its signals are redone
-        need_features = features and not shard["features_complete"]
+        if not shard["features_complete"]:   # stale (its signals are redone) or damaged
+            (folder / FEATURES_DIR / shard["file"]).unlink(missing_ok=True)
+        # a feature table the dataset had is made again with its shard
+        need_features = (features or has_features) and not shard["features_complete"]
+        if not shard["features_complete"]:
+            shard.update(features_bytes=0, features_sha256=None)
         if not shard["complete"] or need_features:
             specs.append(ShardSpec(
                 index=i, folder=str(folder), runs=tuple(grid.runs[r] for r in
