@@ -18,6 +18,7 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 
+from . import _resources
 from ._validation import check_number as _number
 from .bearing import Bearing, BearingFrequencies
 from .gears import GearPair
@@ -28,6 +29,8 @@ __all__ = ["Fault", "Sensor", "SpeedProfile", "Scene", "wrap_deg"]
 FAULT_KINDS = ("outer", "inner", "ball")
 EDGE_PROFILES = ("ramped", "sharp")
 STANDARD_GRAVITY = 9.80665  # m/s^2
+#: scenes needing less memory than this (bytes) skip the free-memory check
+_MEMORY_CHECK_BYTES = 256 * 2**20
 #: Lowest structural resonance accepted, Hz. The resonances that bearing impacts excite
 #: and envelope analysis demodulates lie at kHz (Randall & Antoni, MSSP 25 (2011)
 #: 485-520, sec. 3); below 100 Hz a "resonance" sits among the shaft harmonics and the
@@ -407,6 +410,7 @@ class Scene:
         if len(set(names)) != len(names):
             raise ValueError(f"sensor names must be unique, got {names}")
         object.__setattr__(self, "sensors", sensors_t)
+        self._check_fits_in_memory()
 
         if self.snr_db is not None and self.noise_rms is not None:
             raise ValueError("give snr_db or noise_rms, not both")
@@ -426,6 +430,20 @@ class Scene:
             object.__setattr__(self, "gears", GearPair.preset(self.gears))
         elif self.gears is not None and not isinstance(self.gears, GearPair):
             raise TypeError(f"gears must be a GearPair, a preset name or None, got {self.gears!r}")
+
+    def _check_fits_in_memory(self) -> None:
+        """Refuse a scene whose simulation would not fit in this machine's free memory."""
+        need = _resources.simulation_bytes(self.n_samples, len(self.sensors))
+        if need < _MEMORY_CHECK_BYTES:  # reading /proc/meminfo costs more than a small scene
+            return
+        free = _resources.available_memory()
+        if need > free:
+            raise ValueError(
+                f"duration_s={self.duration_s:g} s at fs={self.fs:g} Hz with "
+                f"{len(self.sensors)} sensor(s) is {self.n_samples} samples per sensor; "
+                f"simulating it needs about {_resources.human_bytes(need)} of memory and "
+                f"{_resources.human_bytes(free)} is available. Shorten duration_s or lower fs "
+                "(simulate a long record as several scenes).")
 
     # ------------------------------------------------------------------ derived
     @property

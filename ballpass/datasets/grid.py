@@ -41,7 +41,8 @@ import numpy as np
 from .._validation import check_segment
 from ..scene import Fault, Scene, Sensor
 
-__all__ = ["Grid", "Run", "read_grid", "run_seed", "scene_from_dict", "FAULT_VALUES"]
+__all__ = ["Grid", "Run", "read_grid", "run_seed", "scene_from_dict", "count_points",
+           "grid_differences", "FAULT_VALUES", "MAX_RUNS"]
 
 #: values of the ``fault`` axis
 FAULT_VALUES = ("healthy", "outer", "inner", "ball")
@@ -77,6 +78,9 @@ _SENSOR_KEYS = {f.name for f in fields(Sensor)}
 _SHARD_BYTES = 32 * 2**20
 _MAX_SHARD_RUNS = 256
 _MIN_SHARDS = 16
+#: most runs of one dataset: its manifest and run table are held in memory (about 1 kB
+#: per run); a larger study is several datasets
+MAX_RUNS = 10_000_000
 
 
 def _is_number(value) -> bool:
@@ -101,6 +105,10 @@ def _expand_range(key: str, spec: dict) -> list[float]:
     if stop < start:
         raise ValueError(f"grid.{key}: range stop {stop:g} is below start {start:g}")
     n = int(math.floor((stop - start) / step + 1e-9)) + 1
+    if n > MAX_RUNS:  # counted before building the list
+        raise ValueError(
+            f"grid.{key}: range {{start = {start:g}, stop = {stop:g}, step = {step:g}}} has "
+            f"{n:.3g} values; a dataset holds at most {MAX_RUNS:,} runs. Use a larger step.")
     # rounding to 12 significant digits removes the float drift of start + k*step
     return [float(f"{start + k * step:.12g}") for k in range(n)]
 
@@ -431,6 +439,7 @@ def read_grid(source) -> Grid:
         del dataset["model"]
     axes = {k: _axis_values(k, grid_raw[k]) for k in AXES if k in grid_raw}
 
+    _check_count(dataset, axes)
     points = _expand(dataset, axes)
     if "shard_size" not in dataset:
         run_bytes = 4 * len(axes.get("sensor", ["loaded"])) * max(
@@ -439,6 +448,47 @@ def read_grid(source) -> Grid:
         dataset["shard_size"] = max(1, min(_SHARD_BYTES // run_bytes, _MAX_SHARD_RUNS,
                                            -(-n_runs // _MIN_SHARDS)))
     return Grid(dataset=dataset, axes=axes, _points=points)
+
+
+def count_points(axes: dict) -> int:
+    """Grid points of validated axes, counted without building them: healthy points do
+    not multiply over the fault axes."""
+    other = math.prod(len(v) for k, v in axes.items()
+                      if k not in _FAULT_AXES and k not in ("sensor", "fault"))
+    n_faulty = sum(v != "healthy" for v in axes["fault"])
+    per_fault = math.prod(len(v) for k, v in axes.items() if k in _FAULT_AXES)
+    return other * (len(axes["fault"]) - n_faulty + n_faulty * per_fault)
+
+
+def _check_count(dataset: dict, axes: dict) -> None:
+    """Refuse a grid of more than :data:`MAX_RUNS` runs before expanding it."""
+    n_runs = count_points(axes) * dataset["repeats"]
+    if n_runs > MAX_RUNS:
+        sizes = " x ".join(f"{len(v)} {k}" for k, v in axes.items()
+                           if len(v) > 1 and k != "sensor")
+        raise ValueError(
+            f"the grid has {n_runs:.3g} runs ({sizes or '1 point'}, x {dataset['repeats']} "
+            f"repeats); a dataset holds at most {MAX_RUNS:,} runs. Use fewer values or "
+            "repeats, or split the study into several datasets.")
+
+
+def grid_differences(stored: dict, new: dict, prefix: str = "") -> list[str]:
+    """Keys whose values differ between two grids as dicts (:meth:`Grid.as_dict`).
+
+    Returns
+    -------
+    list of str
+        One line per differing key, ``"dataset.seed: 3 -> 4"``; a key missing on one
+        side shows as ``(absent)``.
+    """
+    out = []
+    for key in sorted(set(stored) | set(new)):
+        a, b = stored.get(key, "(absent)"), new.get(key, "(absent)")
+        if isinstance(a, dict) and isinstance(b, dict):
+            out += grid_differences(a, b, f"{prefix}{key}.")
+        elif a != b:
+            out.append(f"{prefix}{key}: {json.dumps(a)} -> {json.dumps(b)}")
+    return out
 
 
 def _expand(dataset: dict, axes: dict) -> tuple:
