@@ -36,6 +36,7 @@ from ..scene import Scene  # noqa: E402
 from ._registry import Model  # noqa: E402
 from ._shared import OVERSAMPLE, SimulationUnstableError, check_solver_args  # noqa: E402
 from ._sr5_driver import SOLVERS, SR4, SR5, build, integrate  # noqa: E402
+from .impulse import IMPULSE  # noqa: E402
 from .result import SimulationResult  # noqa: E402
 from .sr5 import BearingModel, SR5Parameters  # noqa: E402
 
@@ -61,7 +62,7 @@ __all__ = [
 ]
 
 #: model name -> :class:`Model`, cheapest first
-MODELS: dict[str, Model] = {m.name: m for m in sorted((SR5, SR4),
+MODELS: dict[str, Model] = {m.name: m for m in sorted((SR5, SR4, IMPULSE),
                                                       key=lambda m: m.relative_cost)}
 
 
