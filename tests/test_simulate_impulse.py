@@ -153,12 +153,15 @@ def _rms(scene):
 def test_load_zone_modulation_follows_stribeck():
     # zero clearance: the load zone spans +-90 deg with Q(psi) = Q_max cos(psi)^1.5
     # (Stribeck, eps = 0.5; Harris & Kotzalas ch. 7). A defect deeper than the contact
-    # deflection releases the whole load, so the rings at 60 deg are cos(60)^1.5 = 0.354
-    # of those at 0 deg; out of the zone (120, 180 deg) nothing strikes.
-    # Tolerance 3 %: the two runs differ in their impact counts by at most one of ~107
-    # (0.9 %) and in the slip of their entry-exit pairs.
-    ratio = _rms(_zero_clearance_scene(60.0)) / _rms(_zero_clearance_scene(0.0))
-    assert ratio == pytest.approx(math.cos(math.radians(60.0)) ** 1.5, rel=0.03)
+    # deflection releases the whole load where the element strikes its trailing edge,
+    # psi = centre + h (h = half width / outer-race radius), so the rings of a defect at
+    # 60 deg are (cos(60 deg + h) / cos(h))^1.5 of those at 0 deg (0.30; 0.354 at the
+    # centres); out of the zone (120, 180 deg) nothing strikes. Tolerance 3 %: the two
+    # runs differ in their impact counts by at most one of ~107 (0.9 %).
+    s0, s60 = _zero_clearance_scene(0.0), _zero_clearance_scene(60.0)
+    h = 0.5 * s0.fault.width_mm * 1e-3 / s0.bearing.outer_race_radius_m
+    expected = (math.cos(math.radians(60.0) + h) / math.cos(h)) ** 1.5
+    assert _rms(s60) / _rms(s0) == pytest.approx(expected, rel=0.03)
     assert _rms(_zero_clearance_scene(120.0)) == 0.0
     assert _rms(_zero_clearance_scene(180.0)) == 0.0
 
@@ -174,16 +177,19 @@ def test_fault_size_shallow_defect_releases_part_of_the_load():
     delta0 = (q_max / b.hertz_stiffness()) ** (1 / 1.5)
     h = 0.4 * delta0
     shallow = _zero_clearance_scene(0.0, depth_mm=h * 1e3)
-    expected = 1.0 - (1.0 - h / delta0) ** 1.5
+    # the element strikes at the trailing edge, where its deflection is delta_0 cos(edge)
+    edge = 0.5 * shallow.fault.width_mm * 1e-3 / shallow.bearing.outer_race_radius_m
+    delta = delta0 * math.cos(edge)
+    expected = 1.0 - (1.0 - h / delta) ** 1.5
     assert _rms(shallow) / _rms(_zero_clearance_scene(0.0)) == pytest.approx(expected, rel=0.03)
 
 
 def test_sensor_transmission_as_sr5():
-    # two sensors, loaded zone and opposite, kappa = 0.8. The element enters and leaves
-    # the defect (centred at 0 deg) at its edges psi = -+h, h = half width / outer-race
-    # radius; the force along the contact normal reaches a sensor at theta with the
-    # factor exp(-kappa (1 - cos(psi - theta))) cos(psi - theta): the opposite sensor
-    # reads exactly -exp(-2 kappa cos h) times the loaded one, sample by sample
+    # two sensors, loaded zone and opposite, kappa = 0.8. The element strikes the
+    # trailing edge of the defect (centred at 0 deg) at psi = h, h = half width /
+    # outer-race radius; the force along the contact normal reaches a sensor at theta
+    # with the factor exp(-kappa (1 - cos(psi - theta))) cos(psi - theta): the opposite
+    # sensor reads exactly -exp(-2 kappa cos h) times the loaded one, sample by sample
     scene = _zero_clearance_scene(0.0).replace(
         sensors=(bp.Sensor(0.0, attenuation=0.8), bp.Sensor(180.0, attenuation=0.8)))
     x = bp.simulate(scene).accel

@@ -1,0 +1,146 @@
+"""Cost of every registered model per simulated second, relative to sr5, side by side.
+
+The reference scene: a 6205 at 1797 rpm and 500 N with the default 0.5 mm x 0.1 mm
+inner-race fault (the fault with the most events per second), 48 kHz output, the
+default 15 kHz / 5 % resonance, one loaded-zone sensor, 1 s. Every model in
+``ballpass.simulate.MODELS`` (whatever is registered when the script runs) is timed
+through the whole of :func:`ballpass.simulate` with its default solver, after a warm-up
+call (numba compilation is not timed). The models run interleaved, one call each per
+round, so a round's ratios share the machine's state; the table gives the median
+wall time per simulated second and the median and interquartile range of the per-round
+ratio to sr5. A model that cannot take the reference scene is listed with its reason.
+
+Writes ``docs/models_cost.csv``, ``docs/models_cost.md`` and ``docs/models_cost.png``;
+the ``relative_cost`` of each model in the code cites this table.
+
+    python benchmarks/models_cost.py                # 1 s scene, 15 rounds
+    python benchmarks/models_cost.py --rounds 3     # a quick run
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+from pathlib import Path
+
+import _machine  # benchmarks/_machine.py (scripts run from their folder)
+import numpy as np
+
+import ballpass as bp
+from ballpass import __version__
+
+DOCS = Path(__file__).resolve().parent.parent / "docs"
+#: a model slower than this per call gets fewer rounds (s)
+BUDGET_S = 60.0
+
+
+def reference_scene(duration: float) -> bp.Scene:
+    return bp.Scene("6205", rpm=1797.0, radial_load_n=500.0, fault=bp.Fault("inner"),
+                    duration_s=duration, fs=48_000.0)
+
+
+def measure(duration: float, rounds: int) -> tuple[list[dict], dict[str, str]]:
+    scene = reference_scene(duration)
+    models, skipped = [], {}
+    for name, m in bp.simulate.MODELS.items():
+        reason = m.accepts(scene)
+        if reason:
+            skipped[name] = reason
+            continue
+        t0 = time.perf_counter()
+        bp.simulate(scene.replace(duration_s=min(duration, 0.05)), model=name)  # compile
+        bp.simulate(scene, model=name)  # warm caches
+        models.append((name, time.perf_counter() - t0))
+    records = []
+    for r in range(rounds):
+        times = {}
+        for name, first in models:
+            if r > 0 and first * r > BUDGET_S:
+                continue  # a very slow model: enough rounds for a median
+            t0 = time.perf_counter()
+            bp.simulate(scene, model=name)
+            times[name] = (time.perf_counter() - t0) / duration
+        for name, t in times.items():
+            records.append(dict(round=r, model=name, s_per_sim_s=t,
+                                ratio_to_sr5=t / times["sr5"] if "sr5" in times else np.nan))
+    return records, skipped
+
+
+def summarise(records: list[dict]):
+    import pandas as pd
+
+    df = pd.DataFrame(records)
+    rows = []
+    for name, g in df.groupby("model", sort=False):
+        q = g["ratio_to_sr5"].quantile([0.25, 0.5, 0.75])
+        rows.append(dict(model=name, rounds=len(g),
+                         ms_per_sim_s=1e3 * g["s_per_sim_s"].median(),
+                         ratio_median=q[0.5], ratio_q25=q[0.25], ratio_q75=q[0.75],
+                         speedup_vs_sr5=1.0 / q[0.5],
+                         relative_cost_in_code=bp.simulate.MODELS[name].relative_cost))
+    return pd.DataFrame(rows).sort_values("ratio_median")
+
+
+def write(table, skipped: dict, duration: float, rounds: int) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    DOCS.mkdir(exist_ok=True)
+    table.to_csv(DOCS / "models_cost.csv", index=False, float_format="%.5g")
+    lines = [
+        "# Cost of each model per simulated second (benchmarks/models_cost.py)",
+        "",
+        f"Reference scene: 6205, 1797 rpm, 500 N, inner-race fault 0.5 x 0.1 mm, 48 kHz, "
+        f"{duration:g} s, one sensor; default solver of each model; {rounds} interleaved "
+        f"rounds. ballpass {__version__}; {_machine.machine()}.",
+        "",
+        "| model | ms per simulated s (median) | cost / sr5 (median) | IQR of the ratio | "
+        "speed-up vs sr5 | relative_cost in the code |",
+        "|---|---:|---:|---|---:|---:|",
+    ]
+    for row in table.itertuples():
+        lines.append(f"| {row.model} | {row.ms_per_sim_s:.2f} | {row.ratio_median:.4f} | "
+                     f"{row.ratio_q25:.4f} - {row.ratio_q75:.4f} | "
+                     f"{row.speedup_vs_sr5:.1f}x | {row.relative_cost_in_code:g} |")
+    for name, reason in skipped.items():
+        lines.append(f"| {name} | not measured: {reason} | | | | "
+                     f"{bp.simulate.MODELS[name].relative_cost:g} |")
+    (DOCS / "models_cost.md").write_text("\n".join(lines) + "\n")
+
+    fig, ax = plt.subplots(figsize=(6, 3.2))
+    y = np.arange(len(table))
+    ms = table["ms_per_sim_s"].to_numpy()
+    sr5_ms = float(table.loc[table["model"] == "sr5", "ms_per_sim_s"].iloc[0])
+    lo = sr5_ms * table["ratio_q25"].to_numpy()
+    hi = sr5_ms * table["ratio_q75"].to_numpy()
+    ax.barh(y, ms, color="tab:blue")
+    ax.errorbar(sr5_ms * table["ratio_median"].to_numpy(), y,
+                xerr=[sr5_ms * table["ratio_median"].to_numpy() - lo,
+                      hi - sr5_ms * table["ratio_median"].to_numpy()],
+                fmt="none", color="k", capsize=3, label="IQR of the ratio to sr5")
+    ax.set_yticks(y, table["model"])
+    ax.set_xscale("log")
+    ax.set_xlabel("wall time per simulated second, ms (median)")
+    ax.set_title("Cost per simulated second per model (6205 inner fault, 48 kHz)")
+    for yi, (m, r) in enumerate(zip(ms, table["ratio_median"], strict=True)):
+        ax.text(m, yi, f"  {r:.3g} x sr5", va="center", fontsize=8)
+    ax.legend(loc="lower right", fontsize=8)
+    fig.tight_layout()
+    fig.savefig(DOCS / "models_cost.png", dpi=120)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--duration", type=float, default=1.0, help="simulated s per call")
+    parser.add_argument("--rounds", type=int, default=15, help="interleaved rounds")
+    args = parser.parse_args()
+    records, skipped = measure(args.duration, args.rounds)
+    table = summarise(records)
+    write(table, skipped, args.duration, args.rounds)
+    print((DOCS / "models_cost.md").read_text())
+
+
+if __name__ == "__main__":
+    main()
