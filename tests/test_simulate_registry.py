@@ -3,6 +3,7 @@ cache stamp (issue 10 items 1-3; issue 16 item 6; issue 9 item 5 "stale kernels"
 
 from __future__ import annotations
 
+import json
 import shutil
 import warnings
 
@@ -83,8 +84,8 @@ def test_plain_scene_resolves_to_sr5_and_says_why():
     scene = bp.Scene(bearing="6205", fault=bp.Fault("outer"), duration_s=0.02)
     res = bp.simulate(scene)
     assert res.info["model"] == "sr5"
-    # sr4 is cheaper but has no resonator: the reason must say what it lacked
-    assert "sr4 lacks envelope" in res.info["model_reason"]
+    # impulse is cheaper but has no contact dynamics: the reason must say what it lacked
+    assert "impulse lacks contact_dynamics" in res.info["model_reason"]
 
 
 def test_requested_model_that_lacks_a_need_is_run_but_the_reason_says_so():
@@ -181,3 +182,17 @@ def test_stale_kernel_cache_is_cleared_and_a_current_one_kept(tmp_path):
     deleted = clear_stale_cache(pkg)
     assert sorted(deleted) == sorted(cached)
     assert not any(f.exists() for f in cached)
+
+
+def test_dataset_grid_needs_resolve_the_model_each_row_records(tmp_path):
+    grid = {"dataset": {"duration_s": 0.05, "fs": 12_000, "needs": ["envelope"]},
+            "grid": {"bearing": ["6205"], "fault": ["outer", "inner"], "rpm": [1797],
+                     "resonance_hz": [3000]}}
+    bp.datasets.generate(grid, tmp_path / "ds", n_jobs=1, progress=False)
+    X, meta = bp.datasets.load(tmp_path / "ds")
+    assert list(meta["model"]) == ["impulse", "impulse"]
+    # the stored scene carries its needs, and a row regenerates bit for bit
+    assert json.loads(meta["scene"].iloc[0])["needs"] == ["envelope"]
+    np.testing.assert_array_equal(bp.datasets.regenerate(meta.iloc[1]), X[1])
+    with pytest.raises(ValueError, match=r"dataset.needs names an unknown phenomenon 'sparks'"):
+        bp.datasets.read_grid({**grid, "dataset": {"needs": ["sparks"]}})

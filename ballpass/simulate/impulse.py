@@ -319,8 +319,9 @@ IMPULSE = Model(
                 "slip, Stribeck load-zone and transmission modulation, ringing the "
                 "scene's resonance; no contact dynamics",
     represents=frozenset({"envelope", "varying_speed"}),
-    # measured by benchmarks/models_cost.py (table in docs/models.md)
-    relative_cost=0.1,
+    # measured by benchmarks/models_cost.py (docs/models_cost.md): 0.086 of sr5 per
+    # simulated second at 48 kHz (median of interleaved rounds), 0.034 at 12 kHz
+    relative_cost=0.09,
     solvers=("analytic",),
     fixed_step_solvers=(),
     reference="P. D. McFadden, J. D. Smith, J. Sound Vib. 96 (1984) 69-82; D. Ho, R. B. "
