@@ -14,8 +14,10 @@ Model
 *Impact times.* The same kinematics and the same slip process as sr5, drawn from the
 same seed: the cage angle with its random walk (:func:`.sr5._slip_walk`,
 :func:`._kernels.cage_angle`) and the fault-edge crossings of every element path
-(:func:`._sr5_driver._events`), so ``res.truth.fault_crossings`` of an impulse run and
-an sr5 run of one scene are identical. Impacts are placed in the angle domain (cage and
+(:func:`._sr5_driver._events`), so the defect entries and exits in
+``res.truth.fault_crossings`` of an impulse run are those of an sr5 run of the same
+scene, bit for bit (sr5 also lists the ends of its edge ramps); the impacts are the
+``exit`` crossings. Impacts are placed in the angle domain (cage and
 shaft angles) and mapped to time through the speed profile, so a run-up keeps them at
 their kinematic orders; the resonance rings in time, at a fixed frequency.
 
@@ -71,7 +73,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, fields, replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numba import njit
@@ -111,11 +113,10 @@ class ImpulseParameters:
     contact_stiffness: float | None = None
 
     def __post_init__(self) -> None:
-        for f in fields(self):
-            value = getattr(self, f.name)
-            if value is None and f.name == "contact_stiffness":
-                continue
-            check_number(f.name, value, 0.0, lo_open=f.name != "shaft_mass")
+        check_number("housing_mass", self.housing_mass, 0.0, lo_open=True, unit="kg")
+        check_number("shaft_mass", self.shaft_mass, 0.0, unit="kg")
+        if self.contact_stiffness is not None:
+            check_number("contact_stiffness", self.contact_stiffness, 0.0, lo_open=True)
 
 
 def impact_amplitudes(scene: Scene, psi: np.ndarray, depth_m: np.ndarray,
@@ -257,8 +258,11 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
                      SR5Parameters(contact_stiffness=params.contact_stiffness),
                      resonator=False)
     n_samples = scene.n_samples
-    # sr5's event horizon (the end of its internal grid), so both list the same crossings
+    # sr5's event horizon (the end of its internal grid), so both list the same entries
+    # and exits; the ends of the edge ramps (columns 1, 2 of the levels) are sr5's
+    # business, not this model's: NaN levels are skipped by the crossing search
     t_end = (n_samples * OVERSAMPLE - 1) / (scene.fs * OVERSAMPLE)
+    bm.levels[:, 1:3] = np.nan
     before, _after, fault, elem, level = _events(bm, t_end)
     crossings_edge = _edge_names(bm, fault, level)
     # one impact per passage, where the element strikes the defect's trailing edge and
