@@ -306,7 +306,7 @@ class Bearing:
     def contact_curvature(self, race: str) -> tuple[float, float]:
         """Curvature sum and curvature difference of one ball-raceway contact.
 
-        Harris & Kotzalas [1]_ ch. 6 (seed 000 eqs. 7-8). With gamma = d cos(alpha)/d_p
+        Harris & Kotzalas [1] ch. 6 (seed 000 eqs. 7-8). With gamma = d cos(alpha)/d_p
         and f the groove conformity (groove radius / d), the principal curvatures are
         ball 2/d, 2/d; inner race 2/d * gamma/(1 - gamma) (rolling direction) and
         -1/(f d) (groove); outer race -2/d * gamma/(1 + gamma) and -1/(f d). Concave
@@ -437,7 +437,7 @@ class Bearing:
         psi_j = cage_angle + 360 j / Z and is compressed along its contact normal by
         delta_j = (x cos psi_j + y sin psi_j - c) cos(alpha), carrying
         Q_j = K max(delta_j, 0)^n (seed 001 eqs. 1, 11 with sin for the y term, 13-14;
-        Harris & Kotzalas [1]_ ch. 7). The equilibrium
+        Harris & Kotzalas [1] ch. 7). The equilibrium
         sum_j Q_j cos(alpha) (cos psi_j, sin psi_j) = (F_r, 0) is solved to machine
         precision with :func:`scipy.optimize.brentq`: the radial balance is monotone in
         x. When the layout is symmetric about the load line (an element on it, or two

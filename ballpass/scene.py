@@ -305,7 +305,7 @@ class Scene:
     >>> import ballpass as bp
     >>> s = bp.Scene(bearing="6205", rpm=1797, fault=bp.Fault("inner"), fs=48_000)
     >>> round(s.frequencies.bpfi, 2)
-    162.18
+    162.19
     """
 
     bearing: Bearing | str

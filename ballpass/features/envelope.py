@@ -105,7 +105,7 @@ def bandpass(x, fs: float, band, *, order: int = 4, axis: int = -1) -> np.ndarra
 def cepstrum_prewhiten(x, *, axis: int = -1) -> np.ndarray:
     """Cepstrum pre-whitening: keep the phase of the spectrum, set its magnitude to 1.
 
-    ``x_cpw = IFFT(X / |X|)`` (Borghesani et al. [2]_ eq. 3) removes the discrete
+    ``x_cpw = IFFT(X / |X|)`` (Borghesani et al. [2] eq. 3) removes the discrete
     components (shaft and gear harmonics) and the resonance colouring in one step, so
     that impulsive content stands out. It is equivalent to setting the real cepstrum to
     zero at all quefrencies but zero. Bins where ``X = 0`` stay 0. The output scale is
@@ -265,9 +265,9 @@ def envelope_spectrum(
         Demodulation band ``(lo, hi)`` in Hz; ``None`` (default) chooses it per signal
         with :func:`fast_kurtogram`. See :func:`envelope`.
     squared : bool, optional
-        Squared envelope (default True, the SES of Randall & Antoni [1]_).
+        Squared envelope (default True, the SES of Randall & Antoni [1]).
     prewhiten : bool, optional
-        Cepstrum pre-whitening [2]_ before filtering (default False). With
+        Cepstrum pre-whitening [2] before filtering (default False). With
         ``band=None`` the band is still chosen on the raw signal.
     window : str or tuple, optional
         Window for the spectrum, as :func:`scipy.signal.get_window` (default

@@ -37,17 +37,17 @@ def indicators(x, *, axis: int = -1) -> dict[str, np.ndarray]:
 
     With ``a = |x|`` and means over the samples:
 
-    ======================  =====================================  =================
-    ``rms``                 ``sqrt(mean(x^2))``                    unit of x
-    ``peak``                ``max(a)``                             unit of x
-    ``peak_to_peak``        ``max(x) - min(x)``                    unit of x
-    ``crest_factor``        ``peak / rms``                         sine: sqrt(2)
-    ``kurtosis``            ``mean((x-mu)^4) / sigma^4`` (Pearson)  Gaussian: 3
-    ``skewness``            ``mean((x-mu)^3) / sigma^3``           symmetric: 0
-    ``shape_factor``        ``rms / mean(a)``                      sine: pi/(2 sqrt 2)
-    ``impulse_factor``      ``peak / mean(a)``                     sine: pi/2
+    ======================  =======================================  =================
+    ``rms``                 ``sqrt(mean(x^2))``                      unit of x
+    ``peak``                ``max(a)``                               unit of x
+    ``peak_to_peak``        ``max(x) - min(x)``                      unit of x
+    ``crest_factor``        ``peak / rms``                           sine: sqrt(2)
+    ``kurtosis``            ``mean((x-mu)^4) / sigma^4`` (Pearson)    Gaussian: 3
+    ``skewness``            ``mean((x-mu)^3) / sigma^3``             symmetric: 0
+    ``shape_factor``        ``rms / mean(a)``                        sine: pi/(2 sqrt 2)
+    ``impulse_factor``      ``peak / mean(a)``                       sine: pi/2
     ``clearance_factor``    ``peak / mean(sqrt(a))^2``
-    ======================  =====================================  =================
+    ======================  =======================================  =================
 
     RMS and the peak values include any mean (DC) of ``x``; kurtosis and skewness are
     central moments (``scipy.stats``, biased estimators). An all-zero signal gives
