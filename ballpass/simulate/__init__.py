@@ -36,7 +36,7 @@ from ..scene import Scene  # noqa: E402
 from ._registry import Model  # noqa: E402
 from ._shared import OVERSAMPLE, SimulationUnstableError, check_solver_args  # noqa: E402
 from ._sr5_driver import SOLVERS, SR4, SR5, build, integrate  # noqa: E402
-from .impulse import IMPULSE  # noqa: E402
+from .impulse import IMPULSE, ImpulseParameters  # noqa: E402
 from .result import SimulationResult  # noqa: E402
 from .sr5 import BearingModel, SR5Parameters  # noqa: E402
 
@@ -54,6 +54,7 @@ __all__ = [
     "SimulationResult",
     "SimulationUnstableError",
     "SR5Parameters",
+    "ImpulseParameters",
     "BearingModel",
     "source_fingerprint",
     "work_precision",
