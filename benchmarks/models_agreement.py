@@ -128,7 +128,7 @@ def write(rows: list[dict], spectra: dict, duration: float) -> None:
         for kind, gk in g.groupby("kind", sort=False):
             ax.plot(gk["rpm"], gk["corr"], "o-", label=f"{kind} impulse vs sr5")
             ax.plot(gk["rpm"], gk["corr_sr5_other_seed"], "x:", color="grey")
-        ax.set_title(f"SES correlation, {config} (x: sr5 vs sr5 other seed)", fontsize=9)
+        ax.set_title(f"SES correlation, {config}\n(grey x: sr5 seed 0 vs seed 1)", fontsize=9)
         ax.set_xlabel("rpm")
         ax.set_ylim(0, 1.02)
         ax.legend(fontsize=7)
