@@ -65,8 +65,9 @@ bearing is silent.
 References: P. D. McFadden, J. D. Smith, "Model for the vibration produced by a single
 point defect in a rolling element bearing", J. Sound Vib. 96 (1984) 69-82; D. Ho,
 R. B. Randall, "Optimisation of bearing diagnostic techniques using simulated and
-actual bearing fault signals", MSSP 14 (2000) 763-788; G. D'Elia, M. Cocconcelli,
-E. Mucchi, M. Buzzoni, phenomenological simulators of rolling-element bearing faults.
+actual bearing fault signals", MSSP 14 (2000) 763-788; the phenomenological
+bearing-signal simulators of D'Elia, Cocconcelli, Buzzoni et al. (as cited by issue 10;
+none of their papers was at hand to check details against).
 """
 
 from __future__ import annotations
@@ -106,6 +107,16 @@ class ImpulseParameters:
     contact_stiffness : float or None
         Hertz load-deflection constant K of one element, N/m^n; None takes
         :meth:`ballpass.Bearing.hertz_stiffness`, as sr5 does.
+
+    Examples
+    --------
+    >>> import ballpass as bp
+    >>> scene = bp.Scene(bearing="6205", fault=bp.Fault("outer"), duration_s=0.05,
+    ...                  needs=("envelope",))
+    >>> light = bp.simulate(scene, params=bp.simulate.ImpulseParameters(housing_mass=3.0))
+    >>> heavy = bp.simulate(scene)                       # sr5's 6 kg pedestal
+    >>> round(float(abs(light.accel).max() / abs(heavy.accel).max()), 6)
+    2.0
     """
 
     housing_mass: float = SR5Parameters.pedestal_mass
@@ -329,8 +340,8 @@ IMPULSE = Model(
     solvers=("analytic",),
     fixed_step_solvers=(),
     reference="P. D. McFadden, J. D. Smith, J. Sound Vib. 96 (1984) 69-82; D. Ho, R. B. "
-              "Randall, MSSP 14 (2000) 763-788; phenomenological simulators of D'Elia, "
-              "Cocconcelli, Mucchi and Buzzoni (see ballpass.simulate.impulse)",
+              "Randall, MSSP 14 (2000) 763-788; the phenomenological simulators of "
+              "D'Elia, Cocconcelli, Buzzoni et al. (see ballpass.simulate.impulse)",
     accepts=_accepts,
     run=_run,
 )
