@@ -53,3 +53,27 @@ def check_number(name: str, value, lo: float = -math.inf, hi: float = math.inf, 
         allowed = (f"a finite number in {'(' if lo_open else '['}{lo:g}, {hi:g}"
                    f"{')' if hi_open else ']'}")
     raise ValueError(f"{name} must be {allowed}{where}, got {value!r}")
+
+
+#: Fewest samples a segment (a dataset row, a ``--segment`` piece) may hold: below this a
+#: spectrum, an envelope or a kurtosis estimate has nothing to work on.
+MIN_SEGMENT_SAMPLES = 64
+
+
+def check_segment(segment_s, fs: float, name: str = "segment_s") -> int:
+    """Samples per segment of ``segment_s`` seconds at ``fs`` Hz, at least 64.
+
+    Examples
+    --------
+    >>> check_segment(0.5, 12_000.0)
+    6000
+    """
+    if isinstance(segment_s, bool) or not isinstance(segment_s, numbers.Real) or not (
+            math.isfinite(segment_s) and segment_s > 0):
+        raise ValueError(f"{name} must be a finite number > 0 s, got {segment_s!r}")
+    length = round(segment_s * fs)
+    if length < MIN_SEGMENT_SAMPLES:
+        raise ValueError(f"{name} must give at least {MIN_SEGMENT_SAMPLES} samples per "
+                         f"segment (a spectrum needs them), got {segment_s!r} s x {fs:g} Hz "
+                         f"= {segment_s * fs:g}")
+    return length

@@ -31,6 +31,7 @@ References
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
 
@@ -151,10 +152,24 @@ class Bearing:
     source: str = field(default="user", compare=False)
 
     def __post_init__(self) -> None:
-        if not isinstance(self.n_elements, int) or isinstance(self.n_elements, bool):
-            raise TypeError(f"n_elements must be an int, got {type(self.n_elements).__name__}")
+        if not isinstance(self.n_elements, numbers.Integral) or isinstance(self.n_elements,
+                                                                           bool):
+            raise TypeError(f"n_elements must be an int, got "
+                            f"{type(self.n_elements).__name__} ({self.n_elements!r})")
         if self.n_elements < 3:
             raise ValueError(f"n_elements must be >= 3, got {self.n_elements}")
+        object.__setattr__(self, "n_elements", int(self.n_elements))
+        if not isinstance(self.name, str) or not self.name:
+            raise TypeError(f"name must be a non-empty str, got {self.name!r}")
+        # numbers first (a string '10' is a TypeError naming the argument, not a failed
+        # comparison), stored as floats
+        for arg in ("element_diameter_mm", "pitch_diameter_mm", "contact_angle_deg",
+                    "inner_conformity", "outer_conformity", "radial_clearance_mm",
+                    "youngs_modulus_pa", "poisson_ratio"):
+            object.__setattr__(self, arg, check_number(arg, getattr(self, arg)))
+        if self.roller_length_mm is not None:
+            object.__setattr__(self, "roller_length_mm",
+                               check_number("roller_length_mm", self.roller_length_mm))
         check_number("element_diameter_mm", self.element_diameter_mm, 0.0, lo_open=True)
         check_number("pitch_diameter_mm", self.pitch_diameter_mm, 0.0, lo_open=True)
         if self.element_diameter_mm >= self.pitch_diameter_mm:
@@ -605,6 +620,13 @@ _CATALOG: dict[str, dict] = {
         n_elements=11, element_diameter_mm=9.25, pitch_diameter_mm=43.5,
         element="roller", roller_length_mm=11.0, radial_clearance_mm=0.125,
         source="NJ 305, seed 003 section 2.1 (P_d = 0.25 mm diametral)",
+    ),
+    # The MFPT data set's test bearing (Bechhoefer, MFPT fault database, 2013): 8 elements
+    # of 0.235 in on a 1.245 in pitch circle, contact angle 0. Its geometry gives FTF
+    # 10.14 Hz at 25 Hz; the 14.8375 Hz stored in the data files contradicts their BPFO.
+    "MFPT-NICE": dict(
+        n_elements=8, element_diameter_mm=0.235 * 25.4, pitch_diameter_mm=1.245 * 25.4,
+        source="NICE bearing of the MFPT fault data set (0.235 in elements, 1.245 in pitch)",
     ),
 }
 

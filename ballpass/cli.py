@@ -10,6 +10,7 @@ from __future__ import annotations
 import argparse
 import importlib
 import sys
+import warnings
 
 #: subcommand name -> module under ballpass.commands
 SUBCOMMANDS = {
@@ -45,6 +46,11 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _one_line(message, category, filename, lineno, line=None) -> str:
+    """Warnings as one line on stderr, without the source line that raised them."""
+    return f"ballpass: warning: {message}\n"
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run the ``ballpass`` command; returns the process exit code."""
     parser = build_parser()
@@ -52,11 +58,38 @@ def main(argv: list[str] | None = None) -> int:
     if getattr(args, "func", None) is None:
         parser.print_help()
         return 2
+    previous, warnings.formatwarning = warnings.formatwarning, _one_line
     try:
         return int(args.func(args) or 0)
-    except (ValueError, TypeError, FileNotFoundError, FileExistsError, PermissionError) as exc:
-        print(f"ballpass {args.command}: error: {exc}", file=sys.stderr)
+    except (ValueError, TypeError, OSError, RuntimeError, MemoryError) as exc:
+        message = _message(exc)
+        if message is None:
+            raise  # a bug, not a bad input: keep the traceback
+        print(f"ballpass {args.command}: error: {message}", file=sys.stderr)
         return 2
+    finally:
+        warnings.formatwarning = previous
+
+
+def _message(exc: BaseException) -> str | None:
+    """One line saying what went wrong, or None for an error that is a bug."""
+    text = str(exc)
+    if isinstance(exc, RuntimeError):
+        if "no locator available" in text:  # numba cannot write its kernel cache
+            return ("numba cannot cache the compiled simulator kernels: neither the package "
+                    "folder nor the user cache folder is writable. Set NUMBA_CACHE_DIR to a "
+                    "writable folder, e.g. `export NUMBA_CACHE_DIR=/tmp/numba-cache`")
+        from .simulate._shared import SimulationUnstableError
+
+        if not isinstance(exc, SimulationUnstableError):
+            return None
+    if isinstance(exc, MemoryError):
+        text = "out of memory" + (f" ({text})" if text else "") + \
+            ": ask for less (shorter duration, lower fs, fewer rows)"
+    if isinstance(exc, OSError) and exc.filename is not None and exc.strerror:
+        text = f"{exc.filename}: {exc.strerror}"
+    lines = text.strip().splitlines() or [type(exc).__name__]
+    return lines[0] if len(lines) == 1 else f"{lines[0]} (...)"
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -27,6 +27,11 @@ __all__ = ["Fault", "Sensor", "SpeedProfile", "Scene", "wrap_deg"]
 FAULT_KINDS = ("outer", "inner", "ball")
 EDGE_PROFILES = ("ramped", "sharp")
 STANDARD_GRAVITY = 9.80665  # m/s^2
+#: Lowest structural resonance accepted, Hz. The resonances that bearing impacts excite
+#: and envelope analysis demodulates lie at kHz (Randall & Antoni, MSSP 25 (2011)
+#: 485-520, sec. 3); below 100 Hz a "resonance" sits among the shaft harmonics and the
+#: fault frequencies themselves, and carries no envelope.
+MIN_RESONANCE_HZ = 100.0
 
 
 def wrap_deg(angle: float) -> float:
@@ -278,7 +283,8 @@ class Scene:
         The cage keeps its mean speed. Default 0.01.
     resonance_hz : float, optional
         Frequency of the structure's high-frequency resonance seen by the sensors, Hz.
-        Must sit below 0.45 * fs. Default 15000 (Sawalhi & Randall).
+        In [100, 0.45 * fs] (see :data:`MIN_RESONANCE_HZ`). Default 15000 (Sawalhi &
+        Randall).
     resonance_damping : float, optional
         Damping ratio of that resonance, in (0, 1). Default 0.05.
     sensors : sequence of Sensor or str, optional
@@ -351,8 +357,8 @@ class Scene:
         if isinstance(self.seed, bool) or not isinstance(self.seed, int) or self.seed < 0:
             raise ValueError(f"seed must be an int >= 0, got {self.seed!r}")
         object.__setattr__(self, "slip", _number("slip", self.slip, 0.0, 0.1))
-        object.__setattr__(self, "resonance_hz",
-                           _number("resonance_hz", self.resonance_hz, 0.0, 1e6, lo_open=True))
+        object.__setattr__(self, "resonance_hz", _number("resonance_hz", self.resonance_hz,
+                                                         MIN_RESONANCE_HZ, 1e6))
         if self.resonance_hz > 0.45 * self.fs:
             raise ValueError(
                 f"resonance_hz={self.resonance_hz:g} lies above 0.45*fs = {0.45 * self.fs:g} Hz: "
@@ -405,6 +411,10 @@ class Scene:
                                _number("noise_rms", self.noise_rms, 0.0, 1e6))
         if not isinstance(self.gravity, bool):
             raise TypeError(f"gravity must be a bool, got {self.gravity!r}")
+        if self.radial_load_n == 0 and not self.gravity:
+            raise ValueError("radial_load_n=0 with gravity=False leaves the bearing without "
+                             "any load: no load zone and no static equilibrium. Give a "
+                             "radial_load_n > 0 N or keep gravity=True")
         object.__setattr__(self, "needs", tuple(sorted(check_needs(self.needs))))
 
     # ------------------------------------------------------------------ derived

@@ -31,14 +31,25 @@ Examples
 from __future__ import annotations
 
 import json
+import math
 import os
 import uuid
+import zipfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-__all__ = ["SUFFIXES", "SignalFile", "atomic_write", "read_signal", "write_signal"]
+__all__ = [
+    "SUFFIXES",
+    "SignalFile",
+    "atomic_write",
+    "atomic_write_many",
+    "check_output_path",
+    "read_signal",
+    "signal_writer",
+    "write_signal",
+]
 
 #: File extensions understood by :func:`read_signal` and :func:`write_signal`.
 SUFFIXES = (".npz", ".csv", ".parquet")
@@ -91,6 +102,70 @@ def _json_default(value):
     raise TypeError(f"meta values must be JSON-serialisable, got {type(value).__name__}")
 
 
+def check_output_path(path, *, option: str = "path", suffixes=None,
+                      folder: bool = False) -> Path:
+    """Check, before any work, that a file or folder can be written at ``path``.
+
+    Nothing is created: the nearest existing ancestor must be a folder in which a file
+    can be created (probed with a temporary file, removed at once), no file may stand
+    where a folder is needed, and ``path`` itself must not be a folder (for a file) or a
+    file (for a folder).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The output file or folder.
+    option : str, optional
+        Name of the option or argument, for the message (e.g. ``"--out"``).
+    suffixes : sequence of str, optional
+        Allowed file extensions (lower case, with the dot).
+    folder : bool, optional
+        ``path`` is a folder (created later) rather than a file.
+
+    Returns
+    -------
+    pathlib.Path
+
+    Raises
+    ------
+    ValueError
+        Wrong extension, a folder where a file is wanted or the reverse.
+    PermissionError
+        The folder cannot be written.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> check_output_path(pathlib.Path(tempfile.mkdtemp()) / "new" / "x.npz", option="--out",
+    ...                   suffixes=(".npz",)).name
+    'x.npz'
+    """
+    import tempfile
+
+    path = Path(path)
+    if not folder and suffixes is not None and path.suffix.lower() not in suffixes:
+        allowed = " or ".join([", ".join(suffixes[:-1]), suffixes[-1]] if len(suffixes) > 1
+                              else suffixes)
+        raise ValueError(f"{option} must end in {allowed}, got {str(path)!r}")
+    if folder and path.exists() and not path.is_dir():
+        raise ValueError(f"{option} {path} is a file, not a folder")
+    if not folder and path.is_dir():
+        raise ValueError(f"{option} {path} is a folder, not a file")
+    ancestor = path if folder and path.is_dir() else path.parent
+    while not ancestor.exists() and ancestor != ancestor.parent:
+        ancestor = ancestor.parent
+    if not ancestor.is_dir():
+        raise ValueError(f"{option} {path}: {ancestor} is a file, so no folder can be made "
+                         "there")
+    try:
+        with tempfile.TemporaryFile(dir=ancestor):
+            pass
+    except OSError as exc:
+        raise PermissionError(f"{option} {path}: cannot write in {ancestor} "
+                              f"({exc.strerror or exc})") from None
+    return path
+
+
 def atomic_write(path, write) -> None:
     """Write a file atomically: ``write(tmp_path)`` into the target folder, then rename.
 
@@ -100,20 +175,45 @@ def atomic_write(path, write) -> None:
         Final file name; parent folders are created.
     write : callable
         Called with the temporary :class:`pathlib.Path` to fill. If it raises, the
-        temporary file is removed and ``path`` is left as it was.
+        temporary file is removed, ``path`` is left as it was and the original error
+        propagates (an error while removing the temporary file never replaces it).
     """
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    # a unique hidden name beside the target (same file system, so the rename is
-    # atomic); created with the process umask, like any file the user writes
-    tmp = path.with_name(f".{path.name}.{uuid.uuid4().hex}.tmp")
+    atomic_write_many([(path, write)])
+
+
+def atomic_write_many(items) -> None:
+    """Write several files all or nothing: every temporary file first, then the renames.
+
+    Parameters
+    ----------
+    items : sequence of (path, write)
+        As for :func:`atomic_write`. If any ``write`` fails, no target is touched.
+    """
+    pending = []
     try:
-        write(tmp)
-        with open(tmp, "rb+") as fh:
-            os.fsync(fh.fileno())
-        os.replace(tmp, path)
-    finally:
-        tmp.unlink(missing_ok=True)
+        for path, write in items:
+            path = Path(path)
+            try:
+                path.parent.mkdir(parents=True, exist_ok=True)
+            except (FileExistsError, NotADirectoryError):
+                raise ValueError(f"cannot write {path}: a file stands where a folder of its "
+                                 "path should be") from None
+            # a unique hidden name beside the target (same file system, so the rename
+            # is atomic); created with the process umask, like any file the user writes
+            tmp = path.with_name(f".{path.name}.{uuid.uuid4().hex}.tmp")
+            pending.append((tmp, path))
+            write(tmp)
+            with open(tmp, "rb+") as fh:
+                os.fsync(fh.fileno())
+        for tmp, path in pending:
+            os.replace(tmp, path)
+    except BaseException:
+        for tmp, _ in pending:
+            try:
+                tmp.unlink(missing_ok=True)
+            except OSError:  # never mask the original error with the cleanup's own
+                pass
+        raise
 
 
 def write_signal(path, accel, fs: float, *, channels=None, meta=None) -> Path:
@@ -151,6 +251,17 @@ def write_signal(path, accel, fs: float, *, channels=None, meta=None) -> Path:
     >>> out = pathlib.Path(tempfile.mkdtemp()) / "sig.csv"
     >>> write_signal(out, np.ones(4), 1000.0).read_text().splitlines()[:3]
     ['# fs=1000.0', '# meta={}', 't_s,accel']
+    """
+    path = Path(path)
+    atomic_write(path, signal_writer(path, accel, fs, channels=channels, meta=meta))
+    return path
+
+
+def signal_writer(path, accel, fs: float, *, channels=None, meta=None):
+    """Validate a signal and return ``write(tmp_path)`` that writes it in ``path``'s format.
+
+    For :func:`atomic_write_many` (a signal and its figure, all or nothing); the
+    arguments are those of :func:`write_signal`, checked here before anything is written.
     """
     from .features._validation import check_fs
 
@@ -212,8 +323,7 @@ def write_signal(path, accel, fs: float, *, channels=None, meta=None) -> Path:
             table = pa.table(columns).replace_schema_metadata({_ARROW_KEY: info.encode()})
             pq.write_table(table, tmp)
 
-    atomic_write(path, write)
-    return path
+    return write
 
 
 def _fs_from_time(t: np.ndarray, path: Path) -> float:
@@ -254,6 +364,30 @@ def read_signal(path) -> SignalFile:
     suffix = _suffix(path)
     if not path.is_file():
         raise FileNotFoundError(f"no such signal file: {path}")
+    try:
+        sig = _read(path, suffix)
+    except (ValueError, TypeError, KeyError, OSError, EOFError, zipfile.BadZipFile) as exc:
+        if isinstance(exc, ValueError) and str(exc).startswith(f"{path.name}:"):
+            raise  # already says what is wrong
+        reason = str(exc).splitlines()[0][:120] if str(exc) else type(exc).__name__
+        if "pickle" in reason:  # numpy's advice about allow_pickle does not apply here
+            reason = "not a NumPy .npz archive"
+        raise ValueError(f"{path.name}: not a readable {suffix} signal file ({reason})") \
+            from None
+    dtype = sig.accel.dtype
+    if dtype.kind == "c":
+        raise TypeError(f"{path.name}: the signal is complex ({dtype}); a vibration signal "
+                        "is real: store its real part")
+    if dtype.kind not in "fiu" or sig.accel.ndim != 2 or sig.accel.shape[1] == 0:
+        raise ValueError(f"{path.name}: accel must be a real numeric (n_channels, n_samples) "
+                         f"array, got dtype {dtype} and shape {sig.accel.shape}")
+    if not (math.isfinite(sig.fs) and sig.fs > 0):
+        raise ValueError(f"{path.name}: fs must be a finite number > 0 Hz, got {sig.fs!r}")
+    return sig
+
+
+def _read(path: Path, suffix: str) -> SignalFile:
+    """The contents of a signal file, unchecked (see :func:`read_signal`)."""
     if suffix == ".npz":
         with np.load(path, allow_pickle=False) as archive:
             missing = {"accel", "fs"} - set(archive.files)

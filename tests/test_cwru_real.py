@@ -94,12 +94,12 @@ def write_mat(folder, name, record=130, n=6000, rpm=1796, with_fe=True, value=0.
 
 
 def test_load_cwru_mat_converts_g_and_parses_the_name(tmp_path):
-    path = write_mat(tmp_path, "12k_DE_OR021@6_2")
+    path = write_mat(tmp_path, "12k_DE_OR021@6_2", record=236, rpm=1750)
     rec = load_cwru_mat(path)
     np.testing.assert_allclose(rec.accel, 0.5 * np.sin(np.arange(6000) / 5.0) * 9.80665)
     assert (rec.fs, rec.rpm, rec.label, rec.fault_end, rec.load_hp) == (
         12_000.0,
-        1796.0,
+        1750.0,
         "outer",
         "DE",
         2,
@@ -112,22 +112,22 @@ def test_load_cwru_mat_converts_g_and_parses_the_name(tmp_path):
 
 
 @pytest.mark.parametrize(
-    ("name", "fs", "label"),
+    ("name", "record", "rpm", "fs", "label"),
     [
-        ("Normal_0_48k", 48_000.0, "healthy"),
-        ("Normal_1", 48_000.0, "healthy"),
-        ("48k_DE_IR007_0", 48_000.0, "inner"),
-        ("12k_FE_B014_3", 12_000.0, "ball"),
-        ("97", 48_000.0, "healthy"),
+        ("Normal_0_48k", 97, 1796, 48_000.0, "healthy"),
+        ("Normal_1", 98, 1772, 48_000.0, "healthy"),
+        ("48k_DE_IR007_0", 109, 1797, 48_000.0, "inner"),
+        ("12k_FE_B014_3", 289, 1730, 12_000.0, "ball"),
+        ("97", 97, 1796, 48_000.0, "healthy"),
     ],
 )
-def test_sampling_rate_from_the_name(tmp_path, name, fs, label):
-    rec = load_cwru_mat(write_mat(tmp_path, name))
+def test_sampling_rate_from_the_name(tmp_path, name, record, rpm, fs, label):
+    rec = load_cwru_mat(write_mat(tmp_path, name, record=record, rpm=rpm))
     assert (rec.fs, rec.label) == (fs, label)
 
 
 def test_loader_errors_and_warnings(tmp_path):
-    odd = write_mat(tmp_path, "my_recording")
+    odd = write_mat(tmp_path, "my_recording", record=999)
     with pytest.raises(ValueError, match="cannot infer fs"):
         load_cwru_mat(odd)
     assert load_cwru_mat(odd, fs=12_000.0).label == "unknown"
@@ -136,7 +136,7 @@ def test_loader_errors_and_warnings(tmp_path):
     with pytest.raises(ValueError, match="^channel"):
         load_cwru_mat(odd, channel="XX", fs=12_000.0)
     with pytest.warns(UserWarning, match="says 48000 Hz"):
-        load_cwru_mat(write_mat(tmp_path, "Normal_0"), fs=12_000.0)
+        load_cwru_mat(write_mat(tmp_path, "Normal_0", record=97), fs=12_000.0)
     with pytest.raises(FileNotFoundError):
         load_cwru_mat(tmp_path / "missing.mat")
 

@@ -1,9 +1,19 @@
 """Signal files: npz / csv / parquet round trips, atomic writes, validation."""
 
+import os
+from pathlib import Path
+
 import numpy as np
 import pytest
 
-from ballpass.signalio import SUFFIXES, read_signal, write_signal
+from ballpass.signalio import (
+    SUFFIXES,
+    atomic_write,
+    atomic_write_many,
+    check_output_path,
+    read_signal,
+    write_signal,
+)
 
 
 @pytest.mark.parametrize("suffix", SUFFIXES)
@@ -102,3 +112,69 @@ def test_read_errors(tmp_path):
     np.savez(tmp_path / "other.npz", data=np.ones(3))
     with pytest.raises(ValueError, match="not a ballpass"):
         read_signal(tmp_path / "other.npz")
+
+
+def test_unreadable_files_are_clear_errors(tmp_path):
+    """A text file named .npz (numpy would talk about allow_pickle), a truncated
+    archive, a complex signal (numpy would drop the imaginary part with a warning)."""
+    (tmp_path / "text.npz").write_text("hello")
+    with pytest.raises(ValueError, match=r"^text\.npz: .*not a NumPy \.npz archive"):
+        read_signal(tmp_path / "text.npz")
+    good = write_signal(tmp_path / "good.npz", np.ones(1000), 10.0).read_bytes()
+    (tmp_path / "cut.npz").write_bytes(good[: len(good) // 2])
+    with pytest.raises(ValueError, match=r"^cut\.npz: not a readable \.npz"):
+        read_signal(tmp_path / "cut.npz")
+    np.savez(tmp_path / "c.npz", accel=np.ones((1, 5)) * 1j, fs=10.0)
+    with pytest.raises(TypeError, match="complex"):
+        read_signal(tmp_path / "c.npz")
+    (tmp_path / "junk.parquet").write_bytes(b"PAR1 junk")
+    with pytest.raises(ValueError, match=r"^junk\.parquet: not a readable"):
+        read_signal(tmp_path / "junk.parquet")
+
+
+def test_atomic_write_reraises_the_original_error_even_if_cleanup_fails(tmp_path,
+                                                                        monkeypatch):
+    """The cleanup's own error (here: the temporary file cannot be removed) must not
+    replace the error that made the write fail."""
+    def fail(tmp):
+        tmp.write_text("half")
+        raise KeyError("the original")
+
+    def unlink(self, missing_ok=False):
+        raise PermissionError("cleanup failed too")
+
+    monkeypatch.setattr(Path, "unlink", unlink)
+    with pytest.raises(KeyError, match="the original"):
+        atomic_write(tmp_path / "x.csv", fail)
+    assert not (tmp_path / "x.csv").exists()
+
+
+def test_atomic_write_many_is_all_or_nothing(tmp_path):
+    old = write_signal(tmp_path / "a.npz", np.ones(4), 10.0)
+
+    def broken(tmp):
+        raise OSError("disk full")
+
+    with pytest.raises(OSError, match="disk full"):
+        atomic_write_many([(old, lambda tmp: tmp.write_bytes(b"new")),
+                           (tmp_path / "b.png", broken)])
+    assert read_signal(old).accel.sum() == 4.0 and sorted(os.listdir(tmp_path)) == ["a.npz"]
+
+
+def test_check_output_path(tmp_path):
+    (tmp_path / "afile").write_text("x")
+    (tmp_path / "d.csv").mkdir()
+    ok = check_output_path(tmp_path / "new" / "deeper" / "t.csv", suffixes=(".csv",))
+    assert ok.name == "t.csv" and not (tmp_path / "new").exists()  # nothing created
+    cases = [
+        (dict(path=tmp_path / "afile" / "t.csv"), ValueError, "afile is a file"),
+        (dict(path=tmp_path / "t.txt", suffixes=(".csv", ".parquet")), ValueError,
+         r"must end in \.csv or \.parquet"),
+        (dict(path=tmp_path / "d.csv"), ValueError, "is a folder, not a file"),
+        (dict(path=tmp_path / "afile", folder=True), ValueError, "is a file, not a folder"),
+        (dict(path=Path("/proc/ballpass-test/t.csv")), PermissionError, "cannot write in"),
+    ]
+    for kwargs, error, match in cases:
+        with pytest.raises(error, match=match):
+            check_output_path(option="--out", **kwargs)
+    assert sorted(os.listdir(tmp_path)) == ["afile", "d.csv"]

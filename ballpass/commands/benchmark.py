@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+from pathlib import Path
 
 EXAMPLE = """\
 examples:
@@ -23,6 +24,7 @@ def _names(text: str) -> list[str]:
 def add_parser(subparsers) -> None:
     """Register the ``benchmark`` subcommand."""
     from ..diagnose._names import FEATURE_SETS, MODELS, SPLITS
+    from .features import add_quiet_argument
 
     p = subparsers.add_parser(
         "benchmark",
@@ -38,8 +40,11 @@ def add_parser(subparsers) -> None:
     p.add_argument("dataset", metavar="DATASET", help="dataset folder (ballpass generate)")
     p.add_argument("--out", metavar="DIR", required=True, help="report folder (created)")
     p.add_argument("--real", metavar="DIR",
-                   help="folder of CWRU .mat recordings: adds the sim2real split (train on "
-                        "DATASET, test on them, cut into segments as long as DATASET's rows)")
+                   help="folder of CWRU or MFPT .mat recordings: adds the sim2real split "
+                        "(train on DATASET, test on them, resampled to DATASET's fs and cut "
+                        "into segments as long as DATASET's rows)")
+    p.add_argument("--channel", default="DE", choices=["DE", "FE", "BA"],
+                   help="accelerometer of CWRU recordings for --real (default DE)")
     p.add_argument("--splits", type=_names, metavar="A,B",
                    help=f"comma-separated subset of {','.join(SPLITS)} (default: all the "
                         "data can form)")
@@ -52,24 +57,45 @@ def add_parser(subparsers) -> None:
     p.add_argument("--folds", type=int, default=5, metavar="K",
                    help="folds of the k-fold splits (default 5)")
     p.add_argument("--seed", type=int, default=0, help="shuffling and model seed (default 0)")
+    add_quiet_argument(p)
     p.set_defaults(func=run)
+
+
+def _check_real_rpm(meta) -> None:
+    """Refuse real recordings without a speed, naming the files."""
+    missing = sorted(meta.loc[~(meta["rpm"].astype(float) > 0), "group"].unique())
+    if missing:
+        raise ValueError(f"no shaft speed for {len(missing)} real recording(s) "
+                         f"({', '.join(missing[:5])}{', ...' if len(missing) > 5 else ''}): "
+                         "name them with their motor load (e.g. 12k_DE_IR028_2.mat) or "
+                         "store the speed in the file")
 
 
 def run(args) -> int:
     """Run ``ballpass benchmark``; returns the exit code."""
     import pandas as pd
 
-    from ..datasets import load, load_cwru
+    from ..datasets import load
+    from ..datasets.real import load_real
     from ..diagnose import run_benchmark, write_report
+    from ._output import check_output_path, show_progress
 
+    check_output_path(args.out, option="--out", folder=True)
+    if args.real is not None and not Path(args.real).exists():
+        raise FileNotFoundError(f"--real: no such file or folder: {args.real}")
     X, meta = load(args.dataset)
     real = None
     if args.real is not None:
-        fs = float(meta["fs"].iloc[0])
-        real = load_cwru(args.real, fs=fs, segment_s=X.shape[1] / fs)
+        rates = sorted(meta["fs"].unique())
+        if len(rates) != 1:
+            raise ValueError(f"{args.dataset} mixes sampling rates {rates} Hz; benchmark "
+                             "needs one rate")
+        fs = float(rates[0])
+        real = load_real(args.real, fs=fs, segment_s=X.shape[1] / fs, channel=args.channel)
+        _check_real_rpm(real[1])
     result = run_benchmark(X, meta, real=real, splits=args.splits, models=args.models,
                            features=args.features, n_splits=args.folds,
-                           random_state=args.seed)
+                           random_state=args.seed, progress=show_progress(args))
     paths = write_report(result, args.out)
     with pd.option_context("display.width", 140, "display.max_rows", 200):
         print(result.table.drop(columns="optimistic").round(3).to_string(index=False))

@@ -17,13 +17,17 @@ examples:
 inputs:
   .npz/.csv/.parquet  signal files written by `ballpass simulate` (one row per channel;
                       --bearing/--rpm default to the file's metadata)
-  .mat                CWRU Bearing Data Center files. Values are stored in g and are
-                      converted to m/s^2 (x 9.80665). fs comes from the file name: 12k_*
-                      files are 12 kHz, 48k_* files AND the normal baseline (Normal_*,
-                      records 97-100) are 48 kHz -- not 12 kHz; pass --fs when a name does
-                      not tell. rpm comes from the file; the bearing defaults to the rig's
-                      (DE: 6205, FE: 6203).
-  DIR                 a dataset folder with manifest.json (`ballpass generate`)
+  .mat                CWRU Bearing Data Center or MFPT files (told apart by content).
+                      Values are stored in g and are converted to m/s^2 (x 9.80665).
+                      CWRU: fs comes from the file name or record number: 12k_* files
+                      are 12 kHz, 48k_* files AND the normal baseline (Normal_*, records
+                      97-100) are 48 kHz -- not 12 kHz; pass --fs when neither tells. rpm
+                      comes from the file, else from the motor load (rpm_source says
+                      which); the bearing defaults to the rig's (DE: 6205, FE: 6203).
+                      MFPT: fs, rpm and load from the file's `bearing` struct; bearing
+                      MFPT-NICE.
+  DIR                 a dataset folder with manifest.json (`ballpass generate`), or a
+                      folder of .mat recordings (unreadable ones skipped with a warning)
 
 columns: source, channel, segment, start_s, fs, bearing, rpm, label (when known), the
 demodulation band chosen by the kurtogram (band_lo_hz, band_hi_hz, kurtogram_sk), the
@@ -61,7 +65,8 @@ def add_input_arguments(p: argparse.ArgumentParser) -> None:
         "inputs",
         nargs="+",
         metavar="INPUT",
-        help="signal file (.npz/.csv/.parquet), CWRU .mat file or dataset folder",
+        help="signal file (.npz/.csv/.parquet), CWRU/MFPT .mat file, folder of .mat files "
+        "or dataset folder",
     )
     p.add_argument(
         "--fs",
@@ -123,6 +128,7 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
         metavar="DIR",
         help="also draw one overview figure (PNG) per signal into DIR",
     )
+    add_quiet_argument(p)
     p.set_defaults(func=run)
     return p
 
@@ -151,20 +157,21 @@ def _from_signal_file(path: Path, args) -> list[Signal]:
     ]
 
 
-def _from_mat(path: Path, args) -> list[Signal]:
-    from ..datasets.real import load_cwru_mat
+#: Columns of a real recording's metadata copied into the feature table.
+_MAT_COLUMNS = ("channel", "label", "fault_width_mm", "fault_angle_deg", "load_hp", "load_lbs",
+                "rpm_source", "rpm_mismatch")
 
-    rec = load_cwru_mat(path, channel=args.channel, fs=args.fs)
-    columns = {
-        "channel": rec.channel,
-        "label": rec.label,
-        "fault_width_mm": rec.fault_width_mm,
-        "load_hp": rec.load_hp,
-    }
+
+def _from_mat(path: Path, args) -> list[Signal]:
+    from ..datasets.real import read_mat
+
+    rec = read_mat(path, channel=args.channel, fs=args.fs)
+    meta = rec.columns()
+    columns = {k: meta[k] for k in _MAT_COLUMNS if k in meta}
     rpm = args.rpm if args.rpm is not None else rec.rpm
     return [
         Signal(
-            f"{path.stem}_{rec.channel}",
+            f"{path.stem}_{meta['channel']}",
             rec.accel,
             rec.fs,
             args.bearing or rec.bearing,
@@ -172,6 +179,19 @@ def _from_mat(path: Path, args) -> list[Signal]:
             columns,
         )
     ]
+
+
+def _from_mat_folder(folder: Path, args) -> list[Signal]:
+    """Every readable .mat file of a folder of real recordings (others skipped, warned)."""
+    from ..datasets.real import read_all
+
+    if not any(folder.glob("*.mat")):
+        raise ValueError(f"{folder} is a folder without manifest.json or .mat files: "
+                         "neither a dataset nor a folder of recordings")
+    found = read_all(folder, lambda p: _from_mat(p, args))
+    if not found:
+        raise ValueError(f"{folder}: none of its .mat files could be read")
+    return [sig for _, signals in found for sig in signals]
 
 
 def _from_dataset(folder: Path, args) -> list[Signal]:
@@ -212,10 +232,10 @@ def load_inputs(args) -> list[Signal]:
     signals: list[Signal] = []
     for raw in args.inputs:
         path = Path(raw)
-        if path.is_dir():
-            if not (path / "manifest.json").is_file():
-                raise ValueError(f"{path} is a folder without manifest.json: not a dataset")
+        if path.is_dir() and (path / "manifest.json").is_file():
             signals += _from_dataset(path, args)
+        elif path.is_dir():
+            signals += _from_mat_folder(path, args)
         elif not path.exists():
             raise FileNotFoundError(f"no such file or folder: {path}")
         elif path.suffix.lower() == ".mat":
@@ -229,11 +249,11 @@ def load_inputs(args) -> list[Signal]:
             )
     if args.segment is None:
         return signals
-    if not args.segment > 0:
-        raise ValueError(f"--segment must be > 0 s, got {args.segment}")
+    from .._validation import check_segment
+
     out = []
     for sig in signals:
-        length = round(args.segment * sig.fs)
+        length = check_segment(args.segment, sig.fs, "--segment")
         n = len(sig.x) // length
         if n == 0:
             raise ValueError(f"{sig.name}: shorter than one --segment of {args.segment} s")
@@ -247,6 +267,8 @@ def load_inputs(args) -> list[Signal]:
 
 def feature_rows(signals: list[Signal], band=None, progress: bool = True) -> list[dict]:
     """One dict of columns per signal: identity, kurtogram band, indicators, fault bands."""
+    import sys
+
     import numpy as np
     from tqdm import tqdm
 
@@ -254,7 +276,8 @@ def feature_rows(signals: list[Signal], band=None, progress: bool = True) -> lis
     from ..features._validation import check_band
 
     rows = []
-    for sig in tqdm(signals, desc="features", unit="signal", disable=not progress, leave=False):
+    for sig in tqdm(signals, desc="features", unit="signal", disable=not progress,
+                    leave=False, file=sys.stderr):
         x = np.asarray(sig.x, dtype=np.float64)
         kg = F.fast_kurtogram(x, sig.fs)
         lo, hi = check_band(band, sig.fs) if band is not None else kg.best_band
@@ -279,25 +302,36 @@ def feature_rows(signals: list[Signal], band=None, progress: bool = True) -> lis
     return rows
 
 
+TABLE_SUFFIXES = (".csv", ".parquet")
+
+
+def add_quiet_argument(p: argparse.ArgumentParser) -> None:
+    """``--quiet``: no progress bar (it is shown on stderr only when that is a terminal)."""
+    p.add_argument("--quiet", "-q", "--no-progress", dest="quiet", action="store_true",
+                   help="hide the progress bar (shown on stderr when it is a terminal)")
+
+
 def _write_table(frame, out: Path) -> None:
     from ..signalio import atomic_write
 
-    suffix = out.suffix.lower()
-    if suffix == ".csv":
+    if out.suffix.lower() == ".csv":
         atomic_write(out, lambda tmp: frame.to_csv(tmp, index=False))
-    elif suffix == ".parquet":
-        atomic_write(out, lambda tmp: frame.to_parquet(tmp, index=False))
     else:
-        raise ValueError(f"--out must end in .csv or .parquet, got {out.name!r}")
+        atomic_write(out, lambda tmp: frame.to_parquet(tmp, index=False))
 
 
-def plot_signals(signals: list[Signal], folder: Path, band=None) -> list[Path]:
-    """One overview PNG per signal in ``folder``; returns the paths."""
+def plot_signals(signals: list[Signal], folder: Path, band=None, names=None) -> list[Path]:
+    """One overview PNG per signal in ``folder`` (each written atomically); the paths.
+
+    ``names`` are the file stems (default: the signals' names).
+    """
     from ..features.bands import as_bearing
     from ..plot import signal_overview
+    from ..signalio import atomic_write
+    from ._output import figure_writer
 
     paths = []
-    for sig in signals:
+    for sig, stem in zip(signals, names or [s.name for s in signals], strict=True):
         known = _known(sig.bearing) and _known(sig.rpm)
         bearing = as_bearing(sig.bearing) if known else None
         shaft_hz = float(sig.rpm) / 60.0 if known else None
@@ -305,10 +339,11 @@ def plot_signals(signals: list[Signal], folder: Path, band=None) -> list[Path]:
         title = " · ".join(
             str(p) for p in (sig.name, label, f"{sig.rpm:g} rpm" if known else None) if p
         )
-        path = folder / f"{sig.name}.png"
+        path = folder / f"{stem}.png"
         fig = signal_overview(
-            sig.x, sig.fs, bearing=bearing, shaft_hz=shaft_hz, path=path, band=band, title=title
+            sig.x, sig.fs, bearing=bearing, shaft_hz=shaft_hz, band=band, title=title
         )
+        atomic_write(path, figure_writer(fig, path))
         fig.clear()
         paths.append(path)
     return paths
@@ -320,15 +355,21 @@ def run(args) -> int:
 
     import pandas as pd
 
+    from ._output import check_output_path, show_progress
+
+    out = None if args.out is None else check_output_path(
+        args.out, option="--out", suffixes=TABLE_SUFFIXES)
+    plots = None if args.plot is None else check_output_path(
+        args.plot, option="--plot", folder=True)
     signals = load_inputs(args)
     band = tuple(args.band) if args.band is not None else None
-    frame = pd.DataFrame(feature_rows(signals, band, progress=sys.stderr.isatty()))
-    if args.out is None:
+    frame = pd.DataFrame(feature_rows(signals, band, progress=show_progress(args)))
+    if plots is not None:  # figures first: the table appears only once they all exist
+        paths = plot_signals(signals, plots, band)
+        print(f"{len(paths)} figure(s) -> {plots}", file=sys.stderr if out is None else None)
+    if out is None:
         frame.to_csv(sys.stdout, index=False)
     else:
-        _write_table(frame, Path(args.out))
-        print(f"{len(frame)} signal(s) x {frame.shape[1]} columns -> {args.out}")
-    if args.plot is not None:
-        paths = plot_signals(signals, Path(args.plot), band)
-        print(f"{len(paths)} figure(s) -> {args.plot}")
+        _write_table(frame, out)
+        print(f"{len(frame)} signal(s) x {frame.shape[1]} columns -> {out}")
     return 0

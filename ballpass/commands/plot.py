@@ -52,21 +52,23 @@ def run(args) -> int:
     """Draw the figures; returns the exit code."""
     from pathlib import Path
 
+    from ._output import check_output_path
     from .features import load_inputs, plot_signals
 
     if args.max_figures < 1:
         raise ValueError(f"--max-figures must be >= 1, got {args.max_figures}")
+    out = Path(args.out)
+    single = out.suffix.lower() == ".png"
+    check_output_path(out, option="--out", suffixes=(".png",), folder=not single)
     signals = load_inputs(args)
     band = tuple(args.band) if args.band is not None else None
-    out = Path(args.out)
-    if out.suffix.lower() == ".png":
+    if single:
         if len(signals) != 1:
             raise ValueError(
                 f"--out {out.name} names one figure but the inputs hold "
                 f"{len(signals)} signals; give a folder"
             )
-        path = plot_signals(signals, out.parent, band)[0]
-        path.replace(out)
+        plot_signals(signals, out.parent, band, names=[out.stem])
         print(f"figure -> {out}")
         return 0
     shown = signals[: args.max_figures]

@@ -86,13 +86,23 @@ def scene_from_args(args):
 
 
 def run(args) -> int:
-    """Simulate, write the signal file and, with ``--plot``, the overview figure."""
+    """Simulate, write the signal file and, with ``--plot``, the overview figure.
+
+    Both output paths are checked before the simulation; the signal and the figure are
+    written all or nothing.
+    """
     import dataclasses
 
     import ballpass as bp
-    from ballpass.signalio import write_signal
+    from ballpass.signalio import SUFFIXES, atomic_write_many, signal_writer
 
+    from ._output import FIGURE_SUFFIXES, check_output_path, compile_notice, figure_writer
+
+    out = check_output_path(args.out, option="--out", suffixes=SUFFIXES)
+    plot = None if args.plot is None else check_output_path(
+        args.plot, option="--plot", suffixes=FIGURE_SUFFIXES)
     scene = scene_from_args(args)
+    compile_notice()
     res = bp.simulate(scene, model=args.model, solver=args.solver, dt=args.dt, rtol=args.rtol)
     freqs = res.truth.frequencies
     meta = {
@@ -103,21 +113,24 @@ def run(args) -> int:
         "frequencies_hz": freqs.as_dict(),
         "info": res.info,
     }
-    path = write_signal(args.out, res.accel, res.fs, channels=list(res.sensor_names), meta=meta)
-    info = res.info
-    print(f"{res.truth.label}: {len(res.t)} samples x {len(res.sensor_names)} sensor(s) at "
-          f"{res.fs:g} Hz, model {info['model']}, solver {info['solver']}, "
-          f"{info['n_steps']} steps in {info['wall_time_s']:.2f} s -> {path}")
-    print("defect frequencies (Hz): " + ", ".join(
-        f"{k} {v:.2f}" for k, v in freqs.as_dict().items()))
-    if args.plot:
+    writes = [(out, signal_writer(out, res.accel, res.fs, channels=list(res.sensor_names),
+                                  meta=meta))]
+    if plot is not None:
         from ballpass.plot import signal_overview
 
         title = (f"{scene.bearing.name} {res.truth.label} at {scene.speed.mean_rpm:g} rpm, "
                  f"{scene.radial_load_n:g} N")
-        signal_overview(res.accel, res.fs, bearing=scene.bearing, shaft_hz=scene.shaft_hz,
-                        path=args.plot, channels=list(res.sensor_names), title=title,
-                        band=scene.demodulation_band)
-        print(f"plot -> {args.plot}")
+        fig = signal_overview(res.accel, res.fs, bearing=scene.bearing,
+                              shaft_hz=scene.shaft_hz, channels=list(res.sensor_names),
+                              title=title, band=scene.demodulation_band)
+        writes.append((plot, figure_writer(fig, plot)))
+    atomic_write_many(writes)
+    info = res.info
+    print(f"{res.truth.label}: {len(res.t)} samples x {len(res.sensor_names)} sensor(s) at "
+          f"{res.fs:g} Hz, model {info['model']}, solver {info['solver']}, "
+          f"{info['n_steps']} steps in {info['wall_time_s']:.2f} s -> {out}")
+    print("defect frequencies (Hz): " + ", ".join(
+        f"{k} {v:.2f}" for k, v in freqs.as_dict().items()))
+    if plot is not None:
+        print(f"plot -> {plot}")
     return 0
-

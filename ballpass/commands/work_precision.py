@@ -58,6 +58,7 @@ def run(args) -> int:
     import matplotlib.pyplot as plt
     import pandas as pd
 
+    from ballpass.signalio import atomic_write_many
     from ballpass.simulate.work_precision import (
         SCIPY_METHODS,
         plot_work_precision,
@@ -65,7 +66,15 @@ def run(args) -> int:
         work_precision,
     )
 
+    from ._output import FIGURE_SUFFIXES, check_output_path, compile_notice, figure_writer
+
+    csv = None if args.csv is None else check_output_path(args.csv, option="--csv",
+                                                           suffixes=(".csv",))
+    plot = check_output_path(args.plot, option="--plot", suffixes=FIGURE_SUFFIXES)
+    if args.repeats < 1:
+        raise ValueError(f"--repeats must be an int >= 1, got {args.repeats}")
     scene = scene_from_args(args).replace(snr_db=None)
+    compile_notice()
     methods = () if args.no_scipy else tuple(args.scipy or SCIPY_METHODS)
     table = work_precision(scene, model=args.model, scipy_methods=methods, repeats=args.repeats,
                     scipy_time_limit=args.scipy_time_limit, progress=True)
@@ -76,14 +85,16 @@ def run(args) -> int:
         if methods:
             print(f"\nspeed-up over the fastest scipy method at equal {args.error}:")
             print(speedup(table, error=args.error).to_string())
-    if args.csv:
-        table.to_csv(args.csv, index=False)
-        print(f"table -> {args.csv}")
     title = (f"{scene.bearing.name} {scene.label} at {scene.speed.mean_rpm:g} rpm, "
              f"{scene.duration_s:g} s at {scene.fs:g} Hz")
     ax = plot_work_precision(table, error=args.error, title=title)
     ax.figure.tight_layout()
-    ax.figure.savefig(args.plot, dpi=120)
+    writes = [(plot, figure_writer(ax.figure, plot))]
+    if csv is not None:
+        writes.append((csv, lambda tmp: table.to_csv(tmp, index=False)))
+    atomic_write_many(writes)
     plt.close(ax.figure)
-    print(f"plot -> {args.plot}")
+    if csv is not None:
+        print(f"table -> {csv}")
+    print(f"plot -> {plot}")
     return 0

@@ -14,6 +14,7 @@ Real recordings
 ---------------
 load_cwru     Case Western Reserve University bearing data (.mat) in the same shape
 load_cwru_mat one CWRU .mat recording
+load_mfpt     the MFPT (Society for Machinery Failure Prevention Technology) bearing data
 
 Importing this package loads numpy only; numba, pyarrow and pandas load on first use.
 """
@@ -39,12 +40,15 @@ __all__ = [
     "info",
     "load_cwru",
     "load_cwru_mat",
+    "load_mfpt",
 ]
 
 
 def __getattr__(name: str):
     if name in ("load_cwru", "load_cwru_mat"):  # scipy.io loads only for real recordings
         return getattr(importlib.import_module(".real", __name__), name)
+    if name == "load_mfpt":
+        return getattr(importlib.import_module(".mfpt", __name__), name)
     raise AttributeError(f"module 'ballpass.datasets' has no attribute {name!r}")
 
 

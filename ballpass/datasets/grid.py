@@ -38,6 +38,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .._validation import check_segment
 from ..phenomena import check_needs
 from ..scene import Fault, Scene, Sensor
 
@@ -187,6 +188,8 @@ def _dataset_settings(raw: dict) -> dict:
     if out["segment_s"] is not None and out["segment_s"] > out["duration_s"]:
         raise ValueError(f"dataset.segment_s={out['segment_s']:g} s is longer than "
                          f"dataset.duration_s={out['duration_s']:g} s")
+    if out["segment_s"] is not None:
+        check_segment(out["segment_s"], out["fs"], "dataset.segment_s")
     return {k: v for k, v in out.items() if v is not None}
 
 

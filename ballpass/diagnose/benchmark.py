@@ -29,6 +29,7 @@ healthy training rows of each fold (:meth:`~ballpass.diagnose.EnvelopeDiagnoser.
 
 from __future__ import annotations
 
+import sys
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -37,6 +38,7 @@ import sklearn
 from sklearn.base import clone
 from sklearn.metrics import accuracy_score, confusion_matrix, f1_score, recall_score
 from sklearn.model_selection import StratifiedGroupKFold, StratifiedKFold
+from tqdm.auto import tqdm
 
 from ._names import LABELS, MODELS, SPLITS
 from .pipelines import make_features, make_pipeline
@@ -238,6 +240,7 @@ def run_benchmark(
     band=None,
     harmonics: int = 3,
     random_state=0,
+    progress: bool = False,
 ) -> BenchmarkResult:
     """Cross-validate the envelope diagnoser and the classifier pipelines.
 
@@ -267,6 +270,8 @@ def run_benchmark(
         Harmonics of each fault line (default 3).
     random_state : int or None, optional
         Seed of the fold shuffling and the randomised classifiers (default 0).
+    progress : bool, optional
+        Show a progress bar over (split, model) pairs on stderr (default False).
 
     Returns
     -------
@@ -279,6 +284,10 @@ def run_benchmark(
         Unknown split or model names, a dataset mixing bearings or sampling rates, or
         real recordings of another bearing or rate.
     """
+    if isinstance(n_splits, bool) or not isinstance(n_splits, (int, np.integer)) \
+            or n_splits < 2:
+        raise ValueError(f"n_splits (--folds) must be an int >= 2: k-fold cross-validation "
+                         f"needs two folds at least, got {n_splits!r}")
     X = np.asarray(X)
     _check_meta(meta, len(X), "meta")
     meta = meta.reset_index(drop=True)
@@ -328,6 +337,8 @@ def run_benchmark(
 
     rows, confusion, predictions, skipped = [], {}, [], {}
     groups = meta["group"].to_numpy()
+    bar = tqdm(total=len(splits) * len(models), desc="benchmark", unit="fit", file=sys.stderr,
+               disable=not progress, leave=False)
     for split in splits:
         if split == "sim2real":
             folds, test_set = [(np.arange(len(X)), np.arange(len(datasets["real"][0])))], "real"
@@ -336,6 +347,7 @@ def run_benchmark(
             test_set = "sim"
             if not folds:
                 skipped[split] = "the dataset has a single value of this factor"
+                bar.update(len(models))
                 continue
             if split not in _OPTIMISTIC and not all(_disjoint(groups, tr, te)
                                                     for tr, te in folds):
@@ -356,6 +368,8 @@ def run_benchmark(
                                                        labels=list(LABELS))
             rows.append({"split": split, "model": model, "optimistic": split in _OPTIMISTIC,
                          "folds": len(folds), **_scores(pred["y_true"], pred["y_pred"])})
+            bar.update()
+    bar.close()
     info = {
         "rows": len(X), "groups": int(meta["group"].nunique()), "bearing": bearing, "fs": fs,
         "samples_per_row": int(X.shape[1]), "features": features, "n_splits": n_splits,

@@ -11,6 +11,8 @@ ratios may miss the fault.
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import scipy.stats
 
@@ -50,8 +52,13 @@ def indicators(x, *, axis: int = -1) -> dict[str, np.ndarray]:
     ======================  =======================================  =================
 
     RMS and the peak values include any mean (DC) of ``x``; kurtosis and skewness are
-    central moments (``scipy.stats``, biased estimators). An all-zero signal gives
-    NaN for the ratios.
+    central moments (``scipy.stats``, biased estimators).
+
+    A constant signal (all zeros: a dead or disconnected sensor) has no shape; its
+    moments are 0/0. It gets, without NaN or warning: ``kurtosis = 0`` (a value no
+    varying signal can take, since Pearson's kurtosis is >= 1: a marker of a dead
+    channel), ``skewness = 0``, and crest, shape, impulse and clearance factors 1 (their
+    value for any non-zero constant, kept as the constant shrinks to 0).
 
     Parameters
     ----------
@@ -79,7 +86,8 @@ def indicators(x, *, axis: int = -1) -> dict[str, np.ndarray]:
     rms = np.sqrt(np.mean(x * x, axis=-1))
     peak = a.max(axis=-1)
     mean_abs = a.mean(axis=-1)
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore"), warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)  # scipy on constant rows: see below
         out = {
             "rms": rms,
             "peak": peak,
@@ -91,6 +99,12 @@ def indicators(x, *, axis: int = -1) -> dict[str, np.ndarray]:
             "impulse_factor": peak / mean_abs,
             "clearance_factor": peak / np.mean(np.sqrt(a), axis=-1) ** 2,
         }
+    constant = np.ptp(x, axis=-1) == 0
+    if constant.any():  # the convention of the docstring instead of 0/0
+        for name, value in (("kurtosis", 0.0), ("skewness", 0.0), ("crest_factor", 1.0),
+                            ("shape_factor", 1.0), ("impulse_factor", 1.0),
+                            ("clearance_factor", 1.0)):
+            out[name] = np.where(constant, value, out[name])
     return {name: value[()] for name, value in out.items()}
 
 
@@ -116,6 +130,12 @@ def indicator_ratios(faulty, healthy, *, axis: int = -1) -> dict[str, np.ndarray
     dict of str to ndarray
         ``indicators(faulty)[k] / indicators(healthy)[k]`` for each indicator ``k``.
 
+    Raises
+    ------
+    ValueError
+        A healthy indicator exactly 0 (a constant or all-zero reference, or a
+        skewness of exactly 0): the ratio would be inf or NaN.
+
     Examples
     --------
     >>> import numpy as np
@@ -128,5 +148,9 @@ def indicator_ratios(faulty, healthy, *, axis: int = -1) -> dict[str, np.ndarray
     """
     num = indicators(faulty, axis=axis)
     den = indicators(healthy, axis=axis)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return {name: num[name] / den[name] for name in INDICATORS}
+    zero = [name for name in INDICATORS if np.any(den[name] == 0)]
+    if zero:
+        raise ValueError(f"healthy has {', '.join(zero)} exactly 0 (a silent or constant "
+                         "reference, or a perfectly symmetric one for skewness): the "
+                         "faulty/healthy ratio is undefined")
+    return {name: num[name] / den[name] for name in INDICATORS}

@@ -356,12 +356,12 @@ def spectral_kurtosis(
     if win.shape != (nperseg,):
         raise ValueError(f"window must have nperseg = {nperseg} samples, got shape {win.shape}")
     stft = scipy.signal.ShortTimeFFT(win, hop=nperseg - noverlap, fs=fs, fft_mode="onesided")
-    p0, p1 = stft.lower_border_end[1], stft.upper_border_begin(n)[1]
-    if p1 - p0 < 2:
+    if n < nperseg or stft.upper_border_begin(n)[1] - stft.lower_border_end[1] < 2:
         raise ValueError(
             f"x must span at least two full segments of nperseg = {nperseg} samples "
             f"(hop {nperseg - noverlap}), got {n} samples"
         )
+    p0, p1 = stft.lower_border_end[1], stft.upper_border_begin(n)[1]
     s = stft.stft(x, p0=p0, p1=p1, axis=-1)  # (..., n_freqs, n_segments)
     p = s.real**2 + s.imag**2
     m2 = p.mean(axis=-1)

@@ -333,7 +333,12 @@ def _static_state(scene: Scene, params: SR5Parameters, model: tuple, n_res: int,
         return [[np.sum(dq * cos_psi**2), np.sum(dq * cos_psi * sin_psi)],
                 [np.sum(dq * cos_psi * sin_psi), np.sum(dq * sin_psi**2)]]
 
-    guess = (max(bearing_load, 1e-3) / (kh * z / 4.0)) ** (1.0 / n) + max(c, 0.0)
+    # Start past the first contact: the ring must close the clearance, and the depth of
+    # a defect under an element, before any force (or Jacobian) appears; from inside
+    # that dead zone the solver cannot move (NJ305, 0.125 mm clearance, with a fault).
+    ahead = cos_psi > 0.5
+    first_contact = float(np.min((max(c, 0.0) + depth[ahead]) / cos_psi[ahead]))
+    guess = (max(bearing_load, 1e-3) / (kh * z / 4.0)) ** (1.0 / n) + first_contact
     if bearing_load <= 0.0 and c >= 0.0:
         du, dv = 0.0, 0.0  # unloaded ring with clearance: centred, no contact
     else:

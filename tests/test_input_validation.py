@@ -1,0 +1,121 @@
+"""Nonsense refused with a message naming the argument (issue 16, items 5 and 6), the
+documented behaviour where refusing would be wrong, and the CLI's progress and notices."""
+
+import sys
+import warnings
+
+import numpy as np
+import pytest
+
+import ballpass as bp
+from ballpass import features as F
+from ballpass.cli import main
+from ballpass.commands import _output
+from ballpass.datasets import read_grid
+
+
+def test_bearing_arguments_are_type_checked():
+    base = dict(name="x", n_elements=9, element_diameter_mm=7.94, pitch_diameter_mm=39.04)
+    for key, value in (("contact_angle_deg", "10"), ("inner_conformity", None),
+                       ("poisson_ratio", "0.3"), ("radial_clearance_mm", [0.01])):
+        with pytest.raises(TypeError, match=f"^{key} must be a number, got"):
+            bp.Bearing(**base | {key: value})
+    # a NumPy integer is an int like any other
+    assert bp.Bearing(**base | {"n_elements": np.int64(9)}).n_elements == 9
+
+
+def test_spectral_kurtosis_on_a_too_short_signal_names_nperseg():
+    """scipy said "Parameter n must be >= ceil(m_num/2) = 2048!"."""
+    with pytest.raises(ValueError, match=r"at least two full segments of nperseg = 4096 "
+                                         r"samples .* got 100 samples"):
+        F.spectral_kurtosis(np.ones(100), 1000.0, nperseg=4096)
+
+
+def test_a_band_must_be_wide_enough_to_filter():
+    x = np.random.default_rng(0).standard_normal(4800)
+    with pytest.raises(ValueError, match=r"band must be at least fs/1000 = 12 Hz wide"):
+        F.envelope_spectrum(x, 12_000.0, band=(3000.0, 3000.000000001))
+    F.envelope_spectrum(x, 12_000.0, band=(3000.0, 3012.0))  # the narrowest accepted
+
+
+def test_scene_refuses_a_resonance_below_100_hz_and_an_unloaded_bearing():
+    with pytest.raises(ValueError, match=r"^resonance_hz must be a finite number in \[100"):
+        bp.Scene("6205", resonance_hz=1e-3)
+    bp.Scene("6205", resonance_hz=100.0, fs=12_000.0)
+    with pytest.raises(ValueError, match="radial_load_n=0 with gravity=False"):
+        bp.Scene("6205", radial_load_n=0.0, gravity=False)
+    bp.Scene("6205", radial_load_n=0.0)  # gravity alone loads it
+
+
+def test_grid_segments_need_64_samples():
+    grid = {"dataset": {"duration_s": 1.0, "fs": 12_000, "segment_s": 1e-9},
+            "grid": {"fault": ["healthy"], "resonance_hz": [3000]}}
+    with pytest.raises(ValueError, match=r"^dataset\.segment_s must give at least 64"):
+        read_grid(grid)
+
+
+def test_indicators_of_a_silent_signal_are_finite_and_documented():
+    """No NaN, no warning: kurtosis 0 (unreachable by a varying signal, kurtosis >= 1)
+    marks the dead channel; factors 1, the value of any non-zero constant."""
+    x = np.zeros((3, 500))
+    x[1] = np.random.default_rng(1).standard_normal(500)
+    x[2] = 2.5
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        ind = F.indicators(x)
+    assert all(np.isfinite(v).all() for v in ind.values())
+    assert ind["kurtosis"][0] == ind["kurtosis"][2] == 0.0 and ind["kurtosis"][1] > 2.5
+    assert ind["crest_factor"][0] == ind["crest_factor"][2] == 1.0
+    assert ind["rms"][2] == 2.5 and ind["skewness"][0] == 0.0
+    noise = x[1]
+    with pytest.raises(ValueError, match="healthy has rms, peak, peak_to_peak, kurtosis"):
+        F.indicator_ratios(noise, np.zeros(500))
+
+
+# ---------------------------------------------------------------- CLI behaviour
+def test_simulate_writes_signal_and_figure_or_neither(tmp_path, monkeypatch, capsys):
+    """A figure that fails to save leaves no .npz behind (it used to: rc 1, file kept)."""
+    def broken(fig, path, dpi=120):
+        def write(tmp):
+            raise OSError(28, "No space left on device")
+        return write
+
+    monkeypatch.setattr(_output, "figure_writer", broken)
+    argv = ["simulate", "--duration", "0.01", "--fs", "12000", "--resonance", "3000",
+            "--out", str(tmp_path / "s.npz"), "--plot", str(tmp_path / "s.png")]
+    assert main(argv) == 2
+    assert "No space left on device" in capsys.readouterr().err
+    assert list(tmp_path.iterdir()) == []
+    monkeypatch.undo()
+    assert main(argv) == 0
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["s.npz", "s.png"]
+
+
+def test_compile_notice_only_without_a_current_cache(tmp_path, monkeypatch, capsys):
+    argv = ["simulate", "--duration", "0.01", "--out", str(tmp_path / "s.npz")]
+    assert main(argv) == 0
+    capsys.readouterr()
+    assert _output.kernels_cached()  # the run above compiled (or loaded) and cached them
+    assert main(argv) == 0
+    assert "compiling" not in capsys.readouterr().err
+    monkeypatch.setattr(_output, "kernels_cached", lambda: False)
+    assert main(argv) == 0
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith("ballpass: compiling the simulator")
+
+
+def test_progress_bars_on_a_terminal_unless_quiet(monkeypatch, capsys):
+    class Args:
+        quiet = False
+
+    monkeypatch.setattr(sys.stderr, "isatty", lambda: False, raising=False)
+    assert not _output.show_progress(Args())
+    monkeypatch.setattr(sys.stderr, "isatty", lambda: True, raising=False)
+    assert _output.show_progress(Args())
+    Args.quiet = True
+    assert not _output.show_progress(Args())
+    from ballpass.commands.features import Signal, feature_rows
+
+    x = np.random.default_rng(0).standard_normal(2400)
+    feature_rows([Signal("a", x, 12_000.0), Signal("b", x, 12_000.0)], progress=True)
+    assert "features" in capsys.readouterr().err
