@@ -262,11 +262,9 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
     if params.contact_stiffness is None:  # derived once, for the kinematics and the loads
         params = replace(params, contact_stiffness=scene.bearing.hertz_stiffness())
     # the sr5 kinematics of this scene: parameter vector, slip walk and fault table from
-    # the scene's own seed. They do not depend on the load, so the scene is bound
-    # unloaded (sr4, no resonator): the binding then skips sr5's static equilibrium,
-    # which this model replaces by the Stribeck load zone of impact_amplitudes
-    bm = build_model(scene.replace(radial_load_n=0.0, gravity=False),
-                     SR5Parameters(contact_stiffness=params.contact_stiffness),
+    # the scene's own seed (the sr4 binding: no resonator state is needed)
+    bm = build_model(scene, SR5Parameters(shaft_mass=params.shaft_mass,
+                                          contact_stiffness=params.contact_stiffness),
                      resonator=False)
     n_samples = scene.n_samples
     # sr5's event horizon (the end of its internal grid), so both list the same entries
