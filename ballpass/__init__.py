@@ -36,10 +36,11 @@ __all__ = [
     "diagnose",
     "datasets",
     "plot",
+    "dynamics",
     "__version__",
 ]
 
-_LAZY_SUBMODULES = {"features", "diagnose", "datasets", "plot"}
+_LAZY_SUBMODULES = {"features", "diagnose", "datasets", "plot", "dynamics"}
 
 
 def __getattr__(name: str):

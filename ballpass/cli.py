@@ -22,6 +22,7 @@ SUBCOMMANDS = {
     "info": "info",
     "benchmark": "benchmark",
     "work-precision": "work_precision",
+    "bifurcation": "bifurcation",
 }
 
 

@@ -130,6 +130,7 @@ def test_unknown_model_is_refused():
     ("rk4", {"rtol": 1e-9}, "rtol/atol apply to adaptive solvers"),
     ("rk4", {"atol": 2.0}, "rtol/atol apply to adaptive solvers"),
     ("euler", {}, "solver must be 'auto' or one of"),
+    ("auto", {"rtol": 1e-9}, "rtol/atol apply to adaptive solvers"),  # sr5's default is rk4
 ])
 def test_solver_options_the_solver_would_ignore_are_refused(solver, kwargs, match):
     scene = bp.Scene(bearing="6205", duration_s=0.01)

@@ -16,6 +16,11 @@ Models (the table behind ``auto``: ``python -m ballpass bearings`` lists bearing
     :mod:`._sr5_driver`). What a plain scene runs.
 ``sr4``
     The same without the resonator: the sensors read the housing acceleration.
+``rotor2``
+    Seed 003's rigid rotor on a cylindrical roller bearing (Palmgren line contacts,
+    clearance, unbalance, defects), Newmark-beta by default (see :mod:`.rotor2`): the
+    non-linear rotor dynamics for Poincare sections and bifurcation diagrams
+    (:mod:`ballpass.dynamics`).
 
 A new model is one file that builds a :class:`Model` and one line in :data:`MODELS`.
 """
@@ -38,6 +43,7 @@ from ._shared import OVERSAMPLE, SimulationUnstableError, check_solver_args  # n
 from ._sr5_driver import SOLVERS, SR4, SR5, build, integrate  # noqa: E402
 from .impulse import IMPULSE, ImpulseParameters  # noqa: E402
 from .result import SimulationResult  # noqa: E402
+from .rotor2 import ROTOR2, Rotor2Parameters  # noqa: E402
 from .sr5 import BearingModel, SR5Parameters  # noqa: E402
 
 __all__ = [
@@ -55,6 +61,7 @@ __all__ = [
     "SimulationUnstableError",
     "SR5Parameters",
     "ImpulseParameters",
+    "Rotor2Parameters",
     "BearingModel",
     "source_fingerprint",
     "work_precision",
@@ -63,7 +70,7 @@ __all__ = [
 ]
 
 #: model name -> :class:`Model`, cheapest first
-MODELS: dict[str, Model] = {m.name: m for m in sorted((SR5, SR4, IMPULSE),
+MODELS: dict[str, Model] = {m.name: m for m in sorted((SR5, SR4, ROTOR2, IMPULSE),
                                                       key=lambda m: m.relative_cost)}
 
 

@@ -57,7 +57,7 @@ def check_solver_args(model: str, solver: str, solvers: tuple[str, ...], fixed_s
     if not (isinstance(oversample, int) and 1 <= oversample <= 64):
         raise ValueError(f"oversample must be an int in [1, 64], got {oversample!r}")
     if solver == "auto":
-        return
+        solver = solvers[0]  # the model's default: an option it would ignore is refused too
     adaptive = solver not in fixed_step
     if adaptive and dt is not None:
         raise ValueError(f"dt={dt!r} applies to the fixed-step solvers {list(fixed_step)}; "

@@ -69,8 +69,9 @@ class GroundTruth:
         Contact load of each rolling element at each output sample, N (on request).
     element_angles : ndarray (n_elements, n_samples) or None
         Angle of each rolling element from the load line, rad, unwrapped (on request).
-    displacement : ndarray (4, n_samples) or None
-        Shaft u, v and pedestal u, v displacement, m (on request); u along the load line.
+    displacement : ndarray (4, n_samples) or (2, n_samples) or None
+        Shaft u, v and pedestal u, v displacement (sr5, sr4), or the rotor's x, y
+        (rotor2), m (on request); u and x along the load line.
     """
 
     label: str

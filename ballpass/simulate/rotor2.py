@@ -1,0 +1,549 @@
+"""``rotor2``: the rigid rotor on a cylindrical roller bearing of seed 003.
+
+A rigid rotor of mass m (2 DOF: x along the load line, y perpendicular, in the
+bearing plane) runs on the Z rollers of a cylindrical roller bearing whose outer ring
+is fixed to a rigid housing. Seed 003 ("Dynamic behaviour of rotor roller bearing
+system with bearing defects", NJ 305) section 3.5:
+
+    m x'' + c x' + sum_j Q_j cos(phi_j) = F_r + m g + m_u e (w^2 cos(theta) + w' sin(theta))
+    m y'' + c y' + sum_j Q_j sin(phi_j) =             m_u e (w^2 sin(theta) - w' cos(theta))
+
+with c = 200 N s/m the bearing damping of seed 003 section 3.6 (the lumped viscous
+damping of Harsha's 2-DOF rotor models, which seed 003 follows), theta the shaft angle,
+w = theta' and the unbalance term m_u e w^2 the seed's equation needs (it prints m w^2,
+without the unbalance mass and eccentricity; see shared/seeds/DIGEST.md section 1.4).
+Roller j sits at phi_j = phi_0 + 2 pi j / Z + (1 - r) theta / 2 (rigid cage at the fundamental train
+frequency, r = d cos(alpha) / d_p) and is compressed by
+
+    delta_j = x cos(phi_j) + y sin(phi_j) - c_r - h_j(t)
+
+with c_r the radial clearance (negative: preload) and h_j the depth of any localized
+defect under the roller. Its load is the Palmgren line contact (seed 003 eqs. 1-2,
+6), optionally with the constant contact damping c_d of seed 003 section 2.3
+(``Rotor2Parameters.contact_damping_ns_m``, default 0 so that the seed's damping is
+not counted twice):
+
+    Q_j = max(0, K delta_j^(10/9) + c_d (x' cos(phi_j) + y' sin(phi_j)))  for delta_j > 0,
+    Q_j = 0                                                                otherwise,
+
+K the load-deflection constant of one roller between both races
+(:meth:`ballpass.Bearing.hertz_stiffness`: Palmgren delta = 3.84e-5 Q^0.9 / l^0.8 per
+contact, inner and outer in series). With a misalignment gamma the roller is sliced
+into k laminae of width w = l / k (seed 003 section 3.4.2, eq. 6): lamina lambda at
+axial position s_lambda from the roller centre is compressed by
+delta_j + s_lambda gamma cos(phi_j) and carries (K / k) delta^(10/9), which sums to
+Palmgren's law when gamma = 0 (the laminae then collapse to one exact term).
+
+Ball bearings run the same equations with Hertz point contacts, Q = K delta^(3/2) and
+K from :meth:`ballpass.Bearing.hertz_stiffness` (the 2-DOF rotor of Harsha's papers,
+DIGEST.md section 4 item 3); laminae need rollers, so a misalignment is refused there.
+
+Assumptions (where seed 003 is silent or garbled):
+
+* Rigid housing and outer ring; the sensor signal ``res.accel`` is the rotor's
+  (journal's) acceleration projected on each sensor's radial direction,
+  a_x cos(theta_s) + a_y sin(theta_s), AC-coupled: there is no structural resonance,
+  so rotor2 does not represent ``envelope`` and ignores ``Scene.resonance_hz`` and the
+  sensors' ``attenuation``.
+* Rigid cage, no slip (``Scene.slip`` is ignored): the model is deterministic, as the
+  seed's, so that Poincare sections show the dynamics, not the slip.
+* Damping: the seed's rotor equation has one viscous term c Y2' with c = 200 N s/m;
+  it acts on the rotor in both directions whether rollers touch or not. Per-contact
+  damping (section 2.3) acts only along loaded rollers: alone it leaves the rotor's
+  sideways rolling over a roller almost undamped (its lines of action are nearly
+  radial), so it is an option, not the default. Rollers have no mass of their own
+  (no centrifugal load, seed 003 eq. 10 is dropped) and the roller-race contacts are
+  lumped into one series contact.
+* Defects are the :class:`~ballpass.Fault` depth profiles shared with ``sr5``: a
+  notch of effective depth min(h, d/2 (1 - sqrt(1 - (w/d)^2))) (the drop of a
+  cylinder of diameter d into a notch of width w is the same as a ball's), sharp or
+  with half-cosine ramps; inner-race defects turn with the shaft, roller defects spin
+  at the roller spin frequency and meet both races. Seed 003's sinusoidal roller
+  profile (eqs. 4-5) is not used: its constants A_1, R_r/D_L are undefined there.
+* Roller tilt: only a prescribed misalignment gamma (``Rotor2Parameters``); the seed's
+  thrust-driven tilt needs an axial load the Scene does not have.
+* The run starts at the quasi-static equilibrium of the healthy bearing under
+  F_r + m g (:meth:`ballpass.Bearing.load_distribution`), at rest.
+
+Solvers: ``newmark`` (default; average acceleration with Newton iterations on the
+contact forces, :func:`._integrators.newmark`) and ``dopri5`` (adaptive
+Dormand-Prince on the same equations, :func:`._integrators.dopri5_second_order`), so
+each checks the other (tests/test_rotor2.py, docs/seed003.md).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+from numba import njit
+
+from .._validation import check_number
+from ..scene import STANDARD_GRAVITY, Scene
+from . import _integrators as _I
+from . import _kernels as _K
+from ._registry import Model
+from ._shared import (
+    OVERSAMPLE,
+    SimulationUnstableError,
+    add_noise,
+    check_finite,
+    check_solver_args,
+    to_output_rate,
+)
+from .result import FaultCrossings, GroundTruth, SimulationResult
+from .sr5 import MAX_DEFLECTION_RATIO, _fault_table
+
+__all__ = ["Rotor2Parameters", "ROTOR2", "SOLVERS", "DT_NEWMARK_OMEGA", "RAMP_STEPS",
+           "elastic_limit_m",
+           "contact_omega"]
+
+#: solver name -> description
+SOLVERS = {
+    "newmark": "Newmark-beta, average acceleration (gamma 1/2, beta 1/4), Newton "
+               "iterations on the contact forces with their tangent stiffness; fixed step",
+    "dopri5": "Dormand-Prince 5(4) on the same equations, adaptive step with error control",
+}
+
+#: default Newmark step = DT_NEWMARK_OMEGA / omega_c, omega_c the linearised contact
+#: natural frequency (rad/s) at the static equilibrium (about 1.2 us for the NJ 305 at
+#: 500 N); the average-acceleration scheme's relative period error is
+#: (omega dt)^2 / 12 = 5e-5 at 0.025
+DT_NEWMARK_OMEGA = 0.025
+#: ... and at most 1/RAMP_STEPS of the time a roller takes to cross the ramp of a
+#: defect deep enough to unload it (depth beyond the static contact deflection; a sharp
+#: edge counts the whole notch): its impacts are stiffer than the static contact. With
+#: both limits the dynamic part of the displacement stays within a relative L2 error of
+#: 1e-2 of dopri5 at rtol 1e-10 on the seed-003 scenes for as long as the motion is not
+#: chaotic (benchmarks/seed003.py, docs/seed003.md; where it is, no two solvers agree
+#: for long)
+RAMP_STEPS = 128
+
+# parameter vector: the sr5 kernel's speed/cage/contact slots (so _kernels'
+# shaft_angle, shaft_rate and profile apply) and rotor2's own slots after them
+P_MUE = _K.N_PARAMS          # unbalance m_u e, kg m
+P_UPH = _K.N_PARAMS + 1      # unbalance phase at t = 0, rad
+P_CD = _K.N_PARAMS + 2       # contact damping, N s/m
+P_PHI0 = _K.N_PARAMS + 3     # angle of roller 0 at t = 0, rad
+P_TILT = _K.N_PARAMS + 4     # misalignment gamma, rad
+P_NLAM = _K.N_PARAMS + 5     # number of laminae k
+P_LEN = _K.N_PARAMS + 6      # roller length l, m
+P_NF = _K.N_PARAMS + 7       # number of faults
+P_CR = _K.N_PARAMS + 8       # rotor (bearing) damping, N s/m
+P_FAULTS = _K.N_PARAMS + 9   # fault table (sr5 layout), row after row
+
+
+@dataclass(frozen=True)
+class Rotor2Parameters:
+    """Structural parameters of the ``rotor2`` model (defaults: seed 003 section 3.6).
+
+    Parameters
+    ----------
+    rotor_mass_kg : float, optional
+        Mass m of the rigid rotor with the inner ring, kg, in (0, 1e4]. Default 1.0
+        ("the mass of the rotor roller bearing system is 1 kg", seed 003 section 3.6).
+    bearing_damping_ns_m : float, optional
+        Viscous damping c of the rotor in the bearing, N s/m, in [0, 1e6], the c Y2'
+        of the seed's rotor equation (section 3.5). Default 200 ("damping factor of the
+        bearing is 200 N.s/m", seed 003 section 3.6).
+    contact_damping_ns_m : float, optional
+        Viscous damping c_d of each loaded roller contact along its line of action,
+        N s/m, in [0, 1e6] (the constant lubricant damping of seed 003 section 2.3).
+        Default 0: the seed's 200 N s/m is the bearing damping above.
+    unbalance_mass_kg : float, optional
+        Unbalance mass m_u, kg, in [0, rotor_mass_kg]. Default 0.05 (seed 003 section
+        3.6: 50 g).
+    unbalance_eccentricity_m : float, optional
+        Its eccentricity e, m, in [0, 0.1]. Default 20e-6 (seed 003 section 3.6). The
+        unbalance force is m_u e w^2 (the seed's eq. prints m w^2).
+    unbalance_phase_deg : float, optional
+        Angle of the unbalance at t = 0, degrees from the load line. Default 0.
+    misalignment_rad : float, optional
+        Tilt gamma of the inner ring relative to the outer about the axis perpendicular
+        to the load line, rad, with abs(gamma) <= 0.01. Default 0 (aligned; the laminae
+        collapse to Palmgren's law exactly).
+    n_laminae : int, optional
+        Laminae k per roller when ``misalignment_rad`` is not 0 (seed 003 eq. 6), in
+        [1, 100]. Default 10.
+    cage_angle_deg : float, optional
+        Angle of roller 0 at t = 0, degrees from the load line. Default 0 (a roller on
+        the load line).
+
+    Examples
+    --------
+    >>> from ballpass.simulate.rotor2 import Rotor2Parameters
+    >>> p = Rotor2Parameters()
+    >>> round(p.unbalance_mass_kg * p.unbalance_eccentricity_m * (2000 * 3.14159 / 30) ** 2, 3)
+    0.044
+    """
+
+    rotor_mass_kg: float = 1.0
+    bearing_damping_ns_m: float = 200.0
+    contact_damping_ns_m: float = 0.0
+    unbalance_mass_kg: float = 0.05
+    unbalance_eccentricity_m: float = 20e-6
+    unbalance_phase_deg: float = 0.0
+    misalignment_rad: float = 0.0
+    n_laminae: int = 10
+    cage_angle_deg: float = 0.0
+
+    def __post_init__(self) -> None:
+        m = check_number("rotor_mass_kg", self.rotor_mass_kg, 0.0, 1e4, lo_open=True,
+                         unit="kg")
+        for name in ("bearing_damping_ns_m", "contact_damping_ns_m"):
+            check_number(name, getattr(self, name), 0.0, 1e6, unit="N s/m")
+        check_number("unbalance_mass_kg", self.unbalance_mass_kg, 0.0, m, unit="kg")
+        check_number("unbalance_eccentricity_m", self.unbalance_eccentricity_m, 0.0, 0.1,
+                     unit="m")
+        check_number("unbalance_phase_deg", self.unbalance_phase_deg, -1e6, 1e6, unit="deg")
+        check_number("misalignment_rad", self.misalignment_rad, -0.01, 0.01, unit="rad")
+        check_number("cage_angle_deg", self.cage_angle_deg, -1e6, 1e6, unit="deg")
+        if isinstance(self.n_laminae, bool) or not isinstance(self.n_laminae, int):
+            raise TypeError(f"n_laminae must be an int, got {self.n_laminae!r}")
+        if not 1 <= self.n_laminae <= 100:
+            raise ValueError(f"n_laminae must be in [1, 100], got {self.n_laminae}")
+
+
+# ---------------------------------------------------------------------- kernels
+@njit(cache=True, error_model="numpy")
+def _defect_depth(j, phi, theta, p):
+    """Depth of the defects under roller j at roller angle phi, shaft angle theta, m."""
+    depth = 0.0
+    for i in range(int(p[P_NF])):
+        r = P_FAULTS + i * _K.N_FCOLS
+        kind = int(p[r + _K.F_KIND])
+        half, d, ramp = p[r + _K.F_HALF], p[r + _K.F_DEPTH], p[r + _K.F_RAMP]
+        if kind == _K.KIND_BALL:
+            if int(p[r + _K.F_ELEM]) == j:
+                spin = p[r + _K.F_CENTRE] + p[_K.P_SPIN] * (phi - p[r + _K.F_PSI0])
+                depth += _K.profile(_K.wrap_pi(spin), half, d, ramp)
+                depth += _K.profile(_K.wrap_pi(spin - math.pi), half, d, ramp)
+        else:
+            centre = p[r + _K.F_CENTRE]
+            if kind == _K.KIND_INNER:
+                centre += theta
+            depth += _K.profile(_K.wrap_pi(phi - centre), half, d, ramp)
+    return depth
+
+
+@njit(cache=True, error_model="numpy")
+def _roller(j, t, x, v, p):
+    """Roller j at time t for rotor state (x, v): load Q (N), dQ/d(delta) (N/m), and
+    the cos and sin of its angle. Exactly 0 load when separated."""
+    z = p[_K.P_Z]
+    theta = _K.shaft_angle(t, p)
+    phi = p[P_PHI0] + _K.TWO_PI * j / z + p[_K.P_CAGE] * theta
+    cs, sn = math.cos(phi), math.sin(phi)
+    delta = x[0] * cs + x[1] * sn - p[_K.P_CLEAR] - _defect_depth(j, phi, theta, p)
+    n = p[_K.P_NH]
+    n_lam = int(p[P_NLAM])
+    k_lam = p[_K.P_KH] / n_lam
+    q = 0.0
+    dq = 0.0
+    for lam in range(n_lam):
+        d = delta
+        if n_lam > 1:
+            d += ((lam + 0.5) / n_lam - 0.5) * p[P_LEN] * p[P_TILT] * cs
+        if d > 0.0:
+            q += k_lam * d ** n
+            dq += n * k_lam * d ** (n - 1.0)
+    if q == 0.0:
+        return 0.0, 0.0, 0.0, cs, sn
+    damping = p[P_CD]
+    q += damping * (v[0] * cs + v[1] * sn)
+    if q <= 0.0:  # the damping would pull: the contact lets go
+        return 0.0, 0.0, 0.0, cs, sn
+    return q, dq, damping, cs, sn
+
+
+@njit(cache=True, error_model="numpy")
+def rotor2_force(t, x, v, p, f, kx, kv):
+    """Generalised force of M a + f = 0 (contacts minus loads) and its tangents, for
+    :func:`._integrators.newmark` and :func:`._integrators.dopri5_second_order`."""
+    for i in range(2):
+        f[i] = 0.0
+        for k in range(2):
+            kx[i, k] = 0.0
+            kv[i, k] = 0.0
+    for j in range(int(p[_K.P_Z])):
+        q, dq, c, cs, sn = _roller(j, t, x, v, p)
+        if q > 0.0:
+            f[0] += q * cs
+            f[1] += q * sn
+            kx[0, 0] += dq * cs * cs
+            kx[0, 1] += dq * cs * sn
+            kx[1, 1] += dq * sn * sn
+            kv[0, 0] += c * cs * cs
+            kv[0, 1] += c * cs * sn
+            kv[1, 1] += c * sn * sn
+    kx[1, 0] = kx[0, 1]
+    kv[1, 0] = kv[0, 1]
+    c_r = p[P_CR]
+    for i in range(2):
+        f[i] += c_r * v[i]
+        kv[i, i] += c_r
+    theta = _K.shaft_angle(t, p) + p[P_UPH]
+    w = _K.shaft_rate(t, p)
+    dw = (p[_K.P_W1] - p[_K.P_W0]) / p[_K.P_T]
+    mue = p[P_MUE]
+    f[0] -= p[_K.P_FR] + p[_K.P_MS] * p[_K.P_G] + mue * (w * w * math.cos(theta)
+                                                        + dw * math.sin(theta))
+    f[1] -= mue * (w * w * math.sin(theta) - dw * math.cos(theta))
+
+
+@njit(cache=True, error_model="numpy")
+def _loads_many(t, x, v, p, out):
+    """Roller loads (N) at times t (n,) for states x, v (n, 2) into out (n, Z)."""
+    for i in range(t.shape[0]):
+        for j in range(out.shape[1]):
+            out[i, j] = _roller(j, t[i], x[i], v[i], p)[0]
+
+
+#: the integrators compiled for rotor2's force
+_newmark = _I.newmark_for(rotor2_force)
+_dopri5 = _I.dopri5_for(rotor2_force)
+
+
+# ---------------------------------------------------------------------- binding
+def elastic_limit_m(bearing) -> float:
+    """Largest contact deflection rotor2 accepts, m: ``MAX_DEFLECTION_RATIO`` (1 %) of the
+    roller diameter, the elastic limit sr5 uses (ISO 76 static rating, 4 GPa)."""
+    return MAX_DEFLECTION_RATIO * bearing.element_diameter_m
+
+
+@dataclass(frozen=True)
+class _Bound:
+    """A scene bound to the kernel: parameters, initial state and scales."""
+
+    p: np.ndarray
+    x0: np.ndarray
+    x_scale: np.ndarray
+    omega: float
+    mass: float
+    t_impact: float
+
+
+def _static_load(scene: Scene, params: Rotor2Parameters) -> float:
+    """Static load on the bearing along the load line: F_r + m g, N."""
+    g = STANDARD_GRAVITY if scene.gravity else 0.0
+    return scene.radial_load_n + params.rotor_mass_kg * g
+
+
+def contact_omega(scene: Scene, params: Rotor2Parameters | None = None) -> float:
+    """Linearised natural frequency of the rotor on its loaded rollers at the static
+    equilibrium, rad/s: sqrt(sum_j dQ_j/d(delta) cos^2(phi_j) / m).
+
+    Without a static load (no contact) the stiffness at 1 N of load is used.
+
+    Examples
+    --------
+    >>> import ballpass as bp
+    >>> from ballpass.simulate.rotor2 import contact_omega
+    >>> round(contact_omega(bp.Scene(bearing="NJ305", radial_load_n=0.0)) / (2 * 3.14159))
+    1771
+    """
+    params = params or Rotor2Parameters()
+    b = scene.bearing
+    ld = b.load_distribution(max(_static_load(scene, params), 1.0),
+                             cage_angle_deg=params.cage_angle_deg)
+    psi = np.radians(ld.element_angles_deg)
+    radial = ld.deflection_m * np.cos(psi) + ld.lateral_deflection_m * np.sin(psi)
+    delta = np.maximum(radial - ld.clearance_m, 0.0)
+    n = ld.load_exponent
+    dq = np.where(delta > 0.0, n * ld.stiffness * delta ** (n - 1.0), 0.0)
+    return float(math.sqrt(np.sum(dq * np.cos(psi) ** 2) / params.rotor_mass_kg))
+
+
+def _bind(scene: Scene, params: Rotor2Parameters) -> _Bound:
+    """Check the scene against the model's limits and build the kernel parameters."""
+    refusal = _accepts(scene)
+    if refusal:
+        raise ValueError(f"model 'rotor2' cannot take this scene: {refusal}")
+    b = scene.bearing
+    if b.element != "roller" and params.misalignment_rad != 0.0:
+        raise ValueError(f"misalignment_rad={params.misalignment_rad:g} needs the laminae of "
+                         f"a roller; bearing {b.name!r} has balls (use misalignment_rad=0)")
+    kh = b.hertz_stiffness()
+    load = _static_load(scene, params)
+    ld = b.load_distribution(load, stiffness=kh, cage_angle_deg=params.cage_angle_deg)
+    deflection = ld.deflection_m - b.radial_clearance_m
+    limit = elastic_limit_m(b)
+    if ld.q_max_n > 0 and (ld.q_max_n / kh) ** (1.0 / b.load_exponent) > limit:
+        raise ValueError(
+            f"radial_load_n={scene.radial_load_n:g} N (plus the rotor's weight) deflects the "
+            f"most loaded roller beyond the elastic limit {limit * 1e6:.0f} um "
+            f"({MAX_DEFLECTION_RATIO:.0%} of the roller diameter)")
+    speed = scene.speed
+    r = b.diameter_ratio
+    cage_ratio = 0.5 * (1.0 - r)
+    z = b.n_elements
+    psi0 = math.radians(params.cage_angle_deg) + 2.0 * math.pi * np.arange(z) / z
+    faults, _levels = _fault_table(scene, psi0)
+    p = np.zeros(P_FAULTS + faults.size)
+    p[_K.P_MS] = params.rotor_mass_kg
+    p[_K.P_KH] = kh
+    p[_K.P_NH] = b.load_exponent
+    p[_K.P_CLEAR] = b.radial_clearance_m
+    p[_K.P_FR] = scene.radial_load_n
+    p[_K.P_G] = STANDARD_GRAVITY if scene.gravity else 0.0
+    p[_K.P_W0] = speed.rpm_start * math.pi / 30.0
+    p[_K.P_W1] = speed.rpm_end * math.pi / 30.0
+    p[_K.P_T] = scene.duration_s
+    p[_K.P_CAGE] = cage_ratio
+    p[_K.P_SPIN] = (b.pitch_diameter_mm / (2 * b.element_diameter_mm) * (1 - r * r)) / cage_ratio
+    p[_K.P_Z] = z
+    p[P_MUE] = params.unbalance_mass_kg * params.unbalance_eccentricity_m
+    p[P_UPH] = math.radians(params.unbalance_phase_deg)
+    p[P_CD] = params.contact_damping_ns_m
+    p[P_CR] = params.bearing_damping_ns_m
+    p[P_PHI0] = math.radians(params.cage_angle_deg)
+    p[P_TILT] = params.misalignment_rad
+    p[P_NLAM] = params.n_laminae if params.misalignment_rad != 0.0 else 1
+    p[P_LEN] = (b.roller_length_mm or 0.0) * 1e-3
+    p[P_NF] = faults.shape[0]
+    p[P_FAULTS:] = faults.ravel()
+    x0 = np.array([ld.deflection_m, ld.lateral_deflection_m])
+    scale = abs(b.radial_clearance_m) + max(deflection, 1e-7)
+    # time to cross the ramps of the defects deep enough to unload a roller
+    w_max = max(p[_K.P_W0], p[_K.P_W1])
+    rate = {_K.KIND_OUTER: cage_ratio * w_max, _K.KIND_INNER: (1.0 - cage_ratio) * w_max,
+            _K.KIND_BALL: p[_K.P_SPIN] * cage_ratio * w_max}
+    static = (ld.q_max_n / kh) ** (1.0 / b.load_exponent)
+    t_impact = min((2.0 * row[_K.F_HALF] * (row[_K.F_RAMP] or 1.0) / rate[int(row[_K.F_KIND])]
+                    for row in faults if row[_K.F_DEPTH] > static), default=math.inf)
+    return _Bound(p=p, x0=x0, x_scale=np.full(2, scale), omega=contact_omega(scene, params),
+                  mass=params.rotor_mass_kg, t_impact=t_impact)
+
+
+def _accepts(scene: Scene) -> str | None:
+    """rotor2 takes roller (line contact) and ball (point contact) bearings whose
+    clearance stays elastic."""
+    b = scene.bearing
+    limit = elastic_limit_m(b)
+    if b.radial_clearance_m < -limit:
+        return (f"radial_clearance_mm={b.radial_clearance_mm:g} is a preload beyond the "
+                f"elastic limit: it must be >= {-limit * 1e3:.4g} mm ({MAX_DEFLECTION_RATIO:.0%}"
+                " of the roller diameter)")
+    return None
+
+
+def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=None,
+         return_forces: bool = False, oversample: int = OVERSAMPLE) -> SimulationResult:
+    """Simulate ``scene`` with rotor2 (arguments validated by :func:`simulate`)."""
+    # again with the resolved solver: simulate() checks "auto" before resolving it, so
+    # rtol with the default newmark would pass silently
+    check_solver_args("rotor2", solver, tuple(SOLVERS), ("newmark",), dt, rtol, atol,
+                      oversample)
+    if params is None:
+        params = Rotor2Parameters()
+    elif not isinstance(params, Rotor2Parameters):
+        raise TypeError(f"params must be Rotor2Parameters for the rotor2 model, got "
+                        f"{type(params).__name__}")
+    t_wall = time.perf_counter()
+    bound = _bind(scene, params)
+    n_samples = scene.n_samples
+    h_out = 1.0 / (scene.fs * oversample)
+    n_out = n_samples * oversample
+    mass = np.eye(2) * bound.mass
+    info = {"solver": solver, "internal_fs": 1.0 / h_out,
+            "contact_hz": bound.omega / (2.0 * math.pi)}
+    if solver == "newmark":
+        dt_req = dt if dt is not None else min(DT_NEWMARK_OMEGA / bound.omega,
+                                               bound.t_impact / RAMP_STEPS)
+        n_sub = max(1, math.ceil(h_out / dt_req - 1e-9))
+        step = h_out / n_sub
+        if dt is not None and abs(step - dt) > 1e-6 * dt:
+            warnings.warn(f"dt={dt:g} s rounded to {step:.6g} s, a divisor of the internal "
+                          f"output spacing {h_out:.6g} s; res.info['dt_s'] holds the step used",
+                          stacklevel=4)
+        xs = np.empty((n_out, 2))
+        vs = np.empty((n_out, 2))
+        acc = np.empty((n_out, 2))
+        status, n_steps, max_iter, t_fail = _newmark(
+            bound.p, mass, bound.x0, np.zeros(2), h_out, n_sub, n_out,
+            bound.x_scale, 1e-10, 1e4, xs, vs, acc)
+        info.update(n_steps=int(n_steps), n_rejected=0, dt_s=step,
+                    newton_max_iter=int(max_iter))
+        step_text = f"dt = {step:.3g} s"
+    else:
+        rtol_v = 1e-6 if rtol is None else float(rtol)
+        factor = 1.0 if atol is None else float(atol)
+        atol_v = rtol_v * factor * np.concatenate((bound.x_scale, bound.x_scale * bound.omega))
+        ys = np.empty((n_out, 4))
+        dys = np.empty((n_out, 4))
+        y0 = np.concatenate((bound.x0, np.zeros(2)))
+        status, n_acc, n_rej, h_min, t_fail = _dopri5(
+            bound.p, np.linalg.inv(mass), y0, h_out, n_out, rtol_v, atol_v,
+            0.5 * math.pi / bound.omega, int(200 * n_out + 10_000), ys, dys)
+        xs, vs, acc = ys[:, :2], ys[:, 2:], dys[:, 2:]
+        info.update(n_steps=int(n_acc), n_rejected=int(n_rej), dt_min_s=float(h_min),
+                    rtol=rtol_v)
+        step_text = f"rtol = {rtol_v:g}"
+    if status != _I.STATUS_OK:
+        raise SimulationUnstableError(
+            f"rotor2 with solver {solver!r} ({step_text}) failed at t = {t_fail:.6g} s: "
+            f"{_I.STATUS_REASONS[status]}. Try a smaller dt / rtol. Scene: {scene!r}")
+    info["integration_time_s"] = time.perf_counter() - t_wall
+
+    angles = np.radians([s.angle_deg for s in scene.sensors])
+    out = acc @ np.vstack((np.cos(angles), np.sin(angles)))  # (n_out, n_sensors)
+    accel = add_noise(scene, to_output_rate(out, n_samples, oversample))
+    check_finite(scene, accel, "rotor2")
+
+    t = np.arange(n_samples) / scene.fs
+    idx = np.arange(n_samples) * oversample
+    shaft_angle = scene.speed.shaft_angle(t, scene.duration_s)
+    forces = element_angles = displacement = None
+    if return_forces:
+        z = scene.bearing.n_elements
+        forces = np.empty((n_samples, z))
+        _loads_many(idx * h_out, np.ascontiguousarray(xs[idx]), np.ascontiguousarray(vs[idx]),
+                    bound.p, forces)
+        forces = forces.T.copy()
+        element_angles = (bound.p[P_PHI0] + 2.0 * math.pi * np.arange(z)[:, None] / z
+                          + bound.p[_K.P_CAGE] * shaft_angle[None, :])
+        displacement = xs[idx].T.copy()
+    empty = np.empty(0)
+    truth = GroundTruth(
+        label=scene.label,
+        faults=scene.faults,
+        frequencies=scene.frequencies,
+        shaft_angle=shaft_angle,
+        rpm=scene.speed.rpm_at(t, scene.duration_s) * np.ones_like(t),
+        # rotor2 does not scan fault-edge crossings (its solvers need no events)
+        fault_crossings=FaultCrossings(time_s=empty, fault=empty.astype(int),
+                                       element=empty.astype(int), edge=empty.astype(str)),
+        effective_depth_mm=tuple(f.effective_depth_mm(scene.bearing) for f in scene.faults),
+        contact_forces=forces,
+        element_angles=element_angles,
+        displacement=displacement,
+    )
+    info["wall_time_s"] = time.perf_counter() - t_wall
+    return SimulationResult(
+        accel=accel[0] if len(scene.sensors) == 1 else accel,
+        fs=scene.fs, t=t, scene=scene, sensor_names=tuple(s.name for s in scene.sensors),
+        truth=truth, info=info)
+
+
+#: the registry entry
+ROTOR2 = Model(
+    name="rotor2",
+    description="seed 003 rigid rotor (2 DOF) on a roller (Palmgren line contacts) or ball "
+                "(Hertz) bearing: clearance, unbalance, gravity, localized defects; "
+                "Newmark-beta",
+    represents=frozenset({"rotor_dynamics", "contact_dynamics", "contact_forces",
+                          "varying_speed"}),
+    # wall time per simulated second against sr5, measured side by side on a healthy
+    # NJ 305 at 500 N, 48 kHz (benchmarks/seed003.py, docs/seed003.md): 7.2x and 8.7x
+    relative_cost=8.0,
+    solvers=tuple(SOLVERS),
+    fixed_step_solvers=("newmark",),
+    reference="Dynamic behaviour of rotor roller bearing system with bearing defects "
+              "(seed 003, NJ 305; shared/seeds/DIGEST.md section 1.4); Palmgren (1959) line "
+              "contact; Newmark (1959)",
+    accepts=_accepts,
+    run=_run,
+)

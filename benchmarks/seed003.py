@@ -1,0 +1,267 @@
+"""Seed 003 reproduction: the rotor on an NJ 305 roller bearing (model ``rotor2``).
+
+Seed 003 ("Dynamic behaviour of rotor roller bearing system with bearing defects";
+shared/seeds/DIGEST.md section 1.4) simulates a 1 kg rigid rotor on an NJ 305 with
+0.25 mm diametral clearance, 200 N s/m damping, a 50 g x 20 um unbalance and a 0.5 x 0.5
+mm inner-race defect, integrated with Newmark-beta. It reports (section 5) the inner-race
+line at 166.73/100.04/66.69/55.55 Hz at 1500/900/600/500 rpm, displacement amplitudes of
+0.7-4 um at that line, and that "as the clearance increases the dynamic behaviour
+becomes complicated". This script checks each claim with ballpass and measures the
+solvers:
+
+1. ``solvers``: Newmark at its default step against dopri5 at rtol 1e-10, and dopri5 at
+   rtol 1e-8 against 1e-10 (the floor any two solvers reach on that scene); wall times.
+2. ``lines``: the x-displacement spectrum at the four speeds, for the seed's set-up (0.125
+   mm radial clearance, gravity only) and for a regular one (5 um, 500 N).
+3. ``bifurcation``: Poincare sections over the clearance (0-0.125 mm) and the speed
+   (500-2000 rpm) with the 0-1 test for chaos on each section.
+
+    python benchmarks/seed003.py            # ~5 min on 2 cores
+    python benchmarks/seed003.py --quick    # shorter records, fewer values
+
+Writes ``benchmarks/results/seed003_*.csv`` and ``docs/seed003_*.png``; docs/seed003.md
+quotes them.
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+import ballpass as bp
+from ballpass.simulate import Rotor2Parameters
+
+ROOT = Path(__file__).resolve().parent.parent
+RESULTS = ROOT / "benchmarks" / "results"
+DOCS = ROOT / "docs"
+#: seed 003 section 5.1, verbatim: rpm -> (theoretical Hz, theoretical um, measured Hz,
+#: measured um)
+SEED_TABLE = {1500: (166.7, 4.0, 167.75, 3.5), 900: (99.43, 1.67, 101.75, 2.5),
+              600: (65.6, 2.0, 67.0, 1.5), 500: (55.0, 1.3, 56.25, 0.7)}
+#: seed 003 section 5 (computed with the BPFI formula)
+SEED_SECTION5 = {1500: 166.73, 900: 100.04, 600: 66.69, 500: 55.55}
+DEFECT = bp.Fault("inner", width_mm=0.5, depth_mm=0.5)  # seed 003 section 3.6
+
+
+def scene(clearance_mm: float, load_n: float, rpm: float, duration: float, fs: float,
+          fault=DEFECT) -> bp.Scene:
+    """An NJ 305 scene; rotor2 ignores the resonance (any valid value)."""
+    b = bp.Bearing.catalog("NJ305").with_clearance(clearance_mm)
+    return bp.Scene(bearing=b, rpm=rpm, radial_load_n=load_n, fault=fault,
+                    duration_s=duration, fs=fs, resonance_hz=0.4 * fs)
+
+
+def _rel(x, ref, n=None):
+    """Relative L2 error of the dynamic part of the displacement (first n samples)."""
+    x, ref = x[:, :n], ref[:, :n]
+    return float(np.linalg.norm(x - ref) / np.linalg.norm(ref - ref.mean(axis=1, keepdims=True)))
+
+
+def solvers(quick: bool) -> pd.DataFrame:
+    """Newmark (default step) and dopri5 (1e-8) against dopri5 at rtol 1e-10."""
+    duration = 0.1 if quick else 0.3
+    cases = [("regular, healthy", 0.005, 500.0, None),
+             ("regular, inner defect", 0.005, 500.0, DEFECT),
+             ("seed set-up, healthy", 0.125, 0.0, None),
+             ("seed set-up, inner defect", 0.125, 0.0, DEFECT)]
+    rows = []
+    for name, c, load, fault in cases:
+        s = scene(c, load, 1500.0, duration, 20_000.0, fault)
+        runs = {}
+        for key, kw in (("ref", dict(solver="dopri5", rtol=1e-10)),
+                        ("dopri5", dict(solver="dopri5", rtol=1e-8)), ("newmark", {})):
+            bp.simulate(s.replace(duration_s=0.01), model="rotor2", **kw)  # compile
+            t0 = time.perf_counter()
+            runs[key] = bp.simulate(s, model="rotor2", return_forces=True, **kw)
+            runs[key].info["wall"] = time.perf_counter() - t0
+        ref = runs["ref"].truth.displacement
+        n50 = int(0.05 * s.fs)
+        for key in ("newmark", "dopri5"):
+            x = runs[key].truth.displacement
+            rows.append(dict(scene=name, solver=key if key == "dopri5" else "newmark (default)",
+                             step=(f"dt = {runs[key].info['dt_s'] * 1e6:.2f} us" if key == "newmark"
+                                   else "rtol = 1e-8"),
+                             err_50ms=_rel(x, ref, n50), err_full=_rel(x, ref),
+                             wall_s=runs[key].info["wall"],
+                             ref_wall_s=runs["ref"].info["wall"]))
+    df = pd.DataFrame(rows)
+    df.attrs["duration"] = duration
+    return df
+
+
+def cost_ratio(quick: bool) -> dict:
+    """Wall time per simulated second, rotor2 (newmark) against sr5 (rk4), medians of 3."""
+    duration = 0.2 if quick else 0.5
+    out = {}
+    for model, s in (("sr5", bp.Scene(bearing="NJ305", rpm=1500, radial_load_n=500,
+                                      duration_s=duration, fs=48_000.0)),
+                     ("rotor2", bp.Scene(bearing="NJ305", rpm=1500, radial_load_n=500,
+                                         duration_s=duration, fs=48_000.0))):
+        bp.simulate(s.replace(duration_s=0.01), model=model)
+        times = []
+        for _ in range(3):
+            t0 = time.perf_counter()
+            bp.simulate(s, model=model)
+            times.append(time.perf_counter() - t0)
+        out[model] = (float(np.median(times)), float(np.ptp(times)))
+    return out
+
+
+def _spectrum(x, fs):
+    win = np.hanning(x.size)
+    amp = 2 * np.abs(np.fft.rfft((x - x.mean()) * win, 8 * x.size)) / win.sum()
+    return np.fft.rfftfreq(8 * x.size, 1 / fs), amp
+
+
+def lines(quick: bool):
+    """Spectra of x at the seed's four speeds for two set-ups."""
+    revs = 12 if quick else 40
+    setups = {"seed set-up (c = 0.125 mm, gravity only)": (0.125, 0.0),
+              "regular (c = 5 um, 500 N)": (0.005, 500.0)}
+    rows, spectra = [], {}
+    for label, (c, load) in setups.items():
+        for rpm in SEED_TABLE:
+            s = scene(c, load, rpm, revs * 60 / rpm, 3000.0 * rpm / 1500)
+            res = bp.simulate(s, model="rotor2", return_forces=True)
+            x = res.truth.displacement[0, s.n_samples // 4:]
+            f, amp = _spectrum(x, s.fs)
+            bpfi = s.frequencies.bpfi
+            near = np.abs(f - bpfi) < 0.5 * s.shaft_hz
+            k = np.flatnonzero(near)[np.argmax(amp[near])]
+            band = f > 0.5 * s.shaft_hz
+            top = np.flatnonzero(band)[np.argmax(amp[band])]
+            spectra[(label, rpm)] = (f, amp, bpfi)
+            rows.append(dict(setup=label, rpm=rpm, seed_section5_hz=SEED_SECTION5[rpm],
+                             seed_theory_hz=SEED_TABLE[rpm][0], seed_measured_hz=SEED_TABLE[rpm][2],
+                             bpfi_hz=bpfi, line_hz=f[k], line_um=amp[k] * 1e6,
+                             seed_theory_um=SEED_TABLE[rpm][1], seed_measured_um=SEED_TABLE[rpm][3],
+                             largest_line_hz=f[top], largest_line_um=amp[top] * 1e6,
+                             p2p_x_um=np.ptp(x) * 1e6))
+    return pd.DataFrame(rows), spectra
+
+
+def _sweep(base: bp.Scene, parameter: str, values, discard: float) -> pd.DataFrame:
+    df = bp.dynamics.bifurcation_diagram(base, parameter, values, discard_s=discard,
+                                         n_jobs=2, params=Rotor2Parameters())
+    k = {v: (bp.dynamics.zero_one_test(g["x_m"].to_numpy())
+             if len(g) >= bp.dynamics.MIN_POINTS_01 else np.nan)
+         for v, g in df.groupby("parameter")}
+    df["K"] = df["parameter"].map(k)
+    return df
+
+
+def bifurcation(quick: bool):
+    """Poincare sections over clearance (2000 rpm, the seed's speed) and over speed."""
+    # 100 section points after a 30-revolution transient (quick: 20 after 10)
+    skip, revs = (10, 30) if quick else (30, 130)
+    n = 6 if quick else 14
+    rpm = 2000.0
+    base = scene(0.125, 0.0, rpm, revs * 60 / rpm, 4000.0, fault=None)
+    clear = _sweep(base, "radial_clearance_mm", np.linspace(0.0, 0.125, n), skip * 60 / rpm)
+    speeds = np.linspace(500.0, 2000.0, n)
+    # the same duration at every speed: at least `revs` revolutions at the slowest
+    base_s = base.replace(duration_s=revs * 60 / speeds[0])
+    speed = _sweep(base_s, "rpm", speeds, skip * 60 / speeds[0])
+    return clear, speed
+
+
+def plot_lines(spectra: dict) -> None:
+    """The spectra figure: x amplitude at the four speeds, two set-ups."""
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(4, 2, figsize=(10, 9), layout="constrained", sharex="row")
+    for j, label in enumerate(dict.fromkeys(k[0] for k in spectra)):
+        for i, rpm in enumerate(SEED_TABLE):
+            f, amp, bpfi = spectra[(label, rpm)]
+            ax = axes[i, j]
+            keep = f < 2.5 * bpfi
+            ax.plot(f[keep], amp[keep] * 1e6, lw=0.8)
+            ax.axvline(bpfi, color="tab:red", ls="--", lw=0.8, label=f"BPFI {bpfi:.2f} Hz")
+            ax.axvline(SEED_TABLE[rpm][2], color="tab:green", ls=":", lw=0.8,
+                       label=f"seed measured {SEED_TABLE[rpm][2]} Hz")
+            ax.set_title(f"{label}, {rpm} rpm", fontsize=9)
+            ax.set_ylabel("x amplitude (um)")
+            ax.legend(fontsize=7)
+    for ax in axes[-1]:
+        ax.set_xlabel("Frequency (Hz)")
+    fig.savefig(DOCS / "seed003_lines.png", dpi=110)
+
+
+def plot_bifurcations(clear: pd.DataFrame, speed: pd.DataFrame) -> None:
+    """Sections over clearance and speed; the 0-1 test K where a section is long enough."""
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(2, 2, figsize=(11, 7), layout="constrained")
+    for col, (df, name) in enumerate(((clear, "radial clearance (mm)"), (speed, "rpm"))):
+        bp.dynamics.plot_bifurcation(df, ax=axes[0, col], s=1)
+        axes[0, col].set_xlabel(name)
+        # x minus the clearance is the elastic approach: shows small clearances too
+        rel = df.assign(x_m=df["x_m"] - (df["parameter"] * 1e-3 if col == 0 else 0.125e-3))
+        bp.dynamics.plot_bifurcation(rel, ax=axes[1, col], s=1)
+        axes[1, col].set_ylabel("x - clearance at the section (um)")
+        axes[1, col].set_xlabel(name)
+        k = df.groupby("parameter")["K"].first().dropna()
+        if len(k):
+            twin = axes[1, col].twinx()
+            twin.plot(k.index, k.values, "o-", color="tab:red", ms=3, lw=0.8)
+            twin.set_ylim(-0.05, 1.05)
+            twin.set_ylabel(f"0-1 test K (red; sections of >= {bp.dynamics.MIN_POINTS_01} points)")
+    fig.savefig(DOCS / "seed003_bifurcation.png", dpi=110)
+
+
+def _print(df: pd.DataFrame, **kw) -> None:
+    print(df.to_string(float_format=lambda v: f"{v:.3g}", **kw))
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--quick", action="store_true", help="shorter records, fewer values")
+    ap.add_argument("--replot", action="store_true",
+                    help="redraw the bifurcation figure from the CSVs (no simulation)")
+    args = ap.parse_args()
+    RESULTS.mkdir(parents=True, exist_ok=True)
+    import matplotlib
+
+    matplotlib.use("Agg")
+    t0 = time.perf_counter()
+    if args.replot:
+        clear = pd.read_csv(RESULTS / "seed003_bifurcation_clearance.csv")
+        speed = pd.read_csv(RESULTS / "seed003_bifurcation_speed.csv")
+        for df, name in ((clear, "radial_clearance_mm"), (speed, "rpm")):
+            df.attrs["parameter"] = name
+            short = df.groupby("parameter")["x_m"].transform("size") < \
+                bp.dynamics.MIN_POINTS_01
+            df.loc[short, "K"] = np.nan
+            df.to_csv(RESULTS / f"seed003_bifurcation_{'clearance' if name != 'rpm' else 'speed'}"
+                      ".csv", index=False)
+    else:
+        sol = solvers(args.quick)
+        sol.to_csv(RESULTS / "seed003_solvers.csv", index=False)
+        _print(sol, index=False)
+        cost = cost_ratio(args.quick)
+        pd.DataFrame([dict(model=m, median_s=v[0], spread_s=v[1]) for m, v in cost.items()]
+                     ).to_csv(RESULTS / "seed003_cost.csv", index=False)
+        print("cost (median, spread) s:", cost, "rotor2/sr5 =",
+              cost["rotor2"][0] / cost["sr5"][0])
+        tab, spectra = lines(args.quick)
+        tab.to_csv(RESULTS / "seed003_lines.csv", index=False)
+        _print(tab, index=False)
+        plot_lines(spectra)
+        clear, speed = bifurcation(args.quick)
+        clear.to_csv(RESULTS / "seed003_bifurcation_clearance.csv", index=False)
+        speed.to_csv(RESULTS / "seed003_bifurcation_speed.csv", index=False)
+    plot_bifurcations(clear, speed)
+    for name, df in (("clearance", clear), ("speed", speed)):
+        print(name)
+        _print(df.groupby("parameter").agg(points=("x_m", "size"),
+                                           spread_um=("x_m", lambda v: np.ptp(v) * 1e6),
+                                           K=("K", "first")))
+    print(f"total {time.perf_counter() - t0:.0f} s")
+
+
+if __name__ == "__main__":
+    main()

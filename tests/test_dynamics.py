@@ -1,0 +1,190 @@
+"""ballpass.dynamics: Poincare sections, bifurcation diagrams, the 0-1 test, and the
+``ballpass bifurcation`` command."""
+
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import ballpass as bp
+from ballpass.cli import main
+from ballpass.simulate.result import FaultCrossings, GroundTruth, SimulationResult
+
+# a linear isotropic rotor m x'' + c x' + k x = m_u e w^2 (cos wt, sin wt)
+M_R, C_R, K_R, MUE = 1.0, 200.0, 4.0e6, 0.05 * 20e-6
+
+
+def _linear_rotor_result(rpm, duration=0.5, fs=10_000.0):
+    """Closed-form response of the linear rotor, started at rest at the origin: the
+    steady whirl plus the free response that cancels it at t = 0."""
+    scene = bp.Scene(bearing="NJ305", rpm=rpm, duration_s=duration, fs=fs,
+                     resonance_hz=0.4 * fs)
+    w = rpm * math.pi / 30
+    t = np.arange(scene.n_samples) / fs
+    h = MUE * w * w / (K_R - M_R * w * w + 1j * C_R * w)  # complex whirl amplitude
+    z = h * np.exp(1j * w * t)  # x + i y, steady
+    wn = math.sqrt(K_R / M_R)
+    zeta = C_R / (2 * math.sqrt(K_R * M_R))
+    wd = wn * math.sqrt(1 - zeta**2)
+    # free response z_f with z_f(0) = -h, z_f'(0) = -i w h
+    a, b = -h, (-1j * w * h + zeta * wn * (-h)) / wd
+    z = z + np.exp(-zeta * wn * t) * (a * np.cos(wd * t) + b * np.sin(wd * t))
+    empty = np.empty(0)
+    truth = GroundTruth(
+        label="healthy", faults=(), frequencies=scene.frequencies,
+        shaft_angle=scene.speed.shaft_angle(t, duration), rpm=np.full(t.size, rpm),
+        fault_crossings=FaultCrossings(empty, empty.astype(int), empty.astype(int),
+                                       empty.astype(str)),
+        effective_depth_mm=(), displacement=np.vstack((z.real, z.imag)))
+    res = SimulationResult(accel=np.zeros(t.size), fs=fs, t=t, scene=scene,
+                           sensor_names=("loaded",), truth=truth)
+    return res, h
+
+
+def test_poincare_of_linear_unbalanced_rotor_is_one_point():
+    res, h = _linear_rotor_result(1500.0)
+    pts = bp.dynamics.poincare_section(res, discard_s=0.1)
+    # 25 rev/s over 0.4 s; the strobe sits at shaft angle 2 pi k, where the steady whirl
+    # is at (Re h, Im h): one point. The transient decays as exp(-50 t): e^-5 by 0.1 s,
+    # so the points agree with it to 1e-2 of |h| at worst, far better later
+    assert pts.shape == (10, 2)
+    np.testing.assert_allclose(pts[-5:], np.tile([h.real, h.imag], (5, 1)),
+                               atol=1e-5 * abs(h))
+    assert np.ptp(pts[-5:], axis=0).max() < 1e-5 * abs(h)
+    # strobed by the cage (FTF, incommensurate with the whirl) the same motion is a
+    # circle of radius |h|, not a point
+    cage = bp.dynamics.poincare_section(res, strobe="cage", discard_s=0.2)
+    np.testing.assert_allclose(np.hypot(cage[:, 0], cage[:, 1]), abs(h), rtol=1e-4)
+    assert np.ptp(cage[:, 0]) > 0.5 * abs(h)
+
+
+def test_poincare_refuses_bad_input():
+    res, _ = _linear_rotor_result(1500.0)
+    with pytest.raises(ValueError, match="strobe"):
+        bp.dynamics.poincare_section(res, strobe="ball")
+    with pytest.raises(ValueError, match="discard_s"):
+        bp.dynamics.poincare_section(res, discard_s=0.5)
+    nodisp = SimulationResult(accel=res.accel, fs=res.fs, t=res.t, scene=res.scene,
+                              sensor_names=res.sensor_names,
+                              truth=GroundTruth(**{**res.truth.__dict__, "displacement": None}))
+    with pytest.raises(ValueError, match="return_forces=True"):
+        bp.dynamics.poincare_section(nodisp)
+
+
+def _rotor_scene(**kw):
+    b = bp.Bearing.catalog("NJ305").with_clearance(0.005)
+    return bp.Scene(bearing=b, rpm=1200.0, radial_load_n=500.0, duration_s=0.25,
+                    fs=4000.0, resonance_hz=1500.0, **kw)
+
+
+def test_bifurcation_over_speed():
+    scene = _rotor_scene()
+    speeds = [600.0, 1200.0, 1800.0]
+    df = bp.dynamics.bifurcation_diagram(scene, "rpm", speeds, discard_s=0.1,
+                                         progress=False)
+    assert list(df.columns) == ["parameter", "point", "x_m", "y_m"]
+    assert df.attrs["parameter"] == "rpm"
+    # one point per revolution after 0.1 s: 1.5, 3, 4.5 revolutions -> 1-2, 3, 4-5
+    counts = df.groupby("parameter").size()
+    for rpm in speeds:
+        assert abs(counts[rpm] - rpm / 60 * 0.15) <= 1
+    # the rotor sits on its rollers: x = clearance + the static approach of the
+    # Stribeck distribution, within the varying compliance (~0.1 um at 500 N)
+    static = scene.bearing.load_distribution(500.0 + 9.80665).deflection_m
+    np.testing.assert_allclose(df["x_m"], static, atol=0.3e-6)
+
+
+def test_bifurcation_over_clearance_and_errors_before_work(monkeypatch):
+    scene = _rotor_scene()
+    values = [0.0, 0.02, 0.05]
+    df = bp.dynamics.bifurcation_diagram(scene, "radial_clearance_mm", values,
+                                         discard_s=0.1, progress=False)
+    means = df.groupby("parameter")["x_m"].mean()
+    # the rotor drops by the clearance: x - c is the elastic approach, which the
+    # clearance changes little at 500 N (fewer loaded rollers: a little more)
+    approach = np.array([means[v] - v * 1e-3 for v in values])
+    assert np.all((approach > 1e-6) & (approach < 6e-6))
+    assert np.all(np.diff(approach) >= -1e-8)
+
+    import ballpass.simulate as sim
+
+    def boom(*a, **k):  # no simulation may start before every value is checked
+        raise AssertionError("simulate called")
+
+    monkeypatch.setattr(sim, "simulate", boom)
+    with pytest.raises(ValueError, match="parameter must be one of .*radial_load_n"):
+        bp.dynamics.bifurcation_diagram(scene, "stiffness", [1.0], progress=False)
+    with pytest.raises(ValueError, match=r"radial_clearance_mm=-0\.5"):
+        bp.dynamics.bifurcation_diagram(scene, "radial_clearance_mm", [0.01, -0.5],
+                                        progress=False)
+    with pytest.raises(ValueError, match="rpm"):
+        bp.dynamics.bifurcation_diagram(scene, "rpm", [600, -5], progress=False)
+    with pytest.raises(ValueError, match="values"):
+        bp.dynamics.bifurcation_diagram(scene, "rpm", [], progress=False)
+    ramp = scene.replace(rpm=(600.0, 1200.0))
+    with pytest.raises(ValueError, match="parameter must be one of"):
+        bp.dynamics.bifurcation_diagram(ramp, "rpm", [600], progress=False)
+
+
+def test_zero_one_test_separates_chaos_from_regular_motion():
+    x = np.empty(2000)
+    x[0] = 0.3
+    for i in range(x.size - 1):  # logistic map at r = 3.97: chaotic
+        x[i + 1] = 3.97 * x[i] * (1 - x[i])
+    assert bp.dynamics.zero_one_test(x) > 0.9
+    n = np.arange(2000)
+    quasi = np.cos(0.9 * n) + 0.5 * np.cos(0.9 * math.sqrt(2) * n)  # quasi-periodic
+    assert bp.dynamics.zero_one_test(quasi) < 0.1
+    y = np.empty(2000)
+    y[0] = 0.3
+    for i in range(y.size - 1):  # r = 3.5: period 4
+        y[i + 1] = 3.5 * y[i] * (1 - y[i])
+    assert bp.dynamics.zero_one_test(y[100:]) < 0.1
+    with pytest.raises(ValueError, match="300"):
+        bp.dynamics.zero_one_test(x[:299])
+
+
+def test_plots_return_axes():
+    res, _ = _linear_rotor_result(1500.0)
+    ax = bp.dynamics.plot_poincare(bp.dynamics.poincare_section(res))
+    assert ax.get_ylabel().startswith("y")
+    df = pd.DataFrame({"parameter": [1.0, 2.0], "point": [0, 0], "x_m": [1e-4, 2e-4],
+                       "y_m": [0.0, 0.0]})
+    ax = bp.dynamics.plot_bifurcation(df, coordinate="y_m")
+    assert ax.get_xlabel() == "parameter"
+
+
+def test_cli_bifurcation_writes_csv_and_figure(tmp_path, capsys):
+    out, png = tmp_path / "b.csv", tmp_path / "b.png"
+    code = main(["bifurcation", "--parameter", "radial_load_n", "--values", "200", "400",
+                 "--clearance", "0.005", "--duration", "0.15", "--fs", "2000", "--quiet",
+                 "--out", str(out), "--plot", str(png)])
+    assert code == 0
+    df = pd.read_csv(out)
+    assert list(df.columns) == ["radial_load_n", "point", "x_m", "y_m"]
+    assert set(df["radial_load_n"]) == {200.0, 400.0}
+    assert png.stat().st_size > 1000
+    assert main(["bifurcation", "--parameter", "nope", "--values", "1", "--out",
+                 str(out)]) == 2
+    assert "parameter must be one of" in capsys.readouterr().err
+    # a bad output path is refused before any simulation
+    assert main(["bifurcation", "--parameter", "rpm", "--values", "900", "--out",
+                 str(tmp_path / "b.txt")]) == 2
+    assert "--out" in capsys.readouterr().err
+
+
+def test_speed_ramp_is_strobed_by_the_tachometer():
+    # rotor2 on a run-up: the strobe instants follow the shaft angle, so every whole
+    # revolution after the transient gives exactly one point, at its instant
+    scene = _rotor_scene().replace(rpm=(600.0, 1800.0))
+    res = bp.simulate(scene, model="rotor2", return_forces=True)
+    assert "varying_speed" in bp.simulate.MODELS["rotor2"].represents
+    pts = bp.dynamics.poincare_section(res, discard_s=0.05)
+    angle = res.truth.shaft_angle
+    first = math.ceil(np.interp(0.05, res.t, angle) / (2 * math.pi))
+    last = math.floor(angle[-1] / (2 * math.pi))
+    assert pts.shape == (last - first + 1, 2)
+    # the run-up raises the unbalance force (w^2) but the rotor stays on its rollers
+    static = scene.bearing.load_distribution(500.0 + 9.80665).deflection_m
+    np.testing.assert_allclose(pts[:, 0], static, atol=0.3e-6)
