@@ -51,9 +51,11 @@ def test_every_model_runs_the_shared_scene_contract(name):
     # AC-coupled: the mean is zero to rounding (1e-12 of the largest sample)
     assert np.all(np.abs(res.accel.mean(axis=1)) <= 1e-12 * np.abs(res.accel).max())
     assert res.t.shape == (scene.n_samples,) and res.truth.label == "inner"
-    entries = res.truth.fault_crossings.entries()
-    # an inner-race defect meets an element BPFI times a second (within one pass)
-    assert abs(entries.size - scene.frequencies.bpfi * scene.duration_s) <= 1.0
+    if "envelope" in m.represents:
+        # a model of the fault impacts lists them: an inner-race defect meets an element
+        # BPFI times a second (within one pass)
+        entries = res.truth.fault_crossings.entries()
+        assert abs(entries.size - scene.frequencies.bpfi * scene.duration_s) <= 1.0
     np.testing.assert_array_equal(bp.simulate(scene, model=name).accel, res.accel)
 
 
