@@ -370,7 +370,7 @@ SR4 = Model(
     description="Sawalhi-Randall 4-DOF: shaft and pedestal, sensors read the housing "
                 "acceleration (no resonator)",
     represents=frozenset({"contact_dynamics", "contact_forces", "varying_speed"}),
-    # measured by benchmarks/models_cost.py (docs/models_cost.md: 2.08 at 48 kHz, 1.19 at
+    # measured by benchmarks/models_cost.py (docs/models_cost.md: 1.95 at 48 kHz, 1.25 at
     # 12 kHz, median of interleaved rounds): the same steps as sr5, but its output, the
     # housing acceleration, is evaluated from the contact forces at every internal
     # sample, while sr5's resonators are advanced exactly

@@ -332,9 +332,9 @@ IMPULSE = Model(
                 "slip, Stribeck load-zone and transmission modulation, ringing the "
                 "scene's resonance; no contact dynamics",
     represents=frozenset({"envelope", "varying_speed"}),
-    # measured by benchmarks/models_cost.py (docs/models_cost.md): 0.086 of sr5 per
-    # simulated second at 48 kHz (median of interleaved rounds, IQR 0.066-0.113;
-    # 0.076-0.11 over five runs), 0.07 at 12 kHz
+    # measured by benchmarks/models_cost.py (docs/models_cost.md): 0.095 of sr5 per
+    # simulated second at 48 kHz (median of interleaved rounds on a quiet machine, IQR
+    # 0.088-0.098; 0.076-0.11 over six runs), 0.056 at 12 kHz
     relative_cost=0.09,
     solvers=("analytic",),
     fixed_step_solvers=(),
