@@ -21,6 +21,10 @@ Models (the table behind ``auto``: ``python -m ballpass bearings`` lists bearing
     clearance, unbalance, defects), Newmark-beta by default (see :mod:`.rotor2`): the
     non-linear rotor dynamics for Poincare sections and bifurcation diagrams
     (:mod:`ballpass.dynamics`).
+``multibody``
+    Nakhaeinejad & Bryant (2011, seed 000): every ball a body with traction, slip and
+    centrifugal load (see :mod:`.multibody`). What scenes that need ``ball_dynamics``
+    run.
 
 A new model is one file that builds a :class:`Model` and one line in :data:`MODELS`.
 """
@@ -42,6 +46,7 @@ from ._registry import Model  # noqa: E402
 from ._shared import OVERSAMPLE, SimulationUnstableError, check_solver_args  # noqa: E402
 from ._sr5_driver import SOLVERS, SR4, SR5, build, integrate  # noqa: E402
 from .impulse import IMPULSE, ImpulseParameters  # noqa: E402
+from .multibody import MULTIBODY, MultibodyParameters  # noqa: E402
 from .result import SimulationResult  # noqa: E402
 from .rotor2 import ROTOR2, Rotor2Parameters  # noqa: E402
 from .sr5 import BearingModel, SR5Parameters  # noqa: E402
@@ -62,6 +67,7 @@ __all__ = [
     "SR5Parameters",
     "ImpulseParameters",
     "Rotor2Parameters",
+    "MultibodyParameters",
     "BearingModel",
     "source_fingerprint",
     "work_precision",
@@ -70,7 +76,7 @@ __all__ = [
 ]
 
 #: model name -> :class:`Model`, cheapest first
-MODELS: dict[str, Model] = {m.name: m for m in sorted((SR5, SR4, ROTOR2, IMPULSE),
+MODELS: dict[str, Model] = {m.name: m for m in sorted((SR5, SR4, ROTOR2, MULTIBODY, IMPULSE),
                                                       key=lambda m: m.relative_cost)}
 
 

@@ -308,14 +308,8 @@ def _run(scene: Scene, solver: str, *, resonator: bool, dt=None, rtol=None, atol
         angles = _K.element_angles_many(idx * h_out, bm.p, bm.walk,
                                         scene.bearing.n_elements).T.copy()
         displacement = states[idx][:, :4].T.copy()
-    truth = GroundTruth(
-        label=scene.label,
-        faults=scene.faults,
-        frequencies=scene.frequencies,
-        shaft_angle=scene.speed.shaft_angle(t, scene.duration_s),
-        rpm=scene.speed.rpm_at(t, scene.duration_s) * np.ones_like(t),
-        fault_crossings=raw.crossings,
-        effective_depth_mm=tuple(f.effective_depth_mm(scene.bearing) for f in scene.faults),
+    truth = GroundTruth.of_scene(
+        scene, t, raw.crossings,
         contact_forces=forces,
         element_angles=angles,
         displacement=displacement,
