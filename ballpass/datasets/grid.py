@@ -39,6 +39,7 @@ from pathlib import Path
 import numpy as np
 
 from .._validation import check_segment
+from ..phenomena import check_needs
 from ..scene import Fault, Scene, Sensor
 
 __all__ = ["Grid", "Run", "read_grid", "run_seed", "scene_from_dict", "count_points",
@@ -57,6 +58,7 @@ DATASET_DEFAULTS: dict[str, object] = {
     "solver": "auto",
     "segment_s": None,
     "shard_size": None,
+    "needs": None,
 }
 
 #: [grid] axes; runs follow this order, with the fault-size axes varying fastest
@@ -189,6 +191,8 @@ def _dataset_settings(raw: dict) -> dict:
     for key in ("model", "solver"):
         if not isinstance(out[key], str):
             raise ValueError(f"dataset.{key} must be a str, got {out[key]!r}")
+    if out["needs"] is not None:  # phenomena every run asks for (Scene(needs=...))
+        out["needs"] = sorted(check_needs(out["needs"], "dataset.needs"))
     if out["segment_s"] is not None and out["segment_s"] > out["duration_s"]:
         raise ValueError(f"dataset.segment_s={out['segment_s']:g} s is longer than "
                          f"dataset.duration_s={out['duration_s']:g} s")
@@ -278,7 +282,8 @@ class Grid:
     dataset : dict
         The [dataset] settings with defaults filled: ``duration_s`` (s), ``fs`` (Hz),
         ``repeats``, ``seed`` (root seed), ``model`` (unless the grid has a model axis),
-        ``solver``, ``shard_size`` (runs per shard) and optionally ``segment_s`` (s).
+        ``solver``, ``shard_size`` (runs per shard) and optionally ``segment_s`` (s)
+        and ``needs`` (phenomena every run asks for).
     axes : dict
         The [grid] axes as lists of normalized values (ranges expanded).
     """
@@ -378,6 +383,8 @@ def _point_scene(dataset: dict, sensors: list, values: dict) -> dict:
     for key in _SCENE_AXES:
         if key in values:
             scene[key] = None if values[key] == math.inf else values[key]
+    if "needs" in dataset:
+        scene["needs"] = list(dataset["needs"])
     return scene
 
 
@@ -403,6 +410,11 @@ def read_grid(source) -> Grid:
 
     Notes
     -----
+    ``[dataset] needs`` (a list of phenomenon names, e.g. ``["envelope"]``) is passed to
+    every run as ``Scene(needs=...)``, so ``model = "auto"`` runs the cheapest model
+    that covers it (see :func:`ballpass.simulate.resolve_model`); each row records the
+    model that ran.
+
     ``[grid]`` axes (each a list; a bare value is a one-value list; numeric axes also
     accept a range table ``{start, stop, step}`` with ``stop`` included):
 
