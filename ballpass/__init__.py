@@ -20,6 +20,7 @@ from __future__ import annotations
 import importlib
 
 from .bearing import Bearing, BearingFrequencies
+from .gears import GearFault, GearPair
 from .scene import Fault, Scene, Sensor, SpeedProfile
 from .waviness import Waviness
 
@@ -29,6 +30,8 @@ __all__ = [
     "Bearing",
     "BearingFrequencies",
     "Fault",
+    "GearFault",
+    "GearPair",
     "Scene",
     "Sensor",
     "SpeedProfile",

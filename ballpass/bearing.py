@@ -227,7 +227,7 @@ class Bearing:
         """
         if not isinstance(name, str):
             raise TypeError(f"bearing name must be a str, got {type(name).__name__}")
-        key = name.strip().upper()
+        key = name.replace(" ", "").upper()  # "NU 2204" as printed is "NU2204"
         for entry_name, kwargs in _CATALOG.items():
             if entry_name.upper() == key:
                 return cls(name=entry_name, **kwargs)
@@ -615,6 +615,12 @@ _CATALOG: dict[str, dict] = {
         n_elements=11, element_diameter_mm=6.477, pitch_diameter_mm=33.4772,
         element="roller", roller_length_mm=8.0,
         source="SKF NU 2204, seed 004 Table 2 (roller length 8 mm assumed)",
+    ),
+    "3207": dict(
+        n_elements=14, element_diameter_mm=10.3124, pitch_diameter_mm=53.4924,
+        contact_angle_deg=30.0,
+        source="SKF 3207 BN double-row angular contact, seed 004 Table 2 (14 balls over "
+               "both rows, alpha = 30 deg; the planar models treat them as one row)",
     ),
     "NJ305": dict(
         n_elements=11, element_diameter_mm=9.25, pitch_diameter_mm=43.5,

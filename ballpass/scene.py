@@ -18,8 +18,10 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 
+from . import _resources
 from ._validation import check_number as _number
 from .bearing import Bearing, BearingFrequencies
+from .gears import GearPair
 from .phenomena import check_needs
 from .waviness import Waviness
 
@@ -29,6 +31,8 @@ FAULT_KINDS = ("outer", "inner", "ball")
 EDGE_PROFILES = ("ramped", "sharp", "blunt")
 FAULT_GEOMETRIES = ("groove", "pit")
 STANDARD_GRAVITY = 9.80665  # m/s^2
+#: scenes needing less memory than this (bytes) skip the free-memory check
+_MEMORY_CHECK_BYTES = 256 * 2**20
 #: Lowest structural resonance accepted, Hz. The resonances that bearing impacts excite
 #: and envelope analysis demodulates lie at kHz (Randall & Antoni, MSSP 25 (2011)
 #: 485-520, sec. 3); below 100 Hz a "resonance" sits among the shaft harmonics and the
@@ -388,6 +392,10 @@ class Scene:
         Amplitudes of the shaft-rate lines 1x, 2x, ... the rest of the machine adds
         (unbalance, misalignment, looseness), m/s^2 each, >= 0; phases drawn from the
         seed. Default none.
+    gears : GearPair or str or None, optional
+        A gear pair whose pinion sits on the bearing's shaft and turns at ``rpm`` (a
+        :class:`~ballpass.GearPair` or a preset name such as ``"seed004"``); the scene
+        then needs ``gear_mesh`` (the ``gearbox`` model). Default None.
 
     Examples
     --------
@@ -417,6 +425,7 @@ class Scene:
     resonances: tuple = ()
     noise_slope_db_oct: float = 0.0
     shaft_harmonics: tuple = ()
+    gears: GearPair | str | None = None
 
     def __post_init__(self) -> None:
         bearing = self.bearing
@@ -489,6 +498,7 @@ class Scene:
         if len(set(names)) != len(names):
             raise ValueError(f"sensor names must be unique, got {names}")
         object.__setattr__(self, "sensors", sensors_t)
+        self._check_fits_in_memory()
 
         if self.snr_db is not None and self.noise_rms is not None:
             raise ValueError("give snr_db or noise_rms, not both")
@@ -509,6 +519,11 @@ class Scene:
                              "any load: no load zone and no static equilibrium. Give a "
                              "radial_load_n > 0 N, keep gravity=True or preload the bearing "
                              "(clearance_um < 0)")
+
+        if isinstance(self.gears, str):
+            object.__setattr__(self, "gears", GearPair.preset(self.gears))
+        elif self.gears is not None and not isinstance(self.gears, GearPair):
+            raise TypeError(f"gears must be a GearPair, a preset name or None, got {self.gears!r}")
 
     def _check_realism(self) -> None:
         """Validate and normalise waviness, clearance, extra resonances and background."""
@@ -535,6 +550,20 @@ class Scene:
             "noise_slope_db_oct", self.noise_slope_db_oct, -12.0, 12.0))
         object.__setattr__(self, "shaft_harmonics", tuple(
             _number("shaft_harmonics", a, 0.0, 1e4) for a in self.shaft_harmonics))
+
+    def _check_fits_in_memory(self) -> None:
+        """Refuse a scene whose simulation would not fit in this machine's free memory."""
+        need = _resources.simulation_bytes(self.n_samples, len(self.sensors))
+        if need < _MEMORY_CHECK_BYTES:  # reading /proc/meminfo costs more than a small scene
+            return
+        free = _resources.available_memory()
+        if need > free:
+            raise ValueError(
+                f"duration_s={self.duration_s:g} s at fs={self.fs:g} Hz with "
+                f"{len(self.sensors)} sensor(s) is {self.n_samples} samples per sensor; "
+                f"simulating it needs about {_resources.human_bytes(need)} of memory and "
+                f"{_resources.human_bytes(free)} is available. Shorten duration_s or lower fs "
+                "(simulate a long record as several scenes).")
 
     # ------------------------------------------------------------------ derived
     @property

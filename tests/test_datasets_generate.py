@@ -96,7 +96,7 @@ def test_cli_end_to_end(local_dataset, capsys):
     assert len(shard) == 4 * 2 and len(shard.signal.iloc[0]) == 600
     assert pq.read_schema(local_dataset / "part-00000.parquet").field("signal").type.list_size \
         == 600
-    manifest = json.loads((local_dataset / "manifest.json").read_text())
+    manifest = json.loads((local_dataset / "_manifest.json").read_text())
     assert manifest["status"] == "complete" and manifest["root_seed"] == 3
     assert manifest["units"]["signal"] == "m/s^2"
 
@@ -173,7 +173,7 @@ def test_kill_and_resume(tmp_path):
     proc.wait()
     before = {p.name: p.stat().st_mtime_ns for p in out.glob("part-*.parquet")}
     assert 3 <= len(before) < n_shards
-    assert json.loads((out / "manifest.json").read_text())["status"] == "running"
+    assert json.loads((out / "_manifest.json").read_text())["status"] == "running"
 
     summary = generate(grid, out, progress=False)
     assert summary.shards_written == n_shards - len(before)
@@ -189,7 +189,7 @@ def test_kill_and_resume(tmp_path):
     assert sorted(meta.run_id.unique()) == list(range(N_RUNS))
     i = int(np.flatnonzero(meta.run_id == min(int(n[5:10]) for n in before))[0])
     assert np.array_equal(regenerate(meta.iloc[i]), X[i])
-    assert json.loads((out / "manifest.json").read_text())["status"] == "complete"
+    assert json.loads((out / "_manifest.json").read_text())["status"] == "complete"
 
 
 @pytest.mark.parametrize("text, key", [
@@ -234,12 +234,12 @@ def test_read_only_folder_refused(tmp_path, grid_file):
 
 
 def test_other_grid_or_foreign_folder_refused(local_dataset, grid_file, tmp_path):
-    manifest = (local_dataset / "manifest.json").read_bytes()
+    manifest = (local_dataset / "_manifest.json").read_bytes()
     other = tomllib.loads(GRID_TOML)
     other["dataset"]["seed"] = 4
     with pytest.raises(ValueError, match="already holds a dataset of another grid"):
         generate(other, local_dataset, progress=False)
-    assert (local_dataset / "manifest.json").read_bytes() == manifest
+    assert (local_dataset / "_manifest.json").read_bytes() == manifest
     foreign = tmp_path / "foreign"
     foreign.mkdir()
     (foreign / "notes.txt").write_text("mine")
@@ -282,7 +282,7 @@ def test_feature_table(tmp_path):
                                                                              "repeats = 1"))
     out = tmp_path / "ds"
     assert main(["generate", str(grid), "--out", str(out), "--no-progress"]) == 0
-    assert not (out / "features").exists()
+    assert not (out / "_features").exists()
     summary = generate(grid, out, features=True, progress=False)   # added to a finished dataset
     assert summary.rows_written == 0 and summary.feature_shards_written == 2
     X, meta = load(out)

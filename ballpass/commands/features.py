@@ -26,7 +26,7 @@ inputs:
                       which); the bearing defaults to the rig's (DE: 6205, FE: 6203).
                       MFPT: fs, rpm and load from the file's `bearing` struct; bearing
                       MFPT-NICE.
-  DIR                 a dataset folder with manifest.json (`ballpass generate`), or a
+  DIR                 a dataset folder with _manifest.json (`ballpass generate`), or a
                       folder of .mat recordings (unreadable ones skipped with a warning)
 
 columns: source, channel, segment, start_s, fs, bearing, rpm, label (when known), the
@@ -232,7 +232,8 @@ def load_inputs(args) -> list[Signal]:
     signals: list[Signal] = []
     for raw in args.inputs:
         path = Path(raw)
-        if path.is_dir() and (path / "manifest.json").is_file():
+        if path.is_dir() and any((path / name).is_file()
+                                 for name in ("_manifest.json", "manifest.json")):
             signals += _from_dataset(path, args)
         elif path.is_dir():
             signals += _from_mat_folder(path, args)

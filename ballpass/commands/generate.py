@@ -13,13 +13,17 @@ examples:
 Run the same command again to resume an interrupted dataset: complete shards are kept."""
 
 
+#: seconds to wait for a Dask scheduler to answer
+SCHEDULER_TIMEOUT_S = 5
+
+
 def add_parser(subparsers) -> None:
     """Register the ``generate`` subcommand."""
     p = subparsers.add_parser(
         "generate",
         help="simulate a labelled dataset over a TOML parameter grid",
         description="Simulate every run of a TOML grid into a folder of Parquet shards with "
-                    "a manifest.json; resumable, parallel (local processes or a Dask cluster).",
+                    "a _manifest.json; resumable, parallel (local processes or a Dask cluster).",
         epilog=EXAMPLE,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
@@ -31,10 +35,12 @@ def add_parser(subparsers) -> None:
     p.add_argument("--dry-run", action="store_true",
                    help="print rows, estimated time and disk, and write nothing")
     p.add_argument("--features", action="store_true",
-                   help="also write a feature table per shard under DIR/features")
+                   help="also write a feature table per shard under DIR/_features")
     p.add_argument("--scheduler", metavar="ADDRESS",
                    help="run the shards on a running Dask scheduler, e.g. tcp://host:8786 "
                         "(needs `pip install ballpass[cluster]`; DIR must be shared storage)")
+    p.add_argument("--force", action="store_true",
+                   help="start even if the estimated disk or memory need exceeds what is free")
     p.add_argument("--no-progress", action="store_true", help="hide the progress bar")
     p.set_defaults(func=run)
 
@@ -44,21 +50,28 @@ def run(args) -> int:
     from ..datasets import dry_run, generate
 
     if args.dry_run:
-        print(dry_run(args.grid, out_dir=args.out, n_jobs=args.jobs))
+        print(dry_run(args.grid, out_dir=args.out, n_jobs=args.jobs, force=args.force))
         return 0
     if args.out is None:
         raise ValueError("--out DIR is required (unless --dry-run)")
     if args.scheduler is None:
         summary = generate(args.grid, args.out, n_jobs=args.jobs, features=args.features,
-                           progress=not args.no_progress)
+                           progress=not args.no_progress, force=args.force)
     else:
         try:
             from distributed import Client
         except ImportError:
             raise ValueError("--scheduler needs Dask distributed: "
                              "pip install 'ballpass[cluster]'") from None
-        with Client(args.scheduler) as client:
+        try:
+            client = Client(args.scheduler, timeout=SCHEDULER_TIMEOUT_S)
+        except (OSError, TimeoutError) as exc:
+            raise ValueError(f"--scheduler {args.scheduler}: no Dask scheduler answered "
+                             f"within {SCHEDULER_TIMEOUT_S} s ({exc}); start one with "
+                             "`dask scheduler` or check the address") from None
+        with client:
             summary = generate(args.grid, args.out, executor=client.get_executor(),
-                               features=args.features, progress=not args.no_progress)
+                               features=args.features, progress=not args.no_progress,
+                               force=args.force)
     print(summary)
     return 0

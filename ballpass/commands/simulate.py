@@ -10,6 +10,8 @@ examples:
   ballpass simulate --bearing 6205 --fault inner --width 0.53 --depth 0.1 \\
       --fs 12000 --resonance 3000 --duration 2 --out inner.csv
   ballpass simulate --fault ball --sensors loaded unloaded --snr 10 --out ball.parquet
+  ballpass simulate --bearing 6208 --rpm 2000 --fault inner --gears seed004-1st \
+      --torque 80 --fs 24000 --resonance 3000 --out gearbox.npz
 """
 
 
@@ -24,7 +26,14 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     add_scene_arguments(p)
-    p.add_argument("--model", default="auto", help="auto (default), sr5 or sr4")
+    from ..gears import GEAR_PRESETS
+
+    p.add_argument("--gears", choices=sorted(GEAR_PRESETS), default=None,
+                   help="a gear pair whose pinion sits on the bearing's shaft (seed 004 "
+                   "Table 1 presets); runs the gearbox model")
+    p.add_argument("--torque", type=float, default=None,
+                   help="input torque of the gear pair, N m (default: the preset's, 50)")
+    p.add_argument("--model", default="auto", help="auto (default), sr5, sr4 or gearbox")
     p.add_argument("--solver", default="auto", help="auto (default, = rk4), rk4 or dopri5")
     p.add_argument("--dt", type=float, default=None, help="RK4 step, s (default: automatic)")
     p.add_argument("--rtol", type=float, default=None, help="dopri5 relative tolerance")
@@ -77,8 +86,14 @@ def scene_from_args(args):
             sensors.append(bp.Sensor(angle_deg=float(s)))
         except ValueError:
             sensors.append(s)
+    gears = getattr(args, "gears", None)
+    torque = getattr(args, "torque", None)
+    if torque is not None and gears is None:
+        raise ValueError("--torque applies to a gear pair: give --gears too")
+    if gears is not None:
+        gears = bp.GearPair.preset(gears, **({} if torque is None else {"torque_nm": torque}))
     return bp.Scene(
-        bearing=args.bearing, rpm=rpm, radial_load_n=args.load, fault=fault,
+        bearing=args.bearing, rpm=rpm, radial_load_n=args.load, fault=fault, gears=gears,
         duration_s=args.duration, fs=args.fs, seed=args.seed, slip=args.slip,
         resonance_hz=args.resonance, resonance_damping=args.damping, sensors=tuple(sensors),
         snr_db=args.snr,

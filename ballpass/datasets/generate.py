@@ -2,40 +2,52 @@
 
 Each shard is a pure function of the grid and its index (:func:`run_shard`): it
 simulates its runs, cuts the rows and writes one Parquet file under a temporary name
-that is renamed when complete. The parent process plans the shards, skips those
-already complete, dispatches the rest to joblib worker processes (default) or to any
-:class:`concurrent.futures.Executor` (a Dask ``client.get_executor()`` runs them
-across machines), and keeps ``manifest.json`` up to date after every shard.
+that is renamed when complete. The parent process checks the grid's size against the
+free memory and disk, plans the shards, skips those already complete (and intact:
+their SHA-256 matches the manifest), compiles the kernels once, dispatches the rest
+to worker processes forked from it (so they start with the kernels loaded, and die
+with it) or to any :class:`concurrent.futures.Executor` (a Dask
+``client.get_executor()`` runs them across machines), and keeps ``_manifest.json`` up
+to date after every shard.
 """
 
 from __future__ import annotations
 
 import concurrent.futures as cf
 import contextlib
+import hashlib
 import json
 import math
+import multiprocessing
 import os
+import signal
+import sys
 import tempfile
+import threading
 import time
+import warnings
 from collections import Counter
+from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from .grid import Grid, Run, read_grid
+from .._resources import available_memory, free_disk, human_bytes, simulation_bytes
+from .grid import Grid, Run, grid_differences, read_grid, scene_from_dict
 from .store import (
     FEATURES_DIR,
     FORMAT_VERSION,
     LOCK_FILE,
     UNITS,
-    human_bytes,
+    file_sha256,
     is_temporary,
     load,
     read_manifest,
     remove_temporaries,
     shard_complete,
     shard_name,
+    shard_problem,
     write_manifest,
     write_table,
 )
@@ -109,6 +121,10 @@ def _simulate_run(run: Run, solver: str, signal_length: int, n_segments: int):
     return np.asarray(signals, dtype=np.float32), columns
 
 
+#: metadata columns :func:`regenerate` needs
+_ROW_KEYS = ("scene", "model", "solver", "run_id", "repeat", "sensor", "segment", "duration_s")
+
+
 def regenerate(row) -> np.ndarray:
     """Simulate one stored row again; the result equals the stored signal exactly.
 
@@ -124,22 +140,41 @@ def regenerate(row) -> np.ndarray:
     ndarray of float32, shape (signal_length,)
         The row's signal, m/s^2.
 
+    Raises
+    ------
+    ValueError
+        The row lacks a column, or its ``scene``, ``sensor`` or ``segment`` do not
+        describe a stored row.
+
     Examples
     --------
     >>> X, meta = load("out/quick")                                  # doctest: +SKIP
     >>> (regenerate(meta.iloc[3]) == X[3]).all()                     # doctest: +SKIP
     True
     """
-    scene = json.loads(row["scene"])
-    run = Run(run_id=int(row["run_id"]), repeat=int(row["repeat"]), model=row["model"],
-              scene=scene)
-    length = round(float(row["duration_s"]) * scene["fs"])
-    n_segments = int(row["segment"]) + 1
-    signals, columns = _simulate_run(run, row["solver"], length, n_segments)
-    i = next(i for i, (s, g) in enumerate(zip(columns["sensor"], columns["segment"],
-                                              strict=True))
-             if s == row["sensor"] and g == int(row["segment"]))
-    return signals[i]
+    missing = [k for k in _ROW_KEYS if k not in row]
+    if missing:
+        raise ValueError(f"row lacks {missing}: pass a row of the metadata returned by "
+                         "ballpass.datasets.load (all columns)")
+    try:
+        scene = json.loads(row["scene"])
+        if not isinstance(scene, dict):
+            raise TypeError(f"a JSON object is expected, got {type(scene).__name__}")
+        built = scene_from_dict(scene)
+        run = Run(run_id=int(row["run_id"]), repeat=int(row["repeat"]), model=row["model"],
+                  scene=scene)
+        length = round(float(row["duration_s"]) * built.fs)
+        segment = int(row["segment"])
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"row['scene'] = {str(row['scene'])[:80]!r} is not a stored dataset "
+                         f"scene: {exc}") from None
+    names = [s.name for s in built.sensors]
+    if row["sensor"] not in names or not 0 <= segment < built.n_samples // max(length, 1):
+        raise ValueError(f"row['sensor'] = {row['sensor']!r} and row['segment'] = {segment} "
+                         f"do not name a row of this scene (sensors {names}, segments of "
+                         f"{length} samples)")
+    signals, columns = _simulate_run(run, row["solver"], length, segment + 1)
+    return signals[names.index(row["sensor"]) * (segment + 1) + segment]
 
 
 # ----------------------------------------------------------------------------- shards
@@ -186,8 +221,9 @@ def run_shard(spec: ShardSpec) -> dict:
     Returns
     -------
     dict
-        ``index``, ``n_rows``, ``bytes`` (signal shard), ``features_bytes``,
-        ``models`` (Counter of resolved models) and ``simulated`` (bool).
+        ``index``, ``n_rows``, ``bytes`` and ``sha256`` (signal shard, if simulated),
+        ``features_bytes`` and ``features_sha256`` (if written), ``models`` (Counter of
+        resolved models) and ``simulated`` (bool).
     """
     folder = Path(spec.folder)
     path = folder / shard_name(spec.index)
@@ -206,13 +242,14 @@ def run_shard(spec: ShardSpec) -> dict:
         signals = np.concatenate([p[0] for p in parts])
         columns = {k: [v for p in parts for v in p[1][k]] for k in parts[0][1]}
         report["models"] = Counter(p[1]["model"][0] for p in parts)
-        report["bytes"] = write_table(path, columns, signals,
-                                      metadata={"shard": spec.index, "units": UNITS})
+        report["bytes"], report["sha256"] = write_table(
+            path, columns, signals, metadata={"shard": spec.index, "units": UNITS})
     if spec.features:
         if not spec.simulate:
             signals, meta = load(path)
             columns = meta.to_dict(orient="list")
-        report["features_bytes"] = _write_features(folder, spec.index, signals, columns)
+        report["features_bytes"], report["features_sha256"] = _write_features(
+            folder, spec.index, signals, columns)
     return report
 
 
@@ -252,31 +289,91 @@ def feature_columns(signals: np.ndarray, fs: float, bearing, rpm) -> dict[str, n
     return out | bands
 
 
-def _write_features(folder: Path, index: int, signals: np.ndarray, columns: dict) -> int:
-    """Write the feature table of one shard: :data:`FEATURE_KEYS` then the features."""
+def _write_features(folder: Path, index: int, signals: np.ndarray,
+                    columns: dict) -> tuple[int, str]:
+    """Write the feature table of one shard: :data:`FEATURE_KEYS` then the features;
+    return its size (bytes) and SHA-256."""
     out = {k: list(columns[k]) for k in FEATURE_KEYS}
     out.update(feature_columns(signals, columns["fs"][0], columns["bearing"], columns["rpm"]))
     (folder / FEATURES_DIR).mkdir(exist_ok=True)
     return write_table(folder / FEATURES_DIR / shard_name(index), out)
 
 
-def _dispatch(specs: list[ShardSpec], n_jobs: int, executor):
-    """Run the shards; yield their reports as they complete."""
-    if executor is not None:
-        futures = [executor.submit(run_shard, s) for s in specs]
-        try:
-            for fut in cf.as_completed(futures):
-                yield fut.result()
-        finally:
-            for fut in futures:
-                fut.cancel()
-    elif n_jobs == 1:
-        yield from map(run_shard, specs)
-    else:
-        from joblib import Parallel, delayed
+def _die_with_parent(parent_pid: int) -> None:
+    """Worker initializer: end this worker as soon as the process that started it dies.
 
-        yield from Parallel(n_jobs=n_jobs, return_as="generator_unordered")(
-            delayed(run_shard)(s) for s in specs)
+    On Linux the kernel sends SIGKILL on the parent's death (``PR_SET_PDEATHSIG``);
+    elsewhere a daemon thread polls the parent id. Either way a killed ``generate``
+    leaves no worker behind still writing shards.
+    """
+    try:
+        import ctypes
+
+        libc = ctypes.CDLL(None, use_errno=True)
+        if libc.prctl(_PR_SET_PDEATHSIG, signal.SIGKILL) != 0:
+            raise OSError(ctypes.get_errno(), "prctl failed")
+    except (OSError, AttributeError):  # not Linux: poll instead
+
+        def watch() -> None:
+            while os.getppid() == parent_pid:
+                time.sleep(0.5)
+            os._exit(1)
+
+        threading.Thread(target=watch, daemon=True).start()
+    if os.getppid() != parent_pid:  # the parent died before the signal was armed
+        os._exit(1)
+
+
+_PR_SET_PDEATHSIG = 1  # from <linux/prctl.h>
+
+
+def available_cores() -> int:
+    """Cores this process may run on (its CPU affinity where the OS tells)."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # pragma: no cover - not Linux
+        return os.cpu_count() or 1
+
+
+def _n_workers(n_jobs: int, n_tasks: int) -> int:
+    """Workers for ``n_tasks`` shards: ``n_jobs`` capped at the shards and the cores;
+    a request above the cores warns."""
+    cores = available_cores()
+    if n_jobs > cores:
+        warnings.warn(f"n_jobs={n_jobs} is more than the {cores} cores available; using "
+                      f"{min(cores, n_tasks)} worker(s)", stacklevel=3)
+    return max(1, min(n_jobs, cores, n_tasks))
+
+
+def _pool(n_workers: int) -> cf.ProcessPoolExecutor:
+    """Worker processes that die with this one. On Linux they are forked after the
+    kernels are compiled in the parent, so they start at once with the kernels loaded
+    (no import, no cache load); elsewhere they start the platform's default way."""
+    context = multiprocessing.get_context("fork" if sys.platform == "linux" else None)
+    return cf.ProcessPoolExecutor(n_workers, mp_context=context,
+                                  initializer=_die_with_parent, initargs=(os.getpid(),))
+
+
+def _dispatch(specs: list[ShardSpec], n_workers: int, executor):
+    """Run the shards; yield their reports as they complete."""
+    if executor is None and n_workers == 1:
+        yield from map(run_shard, specs)
+        return
+    own = executor is None
+    if own:
+        executor = _pool(n_workers)
+    futures = [executor.submit(run_shard, s) for s in specs]
+    try:
+        for fut in cf.as_completed(futures):
+            yield fut.result()
+    except BrokenProcessPool:
+        raise RuntimeError("a worker process died (killed, or out of memory?); complete "
+                           "shards are kept, run generate again to resume") from None
+    finally:
+        for fut in futures:
+            fut.cancel()
+        if own:
+            executor.shutdown(wait=True, cancel_futures=True)
 
 
 # ----------------------------------------------------------------------------- planning
@@ -299,11 +396,43 @@ def _resolved_models(grid: Grid) -> list[tuple[str, Run]]:
     return out
 
 
+def simulator_fingerprint(models: list[tuple[str, Run]]) -> dict[str, str]:
+    """What decides the signals of a grid, besides its seeds: stored in the manifest so
+    that a resume with anything else is refused.
+
+    Parameters
+    ----------
+    models : list of (str, Run)
+        Resolved model and first run of every grid point (``_resolved_models``).
+
+    Returns
+    -------
+    dict of str to str
+        ``ballpass`` (version), ``simulator_sources`` (SHA-256 of the simulator's
+        sources: kernels, integrators, model parameters,
+        :func:`ballpass.simulate.source_fingerprint`), ``scenes`` (SHA-256 of every grid
+        point's scene with all its defaults filled, and its resolved model: catches a
+        changed default or catalogue entry), and the versions of ``numpy``, ``scipy``
+        and ``numba``, whose arithmetic the signals depend on.
+    """
+    import numba
+    import scipy
+
+    from .. import __version__, simulate
+
+    scenes = hashlib.sha256()
+    for model, run in models:
+        scenes.update(f"{model}\0{run.build_scene()!r}\0".encode())
+    return {"ballpass": __version__, "simulator_sources": simulate.source_fingerprint(),
+            "scenes": scenes.hexdigest(), "numpy": np.__version__,
+            "scipy": scipy.__version__, "numba": numba.__version__}
+
+
 _WARM_UP_S = 0.01  # s simulated per model to compile its kernels
 
 
 def _warm_up(representatives: dict[str, Run], solver: str) -> None:
-    """Compile every model's kernels in this process, so workers load the numba cache."""
+    """Compile (or load) every model's kernels in this process, before workers fork."""
     from ..simulate import simulate
 
     for run in representatives.values():
@@ -312,35 +441,58 @@ def _warm_up(representatives: dict[str, Run], solver: str) -> None:
                  model=run.model, solver=solver)
 
 
-def _prepare_folder(folder: Path, grid: Grid) -> dict | None:
-    """Check the output folder before any work; return its manifest if it has one.
+def _check_existing(folder: Path, grid: Grid, fingerprint: dict) -> dict | None:
+    """Check an existing output folder before any work; return its manifest if it has one.
 
     Raises
     ------
     ValueError
-        The folder holds a dataset of another grid or ballpass version.
+        The folder holds a dataset of another grid (the message lists the keys that
+        differ) or of another simulator (the fingerprint entries that differ).
     FileExistsError
         The folder exists, is not empty and is not a ballpass dataset.
-    PermissionError
-        The folder cannot be created or written.
     """
-    from .. import __version__
-
     manifest = read_manifest(folder) if folder.is_dir() else None
     if manifest is not None:
+        untouched = "Nothing was done; the folder is untouched."
         if manifest["grid"] != grid.as_dict():
+            diffs = grid_differences(manifest["grid"], grid.as_dict())
             raise ValueError(
                 f"{folder} already holds a dataset of another grid; refusing to mix them. "
-                "Use a new --out folder (or delete this one to start over).")
-        if manifest["ballpass_version"] != __version__:
+                f"Differences (stored -> this grid): {'; '.join(diffs)}. {untouched} Use "
+                "the stored grid to resume, or a new --out folder (or delete this one to "
+                "start over).")
+        stored = manifest.get("fingerprint")
+        if stored is None:
             raise ValueError(
-                f"{folder} was generated by ballpass {manifest['ballpass_version']}, this is "
-                f"{__version__}: signals would differ. Finish it with that version or use a "
-                "new folder.")
+                f"{folder} was generated by ballpass {manifest.get('ballpass_version')} "
+                "before datasets recorded a simulator fingerprint: this simulator may give "
+                f"other signals. {untouched} Finish it with that version, or generate into "
+                "a new --out folder.")
+        diffs = [f"{k}: {stored.get(k)} -> {v}" for k, v in fingerprint.items()
+                 if stored.get(k) != v]
+        if diffs:
+            raise ValueError(
+                f"{folder} was generated by another simulator than this one "
+                f"({'; '.join(diffs)}): resuming would mix signals of two simulators in "
+                f"one dataset. {untouched} Finish it with the installation that started "
+                "it, or generate into a new --out folder (or delete this one to start "
+                "over).")
     elif folder.exists() and (not folder.is_dir() or any(  # a kill can leave these behind
             not (is_temporary(p) or p.name == LOCK_FILE) for p in folder.iterdir())):
         raise FileExistsError(f"{folder} exists and is not an empty folder or a ballpass "
                               "dataset; choose another --out folder")
+    return manifest
+
+
+def _create_folder(folder: Path) -> None:
+    """Create ``folder`` (and parents) and check it is writable.
+
+    Raises
+    ------
+    PermissionError
+        The folder cannot be created or written; folders created here are removed.
+    """
     created = []
     try:
         for parent in reversed([folder, *folder.parents]):
@@ -354,10 +506,68 @@ def _prepare_folder(folder: Path, grid: Grid) -> dict | None:
             d.rmdir()
         raise PermissionError(f"cannot write to output folder {folder}: "
                               f"{exc.strerror or exc}") from None
-    return manifest
 
 
-def _new_manifest(grid: Grid) -> dict:
+def check_resources(grid: Grid, folder, n_workers: int = 1, rows_done: int = 0,
+                    force: bool = False) -> dict:
+    """Check a grid's disk and memory needs against this machine, before any work.
+
+    Parameters
+    ----------
+    grid : Grid
+        The grid (its rows are counted, not built).
+    folder : str or os.PathLike or None
+        Output folder (or where it will be created); None skips the disk check.
+    n_workers : int, optional
+        Worker processes that will each hold one shard and one simulation.
+    rows_done : int, optional
+        Rows already on disk (resume).
+    force : bool, optional
+        Warn instead of refusing.
+
+    Returns
+    -------
+    dict
+        ``disk_bytes`` (float32 signals still to write, an upper bound: zstd on
+        byte-stream-split floats saves 5-15 %), ``disk_free``, ``memory_bytes`` (peak
+        of ``n_workers`` workers: one simulation each plus three copies of a shard's
+        signals while it is cut, converted and encoded) and ``memory_available``, bytes.
+
+    Raises
+    ------
+    ValueError
+        A need exceeds what is free, with the numbers, unless ``force``.
+    """
+    length = grid.signal_length
+    shard_rows = grid.dataset["shard_size"] * grid.rows_per_run
+    out = {
+        "disk_bytes": 4 * length * (grid.n_rows - rows_done),
+        "disk_free": free_disk(folder) if folder is not None else math.inf,
+        "memory_bytes": n_workers * (simulation_bytes(grid.n_samples, len(grid.sensors))
+                                     + 3 * 4 * length * shard_rows),
+        "memory_available": available_memory(),
+    }
+    problems = []
+    if out["disk_bytes"] > out["disk_free"]:
+        problems.append(f"about {human_bytes(out['disk_bytes'])} of disk for "
+                        f"{grid.n_rows - rows_done} rows of {length} float32 samples, and "
+                        f"{folder} has {human_bytes(out['disk_free'])} free")
+    if out["memory_bytes"] > out["memory_available"]:
+        problems.append(f"about {human_bytes(out['memory_bytes'])} of memory for "
+                        f"{n_workers} worker(s) (one {grid.dataset['duration_s']:g} s "
+                        f"simulation and a shard of {shard_rows} rows each), and "
+                        f"{human_bytes(out['memory_available'])} is available")
+    if problems:
+        message = f"the dataset needs {'; '.join(problems)}."
+        if not force:
+            raise ValueError(f"{message} Nothing was written. Shrink the grid (fewer rows, "
+                             "shorter duration_s, lower fs, smaller shard_size, fewer jobs) "
+                             "or pass force=True (--force) to start anyway.")
+        warnings.warn(f"{message} Starting anyway (force=True).", stacklevel=3)
+    return out
+
+
+def _new_manifest(grid: Grid, fingerprint: dict) -> dict:
     from .. import __version__
 
     rows_per_run = grid.rows_per_run
@@ -369,23 +579,64 @@ def _new_manifest(grid: Grid) -> dict:
                        "features_complete": False, "bytes": 0})
     return {
         "format": "ballpass-dataset", "format_version": FORMAT_VERSION,
-        "ballpass_version": __version__, "created": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
+        "ballpass_version": __version__, "fingerprint": fingerprint,
+        "created": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
         "status": "running", "grid": grid.as_dict(), "root_seed": grid.dataset["seed"],
         "n_runs": grid.n_runs, "n_rows": grid.n_rows, "fs": grid.dataset["fs"],
         "signal_length": grid.signal_length, "units": UNITS, "shards": shards,
     }
 
 
+def _verify(folder: Path, shard: dict, key: str) -> bool:
+    """Is the shard file (signals: ``key="sha256"``, features: ``"features_sha256"``)
+    complete and intact? A damaged one is deleted (with a warning) to be made again.
+
+    A file renamed into place just before a kill, with no checksum in the manifest yet,
+    is accepted if it reads with its page CRCs verified; its checksum is then recorded.
+    """
+    import pyarrow.parquet as pq
+
+    sub = folder / FEATURES_DIR if key == "features_sha256" else folder
+    path = sub / shard["file"]
+    if not shard_complete(path, shard["n_rows"]):
+        problem = "is missing" if not path.exists() else "is truncated or unreadable"
+    elif shard.get(key) is not None:
+        problem = shard_problem(path, shard, key)
+    else:
+        try:
+            pq.read_table(path, page_checksum_verification=True)
+            problem = None
+        except (OSError, ValueError) as exc:
+            problem = f"fails its page checksums ({exc})"
+        if problem is None:
+            size, shard[key] = path.stat().st_size, file_sha256(path)
+            shard["features_bytes" if key == "features_sha256" else "bytes"] = size
+    if problem is not None and (path.exists() or shard.get(key) is not None):
+        warnings.warn(f"shard {path} {problem}; generating it again", stacklevel=4)
+        path.unlink(missing_ok=True)
+    return problem is None
+
+
 def _plan(grid: Grid, folder: Path, manifest: dict, features: bool) -> list[ShardSpec]:
-    """Shards still to do; marks complete files (e.g. renamed just before a kill) as such."""
+    """Shards still to do: missing, unfinished or damaged (checksum) ones."""
     specs = []
     for shard in manifest["shards"]:
         i = shard["index"]
-        shard["complete"] = shard_complete(folder / shard["file"], shard["n_rows"])
-        shard["bytes"] = (folder / shard["file"]).stat().st_size if shard["complete"] else 0
-        shard["features_complete"] = shard_complete(
-            folder / FEATURES_DIR / shard["file"], shard["n_rows"])
-        need_features = features and not shard["features_complete"]
+        was_complete = shard["complete"]
+        shard["complete"] = _verify(folder, shard, "sha256") if (
+            was_complete or (folder / shard["file"]).exists()) else False
+        if not shard["complete"]:
+            shard.update(bytes=0, sha256=None)
+        has_features = shard.get("features_complete") or (
+            folder / FEATURES_DIR / shard["file"]).exists()
+        shard["features_complete"] = bool(
+            shard["complete"] and has_features and _verify(folder, shard, "features_sha256"))
+        if not shard["features_complete"]:   # stale (its signals are redone) or damaged
+            (folder / FEATURES_DIR / shard["file"]).unlink(missing_ok=True)
+        # a feature table the dataset had is made again with its shard
+        need_features = (features or has_features) and not shard["features_complete"]
+        if not shard["features_complete"]:
+            shard.update(features_bytes=0, features_sha256=None)
         if not shard["complete"] or need_features:
             specs.append(ShardSpec(
                 index=i, folder=str(folder), runs=tuple(grid.runs[r] for r in
@@ -399,7 +650,7 @@ def _plan(grid: Grid, folder: Path, manifest: dict, features: bool) -> list[Shar
 def _check_jobs(n_jobs) -> int:
     if isinstance(n_jobs, bool) or not isinstance(n_jobs, int) or n_jobs == 0 or n_jobs < -1:
         raise ValueError(f"n_jobs must be a positive int or -1 (all cores), got {n_jobs!r}")
-    return (os.cpu_count() or 1) if n_jobs == -1 else n_jobs
+    return available_cores() if n_jobs == -1 else n_jobs
 
 
 @contextlib.contextmanager
@@ -423,8 +674,9 @@ def _exclusive(folder: Path):
         yield
 
 
-def _run(specs, folder: Path, manifest: dict, n_jobs: int, executor, progress: bool):
-    """Dispatch the shards, recording each in the manifest as it completes.
+def _run(specs, folder: Path, manifest: dict, n_workers: int, executor, progress: bool):
+    """Dispatch the shards, recording each (with its checksum) in the manifest as it
+    completes.
 
     Returns
     -------
@@ -439,15 +691,16 @@ def _run(specs, folder: Path, manifest: dict, n_jobs: int, executor, progress: b
     models: Counter = Counter()
     with tqdm(total=sum(s.n_rows for s in specs if s.simulate), unit="signal",
               disable=not (progress and specs), desc="generate", smoothing=0.1) as bar:
-        for report in _dispatch(specs, n_jobs, executor):
+        for report in _dispatch(specs, n_workers, executor):
             shard = shards[report["index"]]
             if report["simulated"]:
-                shard.update(complete=True, bytes=report["bytes"])
+                shard.update(complete=True, bytes=report["bytes"], sha256=report["sha256"])
                 rows_written += report["n_rows"]
                 models.update(report["models"])
                 bar.update(report["n_rows"])
             if report["features_bytes"]:
-                shard["features_complete"] = True
+                shard.update(features_complete=True, features_bytes=report["features_bytes"],
+                             features_sha256=report["features_sha256"])
             write_manifest(folder, manifest)
     return rows_written, models
 
@@ -500,7 +753,8 @@ class GenerateSummary:
 
 
 def generate(grid, out_dir, n_jobs: int = 1, executor: cf.Executor | None = None,
-             features: bool = False, progress: bool = True) -> GenerateSummary:
+             features: bool = False, progress: bool = True,
+             force: bool = False) -> GenerateSummary:
     """Generate (or finish) a labelled dataset over a parameter grid.
 
     Parameters
@@ -511,15 +765,20 @@ def generate(grid, out_dir, n_jobs: int = 1, executor: cf.Executor | None = None
         Dataset folder; created if missing. If it already holds this grid's dataset,
         only the missing shards are generated (resume).
     n_jobs : int, optional
-        Local worker processes (joblib/loky); -1 uses every core. Default 1 (in process).
+        Local worker processes; -1 uses every core. Default 1 (in process). Capped at
+        the shards to do and the cores available (a request above the cores warns).
+        Workers are forked after the kernels are compiled and die with this process.
     executor : concurrent.futures.Executor, optional
         Run the shards on this executor instead, e.g. ``client.get_executor()`` of a
         Dask distributed client; the workers must see ``out_dir`` (shared storage).
     features : bool, optional
-        Also write a feature table per shard under ``out_dir/features`` (rows keyed
+        Also write a feature table per shard under ``out_dir/_features`` (rows keyed
         like the signals), computed with :mod:`ballpass.features`.
     progress : bool, optional
         Show a progress bar with an ETA on stderr. Default True.
+    force : bool, optional
+        Start even if the estimated disk or memory need exceeds what is free
+        (:func:`check_resources`); default False refuses.
 
     Returns
     -------
@@ -529,7 +788,10 @@ def generate(grid, out_dir, n_jobs: int = 1, executor: cf.Executor | None = None
     Raises
     ------
     ValueError
-        Invalid grid or model, or ``out_dir`` holds a dataset of another grid.
+        Invalid grid or model; a grid too large for the free disk or memory;
+        ``out_dir`` holds a dataset of another grid (the keys that differ are listed) or
+        of another simulator (fingerprint: simulator sources, scene defaults, package
+        versions), and the folder is left untouched.
     FileExistsError
         ``out_dir`` is a non-empty folder that is not a ballpass dataset.
     PermissionError
@@ -541,7 +803,9 @@ def generate(grid, out_dir, n_jobs: int = 1, executor: cf.Executor | None = None
     (:func:`~ballpass.datasets.grid.run_seed`) and is stored with its rows, so the
     dataset does not depend on ``n_jobs``, the executor or interruptions. Shards
     are written under a temporary name and renamed when complete, and the manifest is
-    replaced atomically: a run killed at any moment loses only unfinished shards.
+    replaced atomically: a run killed at any moment loses only unfinished shards. A
+    resume verifies every complete shard against its SHA-256 in the manifest and
+    regenerates damaged ones (with a warning).
 
     Examples
     --------
@@ -555,8 +819,15 @@ def generate(grid, out_dir, n_jobs: int = 1, executor: cf.Executor | None = None
     if executor is not None and not isinstance(executor, cf.Executor):
         raise TypeError(f"executor must be a concurrent.futures.Executor, got {executor!r}")
     models = _resolved_models(grid)
+    fingerprint = simulator_fingerprint(models)
     folder = Path(out_dir).resolve()
-    manifest = _prepare_folder(folder, grid) or _new_manifest(grid)
+    manifest = _check_existing(folder, grid, fingerprint)
+    rows_done = 0 if manifest is None else sum(s["n_rows"] for s in manifest["shards"]
+                                               if s["complete"])
+    workers = 1 if executor is not None else min(n_jobs, available_cores())
+    check_resources(grid, folder, workers, rows_done, force)
+    _create_folder(folder)
+    manifest = manifest or _new_manifest(grid, fingerprint)
     with _exclusive(folder):
         remove_temporaries(folder)
         specs = _plan(grid, folder, manifest, features)
@@ -564,7 +835,9 @@ def generate(grid, out_dir, n_jobs: int = 1, executor: cf.Executor | None = None
         write_manifest(folder, manifest)
         if any(s.simulate for s in specs):
             _warm_up({m: run for m, run in reversed(models)}, grid.dataset["solver"])
-        rows_written, done_models = _run(specs, folder, manifest, n_jobs, executor, progress)
+        n_workers = 1 if executor is not None else _n_workers(n_jobs, len(specs))
+        rows_written, done_models = _run(specs, folder, manifest, n_workers, executor,
+                                         progress)
         complete = all(s["complete"] and (s["features_complete"] or not features)
                        for s in manifest["shards"])
         manifest["status"] = "complete" if complete else "running"
@@ -632,7 +905,7 @@ class Estimate:
         ])
 
 
-def dry_run(grid, out_dir=None, n_jobs: int = 1) -> Estimate:
+def dry_run(grid, out_dir=None, n_jobs: int = 1, force: bool = False) -> Estimate:
     """Estimate rows, time and disk of :func:`generate` without writing anything.
 
     Simulates one run per resolved model (after compiling it) to time it and to measure
@@ -646,14 +919,30 @@ def dry_run(grid, out_dir=None, n_jobs: int = 1) -> Estimate:
         If it holds this grid's dataset, complete shards are left out of the time estimate.
     n_jobs : int, optional
         Workers assumed for the time estimate (-1: every core). Default 1.
+    force : bool, optional
+        Estimate even if the disk or memory need exceeds what is free.
 
     Returns
     -------
     Estimate
+
+    Raises
+    ------
+    ValueError
+        As :func:`generate`, before any simulation: a grid too large for the free disk
+        or memory is refused (unless ``force``).
     """
     grid = read_grid(grid)
     n_jobs = _check_jobs(n_jobs)
     models = _resolved_models(grid)
+    folder = Path(out_dir) if out_dir is not None else None
+    manifest = read_manifest(folder) if folder is not None and folder.is_dir() else None
+    if manifest is not None and manifest["grid"] != grid.as_dict():
+        manifest = None
+    done = [] if manifest is None else [
+        s for s in manifest["shards"] if shard_complete(folder / s["file"], s["n_rows"])]
+    check_resources(grid, folder if folder is not None else Path.cwd(),
+                    min(n_jobs, available_cores()), sum(s["n_rows"] for s in done), force)
     representatives = {m: run for m, run in reversed(models)}
     _warm_up(representatives, grid.dataset["solver"])
     seconds, row_bytes = {}, {}
@@ -664,16 +953,12 @@ def dry_run(grid, out_dir=None, n_jobs: int = 1) -> Estimate:
                                              grid.signal_length, grid.n_segments)
             seconds[model] = time.perf_counter() - t
             row_bytes[model] = write_table(Path(tmp) / "probe.parquet", columns,
-                                           signals) / len(signals)
+                                           signals)[0] / len(signals)
     repeats = grid.dataset["repeats"]
     runs_per_model = Counter()
     for m, _ in models:
         runs_per_model[m] += repeats
-    done = 0
-    folder = Path(out_dir) if out_dir is not None else None
-    manifest = read_manifest(folder) if folder is not None and folder.is_dir() else None
-    if manifest is not None and manifest["grid"] == grid.as_dict():
-        done = sum(shard_complete(folder / s["file"], s["n_rows"]) for s in manifest["shards"])
+    done = len(done)
     left = 1.0 - done / grid.n_shards
     work = sum(seconds[m] * n for m, n in runs_per_model.items()) * left
     workers = min(n_jobs, max(1, grid.n_shards - done))

@@ -39,9 +39,11 @@ from pathlib import Path
 import numpy as np
 
 from .._validation import check_segment
+from ..phenomena import check_needs
 from ..scene import Fault, Scene, Sensor
 
-__all__ = ["Grid", "Run", "read_grid", "run_seed", "scene_from_dict", "FAULT_VALUES"]
+__all__ = ["Grid", "Run", "read_grid", "run_seed", "scene_from_dict", "count_points",
+           "grid_differences", "FAULT_VALUES", "MAX_RUNS"]
 
 #: values of the ``fault`` axis
 FAULT_VALUES = ("healthy", "outer", "inner", "ball")
@@ -56,6 +58,7 @@ DATASET_DEFAULTS: dict[str, object] = {
     "solver": "auto",
     "segment_s": None,
     "shard_size": None,
+    "needs": None,
 }
 
 #: [grid] axes; runs follow this order, with the fault-size axes varying fastest
@@ -77,6 +80,9 @@ _SENSOR_KEYS = {f.name for f in fields(Sensor)}
 _SHARD_BYTES = 32 * 2**20
 _MAX_SHARD_RUNS = 256
 _MIN_SHARDS = 16
+#: most runs of one dataset: its manifest and run table are held in memory (about 1 kB
+#: per run); a larger study is several datasets
+MAX_RUNS = 10_000_000
 
 
 def _is_number(value) -> bool:
@@ -101,6 +107,10 @@ def _expand_range(key: str, spec: dict) -> list[float]:
     if stop < start:
         raise ValueError(f"grid.{key}: range stop {stop:g} is below start {start:g}")
     n = int(math.floor((stop - start) / step + 1e-9)) + 1
+    if n > MAX_RUNS:  # counted before building the list
+        raise ValueError(
+            f"grid.{key}: range {{start = {start:g}, stop = {stop:g}, step = {step:g}}} has "
+            f"{n:.3g} values; a dataset holds at most {MAX_RUNS:,} runs. Use a larger step.")
     # rounding to 12 significant digits removes the float drift of start + k*step
     return [float(f"{start + k * step:.12g}") for k in range(n)]
 
@@ -181,6 +191,8 @@ def _dataset_settings(raw: dict) -> dict:
     for key in ("model", "solver"):
         if not isinstance(out[key], str):
             raise ValueError(f"dataset.{key} must be a str, got {out[key]!r}")
+    if out["needs"] is not None:  # phenomena every run asks for (Scene(needs=...))
+        out["needs"] = sorted(check_needs(out["needs"], "dataset.needs"))
     if out["segment_s"] is not None and out["segment_s"] > out["duration_s"]:
         raise ValueError(f"dataset.segment_s={out['segment_s']:g} s is longer than "
                          f"dataset.duration_s={out['duration_s']:g} s")
@@ -270,7 +282,8 @@ class Grid:
     dataset : dict
         The [dataset] settings with defaults filled: ``duration_s`` (s), ``fs`` (Hz),
         ``repeats``, ``seed`` (root seed), ``model`` (unless the grid has a model axis),
-        ``solver``, ``shard_size`` (runs per shard) and optionally ``segment_s`` (s).
+        ``solver``, ``shard_size`` (runs per shard) and optionally ``segment_s`` (s)
+        and ``needs`` (phenomena every run asks for).
     axes : dict
         The [grid] axes as lists of normalized values (ranges expanded).
     """
@@ -370,6 +383,8 @@ def _point_scene(dataset: dict, sensors: list, values: dict) -> dict:
     for key in _SCENE_AXES:
         if key in values:
             scene[key] = None if values[key] == math.inf else values[key]
+    if "needs" in dataset:
+        scene["needs"] = list(dataset["needs"])
     return scene
 
 
@@ -395,6 +410,11 @@ def read_grid(source) -> Grid:
 
     Notes
     -----
+    ``[dataset] needs`` (a list of phenomenon names, e.g. ``["envelope"]``) is passed to
+    every run as ``Scene(needs=...)``, so ``model = "auto"`` runs the cheapest model
+    that covers it (see :func:`ballpass.simulate.resolve_model`); each row records the
+    model that ran.
+
     ``[grid]`` axes (each a list; a bare value is a one-value list; numeric axes also
     accept a range table ``{start, stop, step}`` with ``stop`` included):
 
@@ -431,6 +451,7 @@ def read_grid(source) -> Grid:
         del dataset["model"]
     axes = {k: _axis_values(k, grid_raw[k]) for k in AXES if k in grid_raw}
 
+    _check_count(dataset, axes)
     points = _expand(dataset, axes)
     if "shard_size" not in dataset:
         run_bytes = 4 * len(axes.get("sensor", ["loaded"])) * max(
@@ -439,6 +460,47 @@ def read_grid(source) -> Grid:
         dataset["shard_size"] = max(1, min(_SHARD_BYTES // run_bytes, _MAX_SHARD_RUNS,
                                            -(-n_runs // _MIN_SHARDS)))
     return Grid(dataset=dataset, axes=axes, _points=points)
+
+
+def count_points(axes: dict) -> int:
+    """Grid points of validated axes, counted without building them: healthy points do
+    not multiply over the fault axes."""
+    other = math.prod(len(v) for k, v in axes.items()
+                      if k not in _FAULT_AXES and k not in ("sensor", "fault"))
+    n_faulty = sum(v != "healthy" for v in axes["fault"])
+    per_fault = math.prod(len(v) for k, v in axes.items() if k in _FAULT_AXES)
+    return other * (len(axes["fault"]) - n_faulty + n_faulty * per_fault)
+
+
+def _check_count(dataset: dict, axes: dict) -> None:
+    """Refuse a grid of more than :data:`MAX_RUNS` runs before expanding it."""
+    n_runs = count_points(axes) * dataset["repeats"]
+    if n_runs > MAX_RUNS:
+        sizes = " x ".join(f"{len(v)} {k}" for k, v in axes.items()
+                           if len(v) > 1 and k != "sensor")
+        raise ValueError(
+            f"the grid has {n_runs:.3g} runs ({sizes or '1 point'}, x {dataset['repeats']} "
+            f"repeats); a dataset holds at most {MAX_RUNS:,} runs. Use fewer values or "
+            "repeats, or split the study into several datasets.")
+
+
+def grid_differences(stored: dict, new: dict, prefix: str = "") -> list[str]:
+    """Keys whose values differ between two grids as dicts (:meth:`Grid.as_dict`).
+
+    Returns
+    -------
+    list of str
+        One line per differing key, ``"dataset.seed: 3 -> 4"``; a key missing on one
+        side shows as ``(absent)``.
+    """
+    out = []
+    for key in sorted(set(stored) | set(new)):
+        a, b = stored.get(key, "(absent)"), new.get(key, "(absent)")
+        if isinstance(a, dict) and isinstance(b, dict):
+            out += grid_differences(a, b, f"{prefix}{key}.")
+        elif a != b:
+            out.append(f"{prefix}{key}: {json.dumps(a)} -> {json.dumps(b)}")
+    return out
 
 
 def _expand(dataset: dict, axes: dict) -> tuple:

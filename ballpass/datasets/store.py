@@ -1,12 +1,19 @@
-"""On-disk dataset format: a folder with ``manifest.json`` and Parquet shards.
+"""On-disk dataset format: a folder of Parquet shards with ``_manifest.json``.
 
 Layout::
 
-    DIR/manifest.json            grid, package version, root seed, units, shard list, status
+    DIR/_manifest.json           grid, simulator fingerprint, root seed, units, shards
+                                 (rows, bytes and SHA-256 of each), status
     DIR/.lock                    held (flock) by the process generating the dataset
     DIR/part-00000.parquet       one signal per row + label and parameter columns
     DIR/part-00001.parquet       ...
-    DIR/features/part-00000.parquet   optional feature table, same rows and keys
+    DIR/_features/part-00000.parquet   optional feature table, same rows and keys
+
+Parquet readers skip names starting with ``_`` or ``.``, so the folder reads as it is:
+``pandas.read_parquet(DIR)``, ``pyarrow.dataset.dataset(DIR)``, DuckDB's
+``read_parquet('DIR/*.parquet')`` and ``polars.read_parquet('DIR/*.parquet')`` (polars
+descends into every sub-folder, so it needs the glob) see the signal shards only.
+Datasets of the first layout (``manifest.json``, ``features/``, no checksums) still load.
 
 Each row holds one signal in the ``signal`` column, a ``fixed_size_list<float32>``
 of the dataset's ``signal_length`` samples (m/s^2, zstd-compressed with
@@ -14,27 +21,32 @@ byte-stream-split encoding), next to its label, parameters, ``run_id``, ``group`
 ``sensor``, ``segment``, the run's ``seed``, the resolved ``model`` and ``solver`` and
 the run's scene as JSON (``scene``), from which :func:`~ballpass.datasets.regenerate`
 rebuilds it bit for bit. Shards are written under a temporary name and renamed
-(:func:`os.replace`) when complete; the manifest is replaced the same way. Plain
-``pandas.read_parquet`` and DuckDB read the shards (the signal comes back as an
-object column of arrays); :func:`load` returns it as one float32 matrix.
+(:func:`os.replace`) when complete; the manifest is replaced the same way and records
+the SHA-256 of every complete shard, which :func:`load`, :func:`info` and a resuming
+:func:`~ballpass.datasets.generate` verify (a resume regenerates a damaged shard).
 """
 
 from __future__ import annotations
 
+import hashlib
 import json
 import warnings
 from pathlib import Path
 
 import numpy as np
 
+from .._resources import human_bytes
 from ..signalio import atomic_write
 
-__all__ = ["load", "info", "read_manifest", "MANIFEST", "UNITS"]
+__all__ = ["load", "info", "read_manifest", "MANIFEST", "UNITS", "CorruptShardError", "human_bytes"]
 
-MANIFEST = "manifest.json"
-FEATURES_DIR = "features"
+MANIFEST = "_manifest.json"
+FEATURES_DIR = "_features"
+#: names of the first layout (format_version 1), still read
+LEGACY_MANIFEST = "manifest.json"
+LEGACY_FEATURES_DIR = "features"
 LOCK_FILE = ".lock"
-FORMAT_VERSION = 1
+FORMAT_VERSION = 2
 
 #: units of the stored columns
 UNITS = {
@@ -46,18 +58,18 @@ UNITS = {
 }
 
 
-def human_bytes(n: float) -> str:
-    """A size in bytes as text with a decimal unit (B, kB, MB, GB)."""
-    for unit in ("B", "kB", "MB"):
-        if n < 1000:
-            return f"{n:.0f} {unit}" if unit == "B" else f"{n:.1f} {unit}"
-        n /= 1000
-    return f"{n:.1f} GB"
+class CorruptShardError(ValueError):
+    """A shard of a dataset is missing, truncated or altered (its checksum differs)."""
 
 
 def shard_name(index: int) -> str:
     """File name of shard ``index``."""
     return f"part-{index:05d}.parquet"
+
+
+def features_dir(manifest: dict) -> str:
+    """Sub-folder of the feature table of a dataset with this manifest."""
+    return FEATURES_DIR if manifest.get("format_version", 1) >= 2 else LEGACY_FEATURES_DIR
 
 
 def is_temporary(path: Path) -> bool:
@@ -74,7 +86,7 @@ def remove_temporaries(folder: Path) -> None:
 
 
 def write_manifest(folder: Path, manifest: dict) -> None:
-    """Write ``manifest.json`` atomically (strict JSON)."""
+    """Write ``_manifest.json`` atomically (strict JSON)."""
     text = json.dumps(manifest, indent=1, allow_nan=False)
     atomic_write(folder / MANIFEST, lambda p: p.write_text(text))
 
@@ -82,26 +94,47 @@ def write_manifest(folder: Path, manifest: dict) -> None:
 def read_manifest(folder) -> dict | None:
     """The manifest of a dataset folder, or None if it has none.
 
+    Reads ``_manifest.json``, or ``manifest.json`` of the first layout.
+
     Raises
     ------
     ValueError
-        If ``manifest.json`` exists but is not a ballpass manifest.
+        If the manifest exists but is not a ballpass manifest, or lists no shards.
     """
-    path = Path(folder) / MANIFEST
+    folder = Path(folder)
+    path = folder / MANIFEST
     if not path.is_file():
-        return None
+        path = folder / LEGACY_MANIFEST
+        if not path.is_file():
+            return None
     try:
         manifest = json.loads(path.read_text())
-    except json.JSONDecodeError as exc:
+    except (json.JSONDecodeError, UnicodeDecodeError) as exc:
         raise ValueError(f"{path} is not valid JSON: {exc}") from None
     if not isinstance(manifest, dict) or manifest.get("format") != "ballpass-dataset":
         raise ValueError(f"{path} is not a ballpass dataset manifest")
+    shards = manifest.get("shards")
+    if (not isinstance(shards, list) or not shards
+            or not all(isinstance(s, dict) and {"file", "n_rows", "complete"} <= set(s)
+                       for s in shards)):
+        raise ValueError(f"{path} lists no shards (or shards without file, n_rows and "
+                         "complete): the manifest is damaged. Generate the dataset again "
+                         "into a new folder.")
     return manifest
 
 
+def file_sha256(path: Path) -> str:
+    """SHA-256 of a file's bytes, hex."""
+    with open(path, "rb") as fh:
+        return hashlib.file_digest(fh, "sha256").hexdigest()
+
+
 def write_table(path: Path, columns: dict, signals: np.ndarray | None = None,
-                metadata: dict | None = None) -> int:
-    """Write one Parquet shard atomically; return its size, bytes.
+                metadata: dict | None = None) -> tuple[int, str]:
+    """Write one Parquet shard atomically; return its size (bytes) and SHA-256 (hex).
+
+    The file is built in memory, hashed and written once, so the checksum is of the
+    bytes written, without reading them back.
 
     Parameters
     ----------
@@ -120,18 +153,26 @@ def write_table(path: Path, columns: dict, signals: np.ndarray | None = None,
     arrays = {}
     encoding = {}
     if signals is not None:
-        flat = pa.array(np.ascontiguousarray(signals, dtype=np.float32).ravel())
+        flat = pa.array(np.ascontiguousarray(signals, dtype=np.float32).reshape(-1))
         arrays["signal"] = pa.FixedSizeListArray.from_arrays(flat, signals.shape[1])
         encoding["signal.list.element"] = "BYTE_STREAM_SPLIT"
     arrays.update({k: pa.array(v) for k, v in columns.items()})
     table = pa.table(arrays)
     if metadata is not None:
         table = table.replace_schema_metadata({"ballpass": json.dumps(metadata)})
-    atomic_write(path, lambda p: pq.write_table(
-        table, p, compression="zstd", row_group_size=128,
-        use_dictionary=[k for k in columns if table.schema.field(k).type == pa.string()],
-        column_encoding=encoding or None))
-    return path.stat().st_size
+    sink = pa.BufferOutputStream()
+    pq.write_table(table, sink, compression="zstd", row_group_size=128,
+                   use_dictionary=[k for k in columns
+                                   if table.schema.field(k).type == pa.string()],
+                   column_encoding=encoding or None, write_page_checksum=True)
+    data = sink.getvalue()
+
+    def write(tmp: Path) -> None:
+        with open(tmp, "wb") as fh:
+            fh.write(data)
+
+    atomic_write(path, write)
+    return data.size, hashlib.sha256(data).hexdigest()
 
 
 def shard_complete(path: Path, n_rows: int) -> bool:
@@ -144,49 +185,121 @@ def shard_complete(path: Path, n_rows: int) -> bool:
         return False
 
 
-def _shard_paths(path, subfolder: str | None = None,
+def shard_problem(path: Path, shard: dict, key: str = "sha256") -> str | None:
+    """What is wrong with a shard the manifest lists as complete, or None if it is intact.
+
+    Checks that the file exists, has the recorded size and the recorded SHA-256
+    (``shard[key]``; shards of the first layout carry no checksum and are only checked
+    to exist).
+    """
+    if not path.is_file():
+        return "is missing (deleted or moved)"
+    expected = shard.get(key)
+    if expected is None:
+        return None
+    size = path.stat().st_size
+    recorded = shard.get("features_bytes" if key == "features_sha256" else "bytes")
+    if recorded and size != recorded:
+        return f"has {size} bytes where the manifest records {recorded} (truncated or altered)"
+    if file_sha256(path) != expected:
+        return "is corrupted: its SHA-256 differs from the one recorded in the manifest"
+    return None
+
+
+def _shard_paths(path, features: bool = False,
                  warn: bool = True) -> tuple[list[Path], dict | None]:
-    """Complete shard files of a dataset folder (or one shard file) and its manifest."""
+    """Complete, verified shard files of a dataset folder (or one shard file) and its
+    manifest.
+
+    Raises
+    ------
+    CorruptShardError
+        A shard listed as complete is missing or fails its checksum.
+    """
     path = Path(path)
     if path.is_file():
         return [path], None
+    if not path.is_dir():
+        raise FileNotFoundError(f"{path} does not exist")
     manifest = read_manifest(path)
     if manifest is None:
         raise FileNotFoundError(f"{path} holds no {MANIFEST}: not a ballpass dataset")
-    base = path / subfolder if subfolder else path
-    key = "features_complete" if subfolder else "complete"
-    files = [base / s["file"] for s in manifest["shards"] if s.get(key)]
-    if warn and manifest["status"] != "complete":
+    base = path / features_dir(manifest) if features else path
+    complete, key = (("features_complete", "features_sha256") if features
+                     else ("complete", "sha256"))
+    files = []
+    for shard in manifest["shards"]:
+        if shard.get(complete):
+            file = base / shard["file"]
+            problem = shard_problem(file, shard, key)
+            if problem is not None:
+                raise CorruptShardError(
+                    f"shard {file} {problem}. Run `ballpass generate` with the same grid "
+                    f"and --out {path} again to regenerate it.")
+            files.append(file)
+    if warn and manifest.get("status") != "complete":
         warnings.warn(f"{path}: dataset is incomplete ({len(files)} of "
                       f"{len(manifest['shards'])} shards); run `ballpass generate` again to "
                       "finish it", stacklevel=3)
     return files, manifest
 
 
-def _filter_expression(filters):
-    """pandas-style filters (list of tuples, or list of lists for OR) or an Expression."""
+def _filter_expression(filters, names: list[str]):
+    """pandas-style filters (list of tuples, or list of lists for OR) or an Expression,
+    checked against the dataset's column ``names``."""
     import pyarrow.compute as pc
     import pyarrow.parquet as pq
 
     if filters is None or isinstance(filters, pc.Expression):
         return filters
-    return pq.filters_to_expression(filters)
+    groups = filters if filters and all(isinstance(f, list) for f in filters) else [filters]
+    for group in groups:
+        if not isinstance(group, (list, tuple)) or not group:
+            raise ValueError(f"filters must be a non-empty list of (column, op, value) "
+                             f"tuples (or a list of such lists), got {filters!r}")
+        for term in group:
+            if not isinstance(term, (list, tuple)) or len(term) != 3:
+                raise ValueError(f"filters: each term must be (column, op, value), "
+                                 f"got {term!r}")
+            if term[0] not in names:
+                raise ValueError(f"filters: unknown column {term[0]!r}; the dataset has "
+                                 f"{names}")
+    try:
+        return pq.filters_to_expression(filters)
+    except (TypeError, ValueError, NotImplementedError) as exc:
+        raise ValueError(f"filters {filters!r}: {exc}") from None
 
 
 def _read(files: list[Path], columns, filters):
+    import pyarrow as pa
     import pyarrow.dataset as ds
 
     if not files:
         raise ValueError("the dataset has no complete shards (yet): run `ballpass generate` "
                          "to write them")
-    dataset = ds.dataset([str(f) for f in files], format="parquet")
+    # page CRCs are verified as pages are read (shards written since format 2 carry them)
+    fmt = ds.ParquetFileFormat(default_fragment_scan_options=ds.ParquetFragmentScanOptions(
+        page_checksum_verification=True))
+    try:
+        dataset = ds.dataset([str(f) for f in files], format=fmt)
+    except (OSError, pa.ArrowInvalid) as exc:
+        raise CorruptShardError(f"cannot read the shards {[str(f) for f in files]}: {exc}"
+                                ) from None
+    names = dataset.schema.names
     if columns is not None:
         columns = list(dict.fromkeys(columns))
-        unknown = set(columns) - set(dataset.schema.names)
+        unknown = set(columns) - set(names)
         if unknown:
-            raise ValueError(f"unknown column(s) {sorted(unknown)}; the dataset has "
-                             f"{dataset.schema.names}")
-    return dataset.to_table(columns=columns, filter=_filter_expression(filters))
+            raise ValueError(f"unknown column(s) {sorted(unknown)}; the dataset has {names}")
+    expression = _filter_expression(filters, names)
+    try:
+        return dataset.to_table(columns=columns, filter=expression)
+    except (pa.ArrowInvalid, pa.ArrowNotImplementedError, pa.ArrowTypeError) as exc:
+        if filters is not None:
+            raise ValueError(f"filters {filters!r} cannot be applied: {exc}") from None
+        raise CorruptShardError(f"cannot read the shards: {exc}") from None
+    except OSError as exc:
+        raise CorruptShardError(f"cannot read the shards: {exc}") from None
 
 
 def load(path, columns=None, filters=None):
@@ -229,7 +342,7 @@ def load(path, columns=None, filters=None):
 
 def load_features(path, filters=None):
     """The feature table of a dataset written with ``features=True``, as a DataFrame."""
-    files, _ = _shard_paths(path, FEATURES_DIR)
+    files, _ = _shard_paths(path, features=True)
     return _read(files, None, filters).to_pandas()
 
 
@@ -238,7 +351,7 @@ CONDITION_COLUMNS = ("bearing", "rpm", "radial_load_n", "sensor")
 
 
 def info(path) -> dict:
-    """Summarise a dataset without reading its signals.
+    """Summarise a dataset without decoding its signals (their shards are checksummed).
 
     Parameters
     ----------
@@ -253,9 +366,20 @@ def info(path) -> dict:
         disk), ``ballpass_version``, ``labels`` (pandas Series: rows per label) and
         ``conditions`` (DataFrame: rows per label for each condition, columns
         ``bearing, rpm, radial_load_n, sensor``).
+
+    Raises
+    ------
+    CorruptShardError
+        A complete shard (signals or features) is missing or fails its SHA-256: every
+        shard is read once to verify it.
     """
     path = Path(path)
+    if path.is_file():
+        raise ValueError(f"{path} is a file; info takes a dataset folder")
     files, manifest = _shard_paths(path, warn=False)
+    has_features = any(s.get("features_complete") for s in manifest["shards"])
+    if has_features:
+        _shard_paths(path, features=True, warn=False)     # verify the feature table too
     meta = (_read(files, ["label", *CONDITION_COLUMNS, "run_id"], None).to_pandas()
             if files else None)
     size = sum(f.stat().st_size for f in path.rglob("*") if f.is_file())
@@ -272,7 +396,7 @@ def info(path) -> dict:
         "duration_s": manifest["signal_length"] / manifest["fs"],
         "signal_length": manifest["signal_length"],
         "size_bytes": size,
-        "features": any(s.get("features_complete") for s in manifest["shards"]),
+        "features": has_features,
     }
     if meta is not None:
         out["labels"] = meta["label"].value_counts().sort_index()

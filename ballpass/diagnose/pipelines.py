@@ -93,6 +93,8 @@ def make_features(
     rpm: float = 1797.0,
     band=None,
     harmonics: int = 3,
+    separate=False,
+    other_shafts=(),
 ):
     """The stateless feature step: ``(n_signals, n_samples) -> (n_signals, n_features)``.
 
@@ -118,6 +120,9 @@ def make_features(
         Demodulation band, Hz; ``None`` (default) chooses it per row (kurtogram).
     harmonics : int, optional
         Harmonics of each fault line (default 3).
+    separate, other_shafts : optional
+        Discrete/random separation before the fault bands (gear-mesh lines in a
+        gearbox); see :class:`~ballpass.features.FaultBandTransformer`. Default off.
 
     Returns
     -------
@@ -131,7 +136,8 @@ def make_features(
     if indicators is not None:
         parts.append(("indicators", IndicatorTransformer(indicators=list(indicators))))
     if bands:
-        fb = FaultBandTransformer(bearing, fs=fs, rpm=rpm, band=band, harmonics=harmonics)
+        fb = FaultBandTransformer(bearing, fs=fs, rpm=rpm, band=band, harmonics=harmonics,
+                                  separate=separate, other_shafts=other_shafts)
         with sklearn.config_context(enable_metadata_routing=True):
             fb.set_transform_request(rpm=True)
         parts.append(("bands", fb))
@@ -147,6 +153,8 @@ def make_pipeline(
     rpm: float = 1797.0,
     band=None,
     harmonics: int = 3,
+    separate=False,
+    other_shafts=(),
     random_state=0,
 ) -> Pipeline:
     """A ready-made pipeline: signal features, standard scaling, a classifier.
@@ -158,7 +166,7 @@ def make_pipeline(
     features : str, optional
         Feature set, one of :data:`FEATURE_SETS` (default ``"dimensionless"``); see
         :func:`make_features`.
-    bearing, fs, rpm, band, harmonics
+    bearing, fs, rpm, band, harmonics, separate, other_shafts
         Of the feature step; see :func:`make_features`.
     random_state : int or None, optional
         Seed of the randomised classifiers (default 0).
@@ -182,7 +190,8 @@ def make_pipeline(
     """
     return Pipeline([
         ("features", make_features(features, bearing=bearing, fs=fs, rpm=rpm, band=band,
-                                   harmonics=harmonics)),
+                                   harmonics=harmonics, separate=separate,
+                                   other_shafts=other_shafts)),
         ("impute", SimpleImputer(strategy="median")),
         ("scale", StandardScaler()),
         ("classifier", make_classifier(classifier, random_state=random_state)),

@@ -28,6 +28,7 @@ from sklearn.utils.validation import check_array
 
 from ..features._validation import check_fs, check_nonnegative, check_rpm
 from ..features.bands import as_bearing
+from ..features.separation import check_separate, separated_rows
 from ._names import LABELS
 from .evidence import (
     FAULT_FAMILIES,
@@ -178,6 +179,14 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
         that quantile of its healthy evidence plus ``margin_db`` (defaults 0.99, 1 dB).
     softness_db : float, optional
         Temperature of :meth:`predict_proba`, dB (default 2.0).
+    separate : bool or {"tsa", "lp", "drs"}, optional
+        Remove the discrete (periodic) part first, e.g. gear-mesh lines in a gearbox
+        (:func:`ballpass.features.separate_discrete`): ``True`` = ``"tsa"``, the
+        synchronous average of the bearing's shaft (at each row's rpm) and of the
+        ``other_shafts``; ``"lp"``/``"drs"`` need no speed. Default False.
+    other_shafts : sequence of float, optional
+        Speeds of further shafts as multiples of ``rpm`` whose periodic parts ``"tsa"``
+        removes too (a gear pair's second shaft: teeth[0] / teeth[1]). Default ().
 
     Attributes
     ----------
@@ -220,6 +229,8 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
         quantile=0.99,
         margin_db=1.0,
         softness_db=2.0,
+        separate=False,
+        other_shafts=(),
     ):
         self.bearing = bearing
         self.fs = fs
@@ -234,6 +245,8 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
         self.quantile = quantile
         self.margin_db = margin_db
         self.softness_db = softness_db
+        self.separate = separate
+        self.other_shafts = other_shafts
 
     classes_ = np.array(sorted(LABELS), dtype=object)
 
@@ -279,11 +292,13 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
                     f"({harmonics} harmonics) above the Nyquist frequency fs/2 = "
                     f"{0.5 * fs:g} Hz; rpm must be below "
                     f"{speed.max() * 0.5 * fs / top:.0f} rev/min, or use fewer harmonics")
+        check_separate(self.separate, self.other_shafts)
         return X, speed, fs
 
     # ------------------------------------------------------------ evidence
     def _evidence(self, X, rpm):
         X, speed, fs = self._checked(X, rpm)
+        X = separated_rows(X, fs, speed, self.separate, self.other_shafts)
         ev = envelope_evidence(
             X,
             fs,

@@ -18,6 +18,10 @@ order_envelope_spectrum    envelope spectrum in shaft orders
 order_track                resample to uniform shaft angle
 shaft_revolutions          shaft angle from an rpm profile or a tachometer
 
+Discrete/random separation
+--------------------------
+separate_discrete          (discrete, residual): TSA subtraction, linear prediction, DRS
+
 Spectral kurtosis
 -----------------
 fast_kurtogram             1/3-binary fast kurtogram (Antoni 2007) -> KurtogramResult
@@ -56,6 +60,7 @@ from .envelope import (
 from .indicators import INDICATORS, indicator_ratios, indicators
 from .kurtogram import KurtogramResult, fast_kurtogram, spectral_kurtosis
 from .order import order_envelope_spectrum, order_track, shaft_revolutions
+from .separation import SEPARATION_METHODS, separate_discrete
 
 #: Defined in .transformers; loaded on first use, because importing scikit-learn
 #: costs about a second that the plain functions do not need.
@@ -67,6 +72,7 @@ __all__ = [
     "FaultBandTransformer",
     "IndicatorTransformer",
     "KurtogramResult",
+    "SEPARATION_METHODS",
     "bandpass",
     "cepstrum_prewhiten",
     "envelope",
@@ -79,6 +85,7 @@ __all__ = [
     "indicators",
     "order_envelope_spectrum",
     "order_track",
+    "separate_discrete",
     "shaft_revolutions",
     "spectral_kurtosis",
     "squared_envelope_spectrum",

@@ -14,8 +14,10 @@ import numpy as np
 from sklearn.base import BaseEstimator, TransformerMixin
 from sklearn.utils.validation import check_is_fitted, validate_data
 
+from ._validation import check_fs, check_rpm
 from .bands import fault_band_features, fault_band_names
 from .indicators import INDICATORS, indicators
+from .separation import check_separate, separated_rows
 
 __all__ = ["IndicatorTransformer", "FaultBandTransformer"]
 
@@ -111,6 +113,13 @@ class FaultBandTransformer(TransformerMixin, BaseEstimator):
         Relative slip tolerance of the line search (default 0.01).
     background_hz : float, optional
         Background window on each side of a line, Hz (default 10).
+    separate : bool or {"tsa", "lp", "drs"}, optional
+        Remove the discrete part (gear-mesh lines) before the SES
+        (:func:`ballpass.features.separate_discrete`); ``True`` = ``"tsa"`` at each
+        row's rpm. Default False.
+    other_shafts : sequence of float, optional
+        Further shafts' speeds as multiples of ``rpm`` for ``"tsa"`` (a gear pair's
+        second shaft: teeth[0] / teeth[1]). Default ().
 
     See Also
     --------
@@ -137,6 +146,8 @@ class FaultBandTransformer(TransformerMixin, BaseEstimator):
         harmonics=3,
         tolerance=0.01,
         background_hz=10.0,
+        separate=False,
+        other_shafts=(),
     ):
         self.bearing = bearing
         self.fs = fs
@@ -146,6 +157,8 @@ class FaultBandTransformer(TransformerMixin, BaseEstimator):
         self.harmonics = harmonics
         self.tolerance = tolerance
         self.background_hz = background_hz
+        self.separate = separate
+        self.other_shafts = other_shafts
 
     def fit(self, X, y=None):
         """Validate ``X`` (n_signals, n_samples) and the parameters; returns self."""
@@ -154,11 +167,16 @@ class FaultBandTransformer(TransformerMixin, BaseEstimator):
         return self
 
     def _features(self, X: np.ndarray, rpm) -> np.ndarray:
+        speed = self.rpm if rpm is None else np.asarray(rpm, dtype=float).reshape(-1)
+        check_separate(self.separate, self.other_shafts)
+        if self.separate is not False:
+            X = separated_rows(X, check_fs(self.fs), check_rpm(speed, (len(X),)),
+                               self.separate, self.other_shafts)
         values = fault_band_features(
             X,
             self.fs,
             self.bearing,
-            self.rpm if rpm is None else np.asarray(rpm, dtype=float).reshape(-1),
+            speed,
             band=self.band,
             prewhiten=self.prewhiten,
             harmonics=self.harmonics,

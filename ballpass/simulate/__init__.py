@@ -14,6 +14,10 @@ Models (the table behind ``auto``: ``python -m ballpass bearings`` lists bearing
     Sawalhi & Randall (2008) bearing-pedestal model with a high-frequency resonator per
     sensor: shaft x/y, pedestal x/y, resonator(s) (see :mod:`.sr5`,
     :mod:`._sr5_driver`). What a plain scene runs.
+``impulse``
+    Phenomenological impulse trains (McFadden & Smith 1984, Ho & Randall 2000) with
+    sr5's kinematics and slip, the Stribeck load zone and the resonance (see
+    :mod:`.impulse`): the envelope signature only, at a tenth of sr5's cost.
 ``sr4``
     The same without the resonator: the sensors read the housing acceleration.
 ``rotor2``
@@ -21,6 +25,13 @@ Models (the table behind ``auto``: ``python -m ballpass bearings`` lists bearing
     clearance, unbalance, defects), Newmark-beta by default (see :mod:`.rotor2`): the
     non-linear rotor dynamics for Poincare sections and bifurcation diagrams
     (:mod:`ballpass.dynamics`).
+``multibody``
+    Nakhaeinejad & Bryant (2011, seed 000): every ball a body with traction, slip and
+    centrifugal load (see :mod:`.multibody`). What scenes that need ``ball_dynamics``
+    run.
+``gearbox``
+    A gear pair (seed 004) whose pinion sits on the bearing's shaft, coupled to the sr5
+    bearing-pedestal model (see :mod:`.gearbox`); what a scene with ``gears`` runs.
 
 A new model is one file that builds a :class:`Model` and one line in :data:`MODELS`.
 """
@@ -41,6 +52,9 @@ from ..scene import Scene  # noqa: E402
 from ._registry import Model  # noqa: E402
 from ._shared import OVERSAMPLE, SimulationUnstableError, check_solver_args  # noqa: E402
 from ._sr5_driver import SOLVERS, SR4, SR5, build, integrate  # noqa: E402
+from .gearbox import GEARBOX  # noqa: E402
+from .impulse import IMPULSE, ImpulseParameters  # noqa: E402
+from .multibody import MULTIBODY, MultibodyParameters  # noqa: E402
 from .result import SimulationResult  # noqa: E402
 from .rotor2 import ROTOR2, Rotor2Parameters  # noqa: E402
 from .sr5 import BearingModel, SR5Parameters  # noqa: E402
@@ -59,7 +73,9 @@ __all__ = [
     "SimulationResult",
     "SimulationUnstableError",
     "SR5Parameters",
+    "ImpulseParameters",
     "Rotor2Parameters",
+    "MultibodyParameters",
     "BearingModel",
     "source_fingerprint",
     "work_precision",
@@ -68,8 +84,9 @@ __all__ = [
 ]
 
 #: model name -> :class:`Model`, cheapest first
-MODELS: dict[str, Model] = {m.name: m for m in sorted((SR5, SR4, ROTOR2),
-                                                      key=lambda m: m.relative_cost)}
+MODELS: dict[str, Model] = {
+    m.name: m for m in sorted((IMPULSE, SR5, SR4, ROTOR2, MULTIBODY, GEARBOX),
+                              key=lambda m: m.relative_cost)}
 
 
 def scene_needs(scene: Scene, *, return_forces: bool = False) -> frozenset:

@@ -72,6 +72,12 @@ class GroundTruth:
     displacement : ndarray (4, n_samples) or (2, n_samples) or None
         Shaft u, v and pedestal u, v displacement (sr5, sr4), or the rotor's x, y
         (rotor2), m (on request); u and x along the load line.
+    outer_contact_forces : ndarray (n_elements, n_samples) or None
+        Outer-race contact load of each rolling element, N (on request, from models with
+        ball dynamics; it also carries the centrifugal load). None otherwise.
+    gear : GearTruth or None
+        The gear pair's ground truth (mesh force, stiffness, transmission error, tooth
+        fault entries) for the ``gearbox`` model; None otherwise.
     """
 
     label: str
@@ -84,6 +90,25 @@ class GroundTruth:
     contact_forces: np.ndarray | None = None
     element_angles: np.ndarray | None = None
     displacement: np.ndarray | None = None
+    outer_contact_forces: np.ndarray | None = None
+    gear: object | None = None
+
+    @classmethod
+    def of_scene(cls, scene: Scene, t: np.ndarray, crossings: FaultCrossings,
+                 **outputs) -> GroundTruth:
+        """The ground truth every model shares, from the scene (label, faults,
+        frequencies, tachometer, speed, effective depths) at sample times ``t`` (s), plus
+        the model's crossings and optional outputs (``contact_forces`` ...)."""
+        return cls(
+            label=scene.label,
+            faults=scene.faults,
+            frequencies=scene.frequencies,
+            shaft_angle=scene.speed.shaft_angle(t, scene.duration_s),
+            rpm=scene.speed.rpm_at(t, scene.duration_s) * np.ones_like(t),
+            fault_crossings=crossings,
+            effective_depth_mm=tuple(f.effective_depth_mm(scene.bearing) for f in scene.faults),
+            **outputs,
+        )
 
 
 @dataclass(frozen=True)

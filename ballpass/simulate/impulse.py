@@ -1,0 +1,346 @@
+"""The ``impulse`` model: fault impacts ringing the structure, without contact dynamics.
+
+The phenomenological bearing-fault model of McFadden & Smith (1984) and Ho & Randall
+(2000), in the form of the simulators of D'Elia, Cocconcelli et al. and Buzzoni et al.:
+every time a rolling element meets a defect, the housing receives a force impulse that
+rings the structural resonance; the train of impulses follows the kinematics with
+random slip and is amplitude-modulated by the load zone and the transmission path.
+It represents the envelope-level signature (``envelope``, ``varying_speed``) at a
+fraction of sr5's cost; it has no contact dynamics (no varying compliance, no shaft
+response, no contact forces as output).
+
+Model
+-----
+*Impact times.* The same kinematics and the same slip process as sr5, drawn from the
+same seed: the cage angle with its random walk (:func:`.sr5._slip_walk`,
+:func:`._kernels.cage_angle`) and the fault-edge crossings of every element path
+(:func:`._sr5_driver._events`), so the defect entries and exits in
+``res.truth.fault_crossings`` of an impulse run are those of an sr5 run of the same
+scene, bit for bit (sr5 also lists the ends of its edge ramps); the impacts are the
+``exit`` crossings. Impacts are placed in the angle domain (cage and
+shaft angles) and mapped to time through the speed profile, so a run-up keeps them at
+their kinematic orders; the resonance rings in time, at a fixed frequency.
+
+*Force released by an element crossing a defect.* An element at angle psi carries the
+quasi-static Stribeck load of :meth:`ballpass.Bearing.load_distribution` (shaft
+displacement x, y under F_r plus the shaft weight), with contact deflection
+delta(psi) = (x cos psi + y sin psi - c) cos(alpha) and load Q = K delta^n. Entering a
+defect of effective depth h (ball-drop limit, :meth:`ballpass.Fault.effective_depth_mm`)
+its deflection falls to delta - h, so the force released is
+
+    dQ(psi) = K max(delta, 0)^n - K max(delta - h, 0)^n,
+
+all of Q for a defect deeper than the deflection, and nothing outside the load zone.
+Outer-race faults sit at a fixed psi; inner-race and ball faults meet the races at the
+angle of the element they strike, so they rotate through the load zone (the
+modulation at the shaft rate and the cage rate of McFadden & Smith 1984).
+
+*Path to each sensor.* As in sr5 (:func:`._kernels.housing_accel`): the released
+force acts on the housing mass m_h along the contact normal and reaches sensor i with
+the transmission factor w = exp(-kappa (1 - cos(psi - theta_i))) (after McFadden &
+Smith 1984) and the projection cos(psi - theta_i) on the sensor axis, a step of
+housing acceleration a = w cos(psi - theta_i) dQ / m_h (m/s^2).
+
+*Resonance.* The sensor's resonator (``Scene.resonance_hz``, ``resonance_damping``,
+sr5's "sprung mass") turns each step of base acceleration into a ring; its absolute
+acceleration rings as -a e^(-sigma tau) (cos w_d tau - sigma / w_d sin w_d tau), the
+part of the exact step response above the base motion, with sigma = zeta w_n and
+w_d = w_n sqrt(1 - zeta^2). One impact per passage, as in McFadden & Smith's and Ho &
+Randall's trains: where the element leaves the defect and strikes its trailing edge,
+taking its load back (the ``exit`` crossing of the ground truth). The gradual
+unloading at the entry, and with it the interference of entry and exit, belongs to
+``contact_dynamics`` (sr5): an entry ring of the opposite sign cancels the exit ring
+whenever the passage lasts a whole number of resonance periods, which sr5 does not
+show (benchmarks/models_agreement.py). The rings are summed exactly at the output
+samples, each starting at its own sub-sample time, by one second-order recursion per
+sensor: no oversampling, no decimation.
+
+What it does not represent, stated: the quasi-static housing motion itself (the
+element-pass rate of varying compliance, the force steps below the resonance), the
+entry into the defect and the edge profile (ramped, sharp) beyond the exit time, the
+dynamic overshoot and speed dependence of the impact (its rings are 0.2-0.4 of sr5's
+RMS on the agreement scenes), and everything else of ``contact_dynamics``. A healthy
+bearing is silent.
+
+References: P. D. McFadden, J. D. Smith, "Model for the vibration produced by a single
+point defect in a rolling element bearing", J. Sound Vib. 96 (1984) 69-82; D. Ho,
+R. B. Randall, "Optimisation of bearing diagnostic techniques using simulated and
+actual bearing fault signals", MSSP 14 (2000) 763-788; the phenomenological
+bearing-signal simulators of D'Elia, Cocconcelli, Buzzoni et al. (as cited by issue 10;
+none of their papers was at hand to check details against).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, replace
+
+import numpy as np
+from numba import njit
+
+from .._validation import check_number
+from ..scene import STANDARD_GRAVITY, Scene
+from . import _kernels as K
+from ._registry import Model
+from ._shared import OVERSAMPLE, add_noise, check_finite
+from ._sr5_driver import _edge_names, _events
+from .result import FaultCrossings, GroundTruth, SimulationResult
+from .sr5 import SR5Parameters, build_model
+
+__all__ = ["ImpulseParameters", "IMPULSE", "impact_amplitudes"]
+
+
+@dataclass(frozen=True)
+class ImpulseParameters:
+    """Parameters of the impulse model (SI units), all overridable.
+
+    Parameters
+    ----------
+    housing_mass : float
+        m_h, the mass that turns a released contact force into housing acceleration,
+        kg. Default: sr5's pedestal mass (:class:`SR5Parameters`), so the two models
+        put the same acceleration step on the sensor for the same force.
+    shaft_mass : float
+        Shaft and inner ring, kg, whose weight the bearing carries with ``F_r`` when
+        ``Scene.gravity``. Default: sr5's shaft mass.
+    contact_stiffness : float or None
+        Hertz load-deflection constant K of one element, N/m^n; None takes
+        :meth:`ballpass.Bearing.hertz_stiffness`, as sr5 does.
+
+    Examples
+    --------
+    >>> import ballpass as bp
+    >>> scene = bp.Scene(bearing="6205", fault=bp.Fault("outer"), duration_s=0.05,
+    ...                  needs=("envelope",))
+    >>> light = bp.simulate(scene, params=bp.simulate.ImpulseParameters(housing_mass=3.0))
+    >>> heavy = bp.simulate(scene)                       # sr5's 6 kg pedestal
+    >>> round(float(abs(light.accel).max() / abs(heavy.accel).max()), 6)
+    2.0
+    """
+
+    housing_mass: float = SR5Parameters.pedestal_mass
+    shaft_mass: float = SR5Parameters.shaft_mass
+    contact_stiffness: float | None = None
+
+    def __post_init__(self) -> None:
+        check_number("housing_mass", self.housing_mass, 0.0, lo_open=True, unit="kg")
+        check_number("shaft_mass", self.shaft_mass, 0.0, unit="kg")
+        if self.contact_stiffness is not None:
+            check_number("contact_stiffness", self.contact_stiffness, 0.0, lo_open=True)
+
+
+def impact_amplitudes(scene: Scene, psi: np.ndarray, depth_m: np.ndarray,
+                      params: ImpulseParameters | None = None) -> np.ndarray:
+    """Force released by an element at angle ``psi`` dropping into a defect, N.
+
+    dQ = K max(delta, 0)^n - K max(delta - h, 0)^n with the quasi-static Stribeck
+    deflection delta(psi) of :meth:`ballpass.Bearing.load_distribution` under the
+    scene's radial load (plus the shaft weight with ``gravity``) and h the effective
+    defect depth (see the module docstring).
+
+    Parameters
+    ----------
+    scene : Scene
+    psi : ndarray
+        Element angles from the load line, rad.
+    depth_m : ndarray
+        Effective defect depth for each angle (broadcast with ``psi``), m.
+    params : ImpulseParameters, optional
+
+    Returns
+    -------
+    ndarray
+        dQ, N, >= 0; exactly 0 outside the load zone.
+
+    Examples
+    --------
+    >>> import numpy as np, ballpass as bp
+    >>> from ballpass.simulate.impulse import impact_amplitudes
+    >>> scene = bp.Scene(bearing="6205", radial_load_n=500.0, gravity=False)
+    >>> dq = impact_amplitudes(scene, np.radians([0.0, 60.0, 180.0]), np.full(3, 1e-3))
+    >>> bool(dq[0] > dq[1] > 0.0), float(dq[2])   # deep defect: the whole load, 0 opposite
+    (True, 0.0)
+    """
+    params = params or ImpulseParameters()
+    b = scene.bearing
+    kh = params.contact_stiffness or b.hertz_stiffness()
+    load = scene.radial_load_n + (params.shaft_mass * STANDARD_GRAVITY if scene.gravity else 0.0)
+    ld = b.load_distribution(load, stiffness=kh)
+    n = b.load_exponent
+    delta = (ld.deflection_m * np.cos(psi) + ld.lateral_deflection_m * np.sin(psi)
+             - b.radial_clearance_m) * math.cos(b.contact_angle_rad)
+    return kh * (np.maximum(delta, 0.0) ** n - np.maximum(delta - depth_m, 0.0) ** n)
+
+
+def _ring(times: np.ndarray, steps: np.ndarray, n_samples: int, fs: float, f_n: float,
+          zeta: float) -> np.ndarray:
+    """Sum of resonator rings at the output samples, (n_sensors, n_samples), m/s^2.
+
+    Step k of base acceleration ``steps[:, k]`` (m/s^2) at ``times[k]`` (s) adds
+    -a e^(-sigma tau) (cos w_d tau - sigma/w_d sin w_d tau), tau = t - t_k >= 0. With
+    n0 = ceil(t_k fs) and the sub-sample lag f = n0 - t_k fs, the ring at n0 + m is
+    D [alpha C_m + beta S_m] with C_m = r^m cos(theta m), S_m = r^m sin(theta m),
+    r = e^(-sigma/fs), theta = w_d / fs: both are impulse responses of one two-pole
+    recursion, so every ring is injected at its first sample and run by
+    :func:`_ring_kernel`, exactly (no truncation, no resampling).
+    """
+    w_n = 2.0 * math.pi * f_n
+    sigma = zeta * w_n
+    w_d = w_n * math.sqrt(1.0 - zeta * zeta)
+    r = math.exp(-sigma / fs)
+    theta = w_d / fs
+    n0 = np.ceil(times * fs).astype(np.int64)
+    keep = n0 < n_samples
+    n0, steps = n0[keep], steps[:, keep]
+    lag = (n0 - times[keep] * fs) / fs  # tau at the first sample, s
+    decay = np.exp(-sigma * lag)
+    cphi, sphi = np.cos(w_d * lag), np.sin(w_d * lag)
+    ratio = sigma / w_d
+    # e^(-s tau)(cos w_d tau - ratio sin w_d tau) at tau = lag + m/fs, split on C_m, S_m
+    alpha = -steps * decay * (cphi - ratio * sphi)
+    beta = steps * decay * (sphi + ratio * cphi)
+    out = np.empty((steps.shape[0], n_samples))
+    _ring_kernel(n0, alpha, beta, r, theta, out)
+    return out
+
+
+@njit(cache=True, error_model="numpy")
+def _ring_kernel(n0, alpha, beta, r, theta, out):
+    """Run the two-pole recursion of :func:`_ring` over the output samples.
+
+    ``n0`` (sorted) holds the first sample of each ring, ``alpha``/``beta``
+    (n_sensors, n_rings) its weights on C_m and S_m. C_m is the impulse response of
+    (1 - r cos(theta) z^-1) / den and S_m of r sin(theta) z^-1 / den, with
+    den = 1 - 2 r cos(theta) z^-1 + r^2 z^-2; ``out`` (n_sensors, n_samples) is written.
+    """
+    rc = r * math.cos(theta)
+    rs = r * math.sin(theta)
+    a1 = 2.0 * rc
+    a2 = r * r
+    m = n0.shape[0]
+    for i in range(out.shape[0]):
+        y1 = 0.0
+        y2 = 0.0
+        pu = 0.0
+        pv = 0.0
+        k = 0
+        for n in range(out.shape[1]):
+            u = 0.0
+            v = 0.0
+            while k < m and n0[k] == n:
+                u += alpha[i, k]
+                v += beta[i, k]
+                k += 1
+            y = u - rc * pu + rs * pv + a1 * y1 - a2 * y2
+            out[i, n] = y
+            y2 = y1
+            y1 = y
+            pu = u
+            pv = v
+
+
+def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=None,
+         return_forces: bool = False, oversample: int = OVERSAMPLE) -> SimulationResult:
+    """Simulate ``scene`` with the impulse model (see the module docstring)."""
+    # refuse, before any work, what this model would otherwise silently ignore
+    if params is not None and not isinstance(params, ImpulseParameters):
+        raise TypeError(f"params must be ImpulseParameters for the impulse model, got "
+                        f"{type(params).__name__}")
+    for name, value in (("dt", dt), ("rtol", rtol), ("atol", atol)):
+        if value is not None:
+            raise ValueError(f"{name}={value!r}: the impulse model has no integrator (its "
+                             "rings are summed exactly at the output samples); leave it unset")
+    if oversample != OVERSAMPLE:
+        raise ValueError(f"oversample={oversample!r}: the impulse model computes the output "
+                         "samples exactly, without an internal grid; leave it at its default")
+    if return_forces:
+        raise ValueError("return_forces=True: the impulse model does not represent "
+                         "contact_forces; use model='sr5' (or model='auto')")
+    t_wall = time.perf_counter()
+    params = params or ImpulseParameters()
+    if params.contact_stiffness is None:  # derived once, for the kinematics and the loads
+        params = replace(params, contact_stiffness=scene.bearing.hertz_stiffness())
+    # the sr5 kinematics of this scene: parameter vector, slip walk and fault table from
+    # the scene's own seed (the sr4 binding: no resonator state is needed)
+    bm = build_model(scene, SR5Parameters(shaft_mass=params.shaft_mass,
+                                          contact_stiffness=params.contact_stiffness),
+                     resonator=False)
+    n_samples = scene.n_samples
+    # sr5's event horizon (the end of its internal grid), so both list the same entries
+    # and exits; the ends of the edge ramps (columns 1, 2 of the levels) are sr5's
+    # business, not this model's: NaN levels are skipped by the crossing search
+    t_end = (n_samples * OVERSAMPLE - 1) / (scene.fs * OVERSAMPLE)
+    bm.levels[:, 1:3] = np.nan
+    before, _after, fault, elem, level = _events(bm, t_end)
+    crossings_edge = _edge_names(bm, fault, level)
+    # one impact per passage, where the element strikes the defect's trailing edge and
+    # takes its load again (the entry, a gradual unloading, belongs to contact_dynamics)
+    hit = crossings_edge == "exit"
+    t_hit, f_hit, e_hit = before[hit], fault[hit], elem[hit]
+    z = scene.bearing.n_elements
+    # the element that meets the defect: for a ball defect its carrier (column F_ELEM),
+    # for a race defect the element of the path
+    carrier = np.where(bm.faults[f_hit, K.F_KIND] == K.KIND_BALL,
+                       bm.faults[f_hit, K.F_ELEM].astype(np.int64), e_hit)
+    psi = K.element_angles_many(t_hit, bm.p, bm.walk, z)[np.arange(t_hit.size), carrier]
+    depth = np.array([f.effective_depth_mm(scene.bearing) * 1e-3 for f in scene.faults])
+    dq = impact_amplitudes(scene, psi, depth[f_hit] if depth.size else psi * 0.0,
+                                       params)
+    theta = np.array([math.radians(s.angle_deg) for s in scene.sensors])[:, None]
+    kappa = np.array([s.attenuation for s in scene.sensors])[:, None]
+    cos_rel = np.cos(psi[None, :] - theta)
+    steps = np.exp(-kappa * (1.0 - cos_rel)) * cos_rel * dq[None, :] / params.housing_mass
+    accel = _ring(t_hit, steps, n_samples, scene.fs, scene.resonance_hz,
+                  scene.resonance_damping)
+    accel -= accel.mean(axis=1, keepdims=True)  # AC-coupled accelerometers, as sr5
+    accel = add_noise(scene, accel)
+    check_finite(scene, accel, "impulse")
+
+    t = np.arange(n_samples) / scene.fs
+    truth = GroundTruth(
+        label=scene.label,
+        faults=scene.faults,
+        frequencies=scene.frequencies,
+        shaft_angle=scene.speed.shaft_angle(t, scene.duration_s),
+        rpm=scene.speed.rpm_at(t, scene.duration_s) * np.ones_like(t),
+        fault_crossings=FaultCrossings(time_s=before.copy(), fault=fault, element=elem,
+                                       edge=crossings_edge),
+        effective_depth_mm=tuple(f.effective_depth_mm(scene.bearing) for f in scene.faults),
+    )
+    info = {"solver": solver, "n_impacts": int(t_hit.size), "n_events": int(before.size),
+            "wall_time_s": time.perf_counter() - t_wall}
+    return SimulationResult(accel=accel[0] if len(scene.sensors) == 1 else accel,
+                            fs=scene.fs, t=t, scene=scene,
+                            sensor_names=tuple(s.name for s in scene.sensors),
+                            truth=truth, info=info)
+
+
+def _accepts(scene: Scene) -> str | None:
+    """The impulse model takes every scene but a healthy one with ``snr_db``: its healthy
+    bearing is silent, and noise relative to a silent signal is undefined."""
+    if not scene.faults and scene.snr_db is not None:
+        return ("has no signal for a healthy bearing (no varying compliance), so snr_db "
+                "has no reference: give noise_rms instead")
+    return None
+
+
+#: McFadden-Smith / Ho-Randall impulse trains, registered in ballpass.simulate.MODELS
+IMPULSE = Model(
+    name="impulse",
+    description="phenomenological impulse train: impacts at the kinematic rates with sr5's "
+                "slip, Stribeck load-zone and transmission modulation, ringing the "
+                "scene's resonance; no contact dynamics",
+    represents=frozenset({"envelope", "varying_speed"}),
+    # measured by benchmarks/models_cost.py (docs/models_cost.md): 0.095 of sr5 per
+    # simulated second at 48 kHz (median of interleaved rounds on a quiet machine, IQR
+    # 0.088-0.098; 0.076-0.11 over six runs), 0.056 at 12 kHz
+    relative_cost=0.09,
+    solvers=("analytic",),
+    fixed_step_solvers=(),
+    reference="P. D. McFadden, J. D. Smith, J. Sound Vib. 96 (1984) 69-82; D. Ho, R. B. "
+              "Randall, MSSP 14 (2000) 763-788; the phenomenological simulators of "
+              "D'Elia, Cocconcelli, Buzzoni et al. (see ballpass.simulate.impulse)",
+    accepts=_accepts,
+    run=_run,
+)

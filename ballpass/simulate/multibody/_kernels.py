@@ -1,0 +1,438 @@
+"""Numba kernels of the planar multibody bearing (seed 000): the right-hand side, the
+fixed-step RK4 loop with its recorders, and the mechanical energy.
+
+State (``nd = 6 + 3 Z`` coordinates, then their rates; SI units, global frame, x along
+the load line towards the centre of the load zone, y at +90 deg in the direction of
+rotation, angles counter-clockwise from x)::
+
+    q = [x_i, y_i, th_i,  x_o, y_o,  th_c,  x_0, y_0, th_0,  x_1, y_1, th_1, ...]
+    y = [q, dq/dt, F_inner_0 .. F_inner_Z-1, F_outer_0 .. F_outer_Z-1]
+
+The last 2 Z states are the traction forces of the contacts (N, on the ball along the
+contact tangent z x n), which relax towards mu(s) Q over the relaxation length.
+
+i = inner race (with the shaft share), o = outer race (in its housing; its rotation is
+locked by the housing fit), c = cage (rotation about the housing centre), 0..Z-1 the
+balls (centre and spin angle). Kernels take plain arrays; validation and the physics
+documentation live in :mod:`ballpass.simulate.multibody`.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+# parameter vector p
+(P_Z, P_RB, P_RI, P_RO, P_KI, P_KO, P_TAU, P_MI, P_JI, P_MO, P_MB, P_JB, P_JC, P_RP,
+ P_KPOCK, P_CPOCK, P_EPOCK, P_KH, P_CH, P_FR, P_G, P_W0, P_W1, P_T, P_KD, P_CD, P_TLOAD,
+ P_NU, P_F0, P_DPMM, P_WBD, P_HD, P_TRACTION, P_UFLOOR, P_WEPS, P_LUB, P_RELAX) = range(37)
+N_PARAMS = 37
+
+# fault table columns: kind, centre in the body frame (rad), half width (m), depth (m),
+# ball index (ball faults), effective radius of the pair at the inner and the outer
+# contact (m; the notch profile follows the mating surface's relative curvature)
+F_KIND, F_CENTRE, F_HALF, F_DEPTH, F_ELEM, F_REFF_I, F_REFF_O = 0, 1, 2, 3, 4, 5, 6
+N_FCOLS = 7
+KIND_OUTER, KIND_INNER, KIND_BALL = 0, 1, 2
+
+# sensor table columns: cos and sin of the sensor angle, transmission attenuation kappa
+S_COS, S_SIN, S_ATT = 0, 1, 2
+N_SCOLS = 3
+
+STATUS_OK, STATUS_NONFINITE = 0, 1
+TWO_PI = 2.0 * math.pi
+
+
+@njit(cache=True, error_model="numpy")
+def wrap_pi(a):
+    """Wrap an angle (rad) to [-pi, pi)."""
+    return a - TWO_PI * math.floor((a + math.pi) / TWO_PI)
+
+
+@njit(cache=True, error_model="numpy")
+def mu_slide_roll(s, w_bd, hd_ratio):
+    """Traction coefficient at slide-roll ratio s >= 0: seed 000 eq. 13
+    mu_bd = (-0.1 + 22.28 s) exp(-181.46 s) + 0.1, blended by eq. 12 with weight w_bd
+    with the hydrodynamic law mu_hd = hd_ratio * mu_bd."""
+    mu_bd = (-0.1 + 22.28 * s) * math.exp(-181.46 * s) + 0.1
+    return mu_bd * (w_bd + (1.0 - w_bd) * hd_ratio)
+
+
+@njit(cache=True, error_model="numpy")
+def notch_drop(x, half, depth, reff):
+    """Extra clearance (m) opened by a rectangular notch of half width ``half`` and
+    depth ``depth`` at arc offset ``x`` of the contact from its centre: the mating
+    surface (relative radius ``reff``) sinks until it meets the nearer corner,
+    reff - sqrt(reff^2 - a^2) with a = half - |x|, at most the depth."""
+    a = half - abs(x)
+    if a <= 0.0:
+        return 0.0
+    if a >= reff:
+        return depth
+    drop = reff - math.sqrt(reff * reff - a * a)
+    return drop if drop < depth else depth
+
+
+@njit(cache=True, error_model="numpy")
+def theta_ref(t, p):
+    """Drive (motor) angle and speed at t: the scene's speed profile for t >= 0 and its
+    start speed during the settling time before 0."""
+    if t <= 0.0:
+        return p[P_W0] * t, p[P_W0]
+    a = (p[P_W1] - p[P_W0]) / p[P_T]
+    return p[P_W0] * t + 0.5 * a * t * t, p[P_W0] + a * t
+
+
+@njit(cache=True, error_model="numpy")
+def _race_drop(faults, kind, ang, radius, j, which):
+    """Largest notch drop at a contact whose point sits at body-frame angle ``ang`` (rad)
+    on a race of ``kind`` (radius m), or on ball j's surface (kind ball, ``which`` 0 =
+    outer contact, 1 = inner); also flags (bit per fault) which faults hold the contact."""
+    drop = 0.0
+    flags = 0
+    for f in range(faults.shape[0]):
+        k = int(faults[f, F_KIND])
+        if k != kind or (k == KIND_BALL and int(faults[f, F_ELEM]) != j):
+            continue
+        x = radius * wrap_pi(ang - faults[f, F_CENTRE])
+        half = faults[f, F_HALF]
+        if abs(x) < half:
+            flags |= 1 << f
+            reff = faults[f, F_REFF_I] if which == 1 else faults[f, F_REFF_O]
+            d = notch_drop(x, half, faults[f, F_DEPTH], reff)
+            if d > drop:
+                drop = d
+    return drop, flags
+
+
+@njit(cache=True, error_model="numpy")
+def _contact_force(k, tau, delta, ddelta):
+    """Normal force of a Hertz contact with Kramer damping that vanishes with the
+    contact: K delta^1.5 + tau (1.5 K delta^0.5) d(delta)/dt, never pulling; exactly 0
+    when separated."""
+    if delta <= 0.0:
+        return 0.0
+    root = math.sqrt(delta)
+    q = k * delta * root + tau * 1.5 * k * root * ddelta
+    return q if q > 0.0 else 0.0
+
+
+@njit(cache=True, error_model="numpy")
+def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
+    """dy/dt at (t, y). The traction forces are first-order lags of seed 000's
+    steady law (eq. 11-13): dF/dt = (mu(s) Q - F) u_r / L, L the relaxation length
+    (creep builds up over about a contact length of rolling, Johnson, Contact
+    Mechanics, sec. 8.2); a separated contact applies none and its traction decays.
+    Also writes the inner and outer normal contact loads of every ball (N) into
+    ``qi``/``qo``, the fault flags of every contact into ``flags`` (bit f set: fault f
+    holds the contact; column 0 outer, 1 inner) and, with ``want_exc``, the housing
+    acceleration seen by each sensor (m/s^2) into ``exc``."""
+    z = int(p[P_Z])
+    nd = 6 + 3 * z
+    rb, ri, ro = p[P_RB], p[P_RI], p[P_RO]
+    ki, ko, tau = p[P_KI], p[P_KO], p[P_TAU]
+    mb, jb = p[P_MB], p[P_JB]
+    g = p[P_G]
+    traction = p[P_TRACTION] != 0.0
+    w_bd, hd, ufloor, weps = p[P_WBD], p[P_HD], p[P_UFLOOR], p[P_WEPS]
+    has_faults = faults.shape[0] > 0
+    relax = p[P_RELAX]
+
+    xi, yi, thi = y[0], y[1], y[2]
+    xo, yo, thc = y[3], y[4], y[5]
+    vxi, vyi, wi = y[nd], y[nd + 1], y[nd + 2]
+    vxo, vyo, wc = y[nd + 3], y[nd + 4], y[nd + 5]
+
+    # inner race: radial load, weight, drive coupling, load and seal friction (eqs. 16-17)
+    th_r, w_r = theta_ref(t, p)
+    fxi = p[P_FR] + p[P_MI] * g
+    fyi = 0.0
+    ti = p[P_KD] * (th_r - thi) + p[P_CD] * (w_r - wi) - p[P_TLOAD] * math.tanh(wi / weps)
+    # outer race in the housing
+    fxo_h = -p[P_KH] * xo - p[P_CH] * vxo
+    fyo_h = -p[P_KH] * yo - p[P_CH] * vyo
+    fxo = fxo_h + p[P_MO] * g
+    fyo = fyo_h
+    # cage: lubricant drag of the rolling set (eq. 18), opposing its rotation
+    tc = 0.0
+    if p[P_LUB] != 0.0:
+        vn = p[P_NU] * abs(wi) * 30.0 / math.pi
+        if vn >= 2000.0:
+            t_lub = 1e-7 * p[P_F0] * vn ** (2.0 / 3.0) * p[P_DPMM] ** 3 * 1e-3
+        else:
+            t_lub = 160e-7 * p[P_F0] * p[P_DPMM] ** 3 * 1e-3
+        tc -= t_lub * math.tanh(wc / weps)
+    if want_exc:
+        for s in range(sensors.shape[0]):
+            exc[s] = (fxo_h * sensors[s, S_COS] + fyo_h * sensors[s, S_SIN]) / p[P_MO]
+
+    pitch = TWO_PI / z
+    for j in range(z):
+        b = 6 + 3 * j
+        xb, yb, thb = y[b], y[b + 1], y[b + 2]
+        vxb, vyb, wb = y[nd + b], y[nd + b + 1], y[nd + b + 2]
+        fxb = mb * g
+        fyb = 0.0
+        tb = 0.0
+        # ---- inner contact
+        dx = xb - xi
+        dy = yb - yi
+        dist = math.sqrt(dx * dx + dy * dy)
+        nx = dx / dist
+        ny = dy / dist
+        drop = 0.0
+        fl_i = 0
+        if has_faults:
+            ang = math.atan2(ny, nx)
+            d1, f1 = _race_drop(faults, KIND_INNER, ang - thi, ri, j, 1)
+            d2, f2 = _race_drop(faults, KIND_BALL, ang + math.pi - thb, rb, j, 1)
+            drop = d1 if d1 > d2 else d2
+            fl_i = f1 | f2
+        delta = rb + ri - dist - drop
+        rvx = vxb - vxi
+        rvy = vyb - vyi
+        q = _contact_force(ki, tau, delta, -(nx * rvx + ny * rvy))
+        qi[j] = q
+        if traction and q == 0.0:
+            dydt[2 * nd + j] = -y[2 * nd + j] * 1e3 * ufloor / relax
+        if q > 0.0:
+            fxb += q * nx
+            fyb += q * ny
+            fxi -= q * nx
+            fyi -= q * ny
+            if traction:
+                vt = -rvx * ny + rvy * nx
+                vs = vt - wb * rb - wi * ri
+                om = vt / dist
+                ur = 0.5 * (abs((wi - om) * ri) + abs((wb - om) * rb)) + ufloor
+                target = mu_slide_roll(abs(vs) / ur, w_bd, hd) * q
+                if vs > 0.0:
+                    target = -target
+                f = y[2 * nd + j]
+                dydt[2 * nd + j] = (target - f) * ur / relax
+                fxb -= f * ny
+                fyb += f * nx
+                fxi += f * ny
+                fyi -= f * nx
+                tb -= rb * f
+                ti -= ri * f
+        # ---- outer contact
+        dx = xb - xo
+        dy = yb - yo
+        dist = math.sqrt(dx * dx + dy * dy)
+        nx = dx / dist
+        ny = dy / dist
+        drop = 0.0
+        fl_o = 0
+        if has_faults:
+            ang = math.atan2(ny, nx)
+            d1, f1 = _race_drop(faults, KIND_OUTER, ang, ro, j, 0)
+            d2, f2 = _race_drop(faults, KIND_BALL, ang - thb, rb, j, 0)
+            drop = d1 if d1 > d2 else d2
+            fl_o = f1 | f2
+        delta = dist + rb - ro - drop
+        rvx = vxb - vxo
+        rvy = vyb - vyo
+        q = _contact_force(ko, tau, delta, nx * rvx + ny * rvy)
+        qo[j] = q
+        if traction and q == 0.0:
+            dydt[2 * nd + z + j] = -y[2 * nd + z + j] * 1e3 * ufloor / relax
+        if q > 0.0:
+            fxb -= q * nx
+            fyb -= q * ny
+            fxo += q * nx
+            fyo += q * ny
+            if want_exc:
+                for s in range(sensors.shape[0]):
+                    cos_rel = nx * sensors[s, S_COS] + ny * sensors[s, S_SIN]
+                    kappa = sensors[s, S_ATT]
+                    w = math.exp(-kappa * (1.0 - cos_rel)) if kappa != 0.0 else 1.0
+                    exc[s] += w * q * cos_rel / p[P_MO]
+            if traction:
+                vt = -rvx * ny + rvy * nx
+                vs = vt + wb * rb
+                om = vt / dist
+                ur = 0.5 * (abs(om * ro) + abs((wb - om) * rb)) + ufloor
+                target = mu_slide_roll(abs(vs) / ur, w_bd, hd) * q
+                if vs > 0.0:
+                    target = -target
+                f = y[2 * nd + z + j]
+                dydt[2 * nd + z + j] = (target - f) * ur / relax
+                fxb -= f * ny
+                fyb += f * nx
+                fxo += f * ny
+                fyo -= f * nx
+                tb += rb * f
+        flags[j, 0] = fl_o
+        flags[j, 1] = fl_i
+        # ---- cage pocket (tangential, linear spring-damper beyond the pocket clearance)
+        r2 = xb * xb + yb * yb
+        r = math.sqrt(r2)
+        off = p[P_RP] * wrap_pi(math.atan2(yb, xb) - thc - pitch * j)
+        if abs(off) > p[P_EPOCK]:
+            sgn = 1.0 if off > 0.0 else -1.0
+            doff = p[P_RP] * ((xb * vyb - yb * vxb) / r2 - wc)
+            fp = p[P_KPOCK] * (abs(off) - p[P_EPOCK]) + p[P_CPOCK] * doff * sgn
+            if fp > 0.0:
+                fs = sgn * fp * p[P_RP] / r
+                fxb += fs * yb / r
+                fyb -= fs * xb / r
+                tc += sgn * fp * p[P_RP]
+        dydt[b] = vxb
+        dydt[b + 1] = vyb
+        dydt[b + 2] = wb
+        dydt[nd + b] = fxb / mb
+        dydt[nd + b + 1] = fyb / mb
+        dydt[nd + b + 2] = tb / jb
+    if not traction:
+        for k in range(2 * nd, dydt.shape[0]):
+            dydt[k] = 0.0
+    for k in range(6):
+        dydt[k] = y[nd + k]
+    dydt[nd] = fxi / p[P_MI]
+    dydt[nd + 1] = fyi / p[P_MI]
+    dydt[nd + 2] = ti / p[P_JI]
+    dydt[nd + 3] = fxo / p[P_MO]
+    dydt[nd + 4] = fyo / p[P_MO]
+    dydt[nd + 5] = tc / p[P_JC]
+
+
+@njit(cache=True, error_model="numpy")
+def energy(t, y, p):
+    """Mechanical energy (J) of the conservative part: kinetic energy of every body,
+    Hertz potentials 0.4 K delta^2.5 (healthy races), housing and pocket springs,
+    drive coupling, and the potentials of gravity and the radial load."""
+    z = int(p[P_Z])
+    nd = 6 + 3 * z
+    e = 0.5 * p[P_MI] * (y[nd] ** 2 + y[nd + 1] ** 2) + 0.5 * p[P_JI] * y[nd + 2] ** 2
+    e += 0.5 * p[P_MO] * (y[nd + 3] ** 2 + y[nd + 4] ** 2) + 0.5 * p[P_JC] * y[nd + 5] ** 2
+    e += 0.5 * p[P_KH] * (y[3] ** 2 + y[4] ** 2)
+    e -= (p[P_FR] + p[P_MI] * p[P_G]) * y[0] + p[P_MO] * p[P_G] * y[3]
+    th_r, _w = theta_ref(t, p)
+    e += 0.5 * p[P_KD] * (th_r - y[2]) ** 2
+    pitch = TWO_PI / z
+    for j in range(z):
+        b = 6 + 3 * j
+        xb, yb = y[b], y[b + 1]
+        e += 0.5 * p[P_MB] * (y[nd + b] ** 2 + y[nd + b + 1] ** 2)
+        e += 0.5 * p[P_JB] * y[nd + b + 2] ** 2 - p[P_MB] * p[P_G] * xb
+        d = p[P_RB] + p[P_RI] - math.sqrt((xb - y[0]) ** 2 + (yb - y[1]) ** 2)
+        if d > 0.0:
+            e += 0.4 * p[P_KI] * d ** 2.5
+        d = math.sqrt((xb - y[3]) ** 2 + (yb - y[4]) ** 2) + p[P_RB] - p[P_RO]
+        if d > 0.0:
+            e += 0.4 * p[P_KO] * d ** 2.5
+        off = p[P_RP] * wrap_pi(math.atan2(yb, xb) - y[5] - pitch * j)
+        if abs(off) > p[P_EPOCK]:
+            e += 0.5 * p[P_KPOCK] * (abs(off) - p[P_EPOCK]) ** 2
+    return e
+
+
+@njit(cache=True, error_model="numpy")
+def integrate_rk4(y, p, faults, sensors, t0, dt_pre, dt, n_pre, n_sub, n_grid, stride,
+                  exc_out, rec_qi, rec_qo, rec_ang, rec_disp, rec_cage,
+                  cross_t, cross_f, cross_e, cross_edge, bound):
+    """Classical RK4 from t0 (< 0: ``n_pre`` settling steps of ``dt_pre`` to t = 0),
+    then ``n_sub`` steps per internal grid interval for ``n_grid - 1`` intervals.
+
+    Records per grid interval the mean housing acceleration at each sensor
+    (``exc_out``, Simpson's rule of the RK4 stages), at every ``stride``-th grid point
+    the contact loads, ball orbit angles about the housing centre, ring displacements
+    and the cage angle, and every change of a contact's fault flags (time, fault,
+    element, edge 0 = entry / 1 = exit). Returns (status, n_steps, t_fail,
+    n_crossings); ``y`` holds the final state."""
+    n = y.shape[0]
+    z = int(p[P_Z])
+    ns = sensors.shape[0]
+    k1 = np.empty(n)
+    k2 = np.empty(n)
+    k3 = np.empty(n)
+    k4 = np.empty(n)
+    tmp = np.empty(n)
+    qi = np.zeros(z)
+    qo = np.zeros(z)
+    flags = np.zeros((z, 2), dtype=np.int64)
+    prev = np.zeros((z, 2), dtype=np.int64)
+    e1 = np.zeros(ns)
+    e2 = np.zeros(ns)
+    e3 = np.zeros(ns)
+    e4 = np.zeros(ns)
+    acc = np.zeros(ns)
+    n_faults = faults.shape[0]
+    cap = cross_t.shape[0]
+    n_cross = 0
+    t = t0
+    n_steps = 0
+    total = n_pre + (n_grid - 1) * n_sub
+    # initial flags
+    rhs(t, y, k1, p, faults, sensors, qi, qo, prev, e1, False)
+    rec_i = 0
+    for step in range(total + 1):
+        grid = step >= n_pre and (step - n_pre) % n_sub == 0
+        if grid:
+            g_i = (step - n_pre) // n_sub
+            if g_i > 0:
+                for s in range(ns):
+                    exc_out[g_i - 1, s] = acc[s] / (n_sub * dt)
+                    acc[s] = 0.0
+            for k in range(n):
+                if not (abs(y[k]) <= bound[k]):
+                    return STATUS_NONFINITE, n_steps, t, n_cross
+            if g_i % stride == 0 and rec_i < rec_qi.shape[0]:
+                rhs(t, y, k1, p, faults, sensors, qi, qo, flags, e1, False)
+                for j in range(z):
+                    b = 6 + 3 * j
+                    rec_qi[rec_i, j] = qi[j]
+                    rec_qo[rec_i, j] = qo[j]
+                    rec_ang[rec_i, j] = math.atan2(y[b + 1] - y[4], y[b] - y[3])
+                rec_disp[rec_i, 0] = y[0]
+                rec_disp[rec_i, 1] = y[1]
+                rec_disp[rec_i, 2] = y[3]
+                rec_disp[rec_i, 3] = y[4]
+                rec_cage[rec_i] = y[5]
+                rec_i += 1
+        if step == total:
+            break
+        h = dt if step >= n_pre else dt_pre
+        rhs(t, y, k1, p, faults, sensors, qi, qo, flags, e1, True)
+        if n_faults > 0:
+            for j in range(z):
+                for c in range(2):
+                    if flags[j, c] != prev[j, c]:
+                        for f in range(n_faults):
+                            bit = 1 << f
+                            now = flags[j, c] & bit
+                            if now != (prev[j, c] & bit) and n_cross < cap:
+                                cross_t[n_cross] = t
+                                cross_f[n_cross] = f
+                                if int(faults[f, F_KIND]) == KIND_BALL:
+                                    cross_e[n_cross] = c
+                                else:
+                                    cross_e[n_cross] = j
+                                cross_edge[n_cross] = 0 if now else 1
+                                n_cross += 1
+                        prev[j, c] = flags[j, c]
+        for k in range(n):
+            tmp[k] = y[k] + 0.5 * h * k1[k]
+        rhs(t + 0.5 * h, tmp, k2, p, faults, sensors, qi, qo, flags, e2, True)
+        for k in range(n):
+            tmp[k] = y[k] + 0.5 * h * k2[k]
+        rhs(t + 0.5 * h, tmp, k3, p, faults, sensors, qi, qo, flags, e3, True)
+        for k in range(n):
+            tmp[k] = y[k] + h * k3[k]
+        rhs(t + h, tmp, k4, p, faults, sensors, qi, qo, flags, e4, True)
+        for k in range(n):
+            y[k] += h / 6.0 * (k1[k] + 2.0 * k2[k] + 2.0 * k3[k] + k4[k])
+        if step >= n_pre:
+            for s in range(ns):
+                acc[s] += dt / 6.0 * (e1[s] + 2.0 * e2[s] + 2.0 * e3[s] + e4[s])
+        n_steps += 1
+        if step + 1 == n_pre:
+            t = 0.0
+        elif step + 1 > n_pre:
+            t = (step + 1 - n_pre) // n_sub * (n_sub * dt) + ((step + 1 - n_pre) % n_sub) * dt
+        else:
+            t = t0 + (step + 1) * dt_pre
+    return STATUS_OK, n_steps, t, n_cross
