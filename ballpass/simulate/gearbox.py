@@ -1,8 +1,8 @@
 """The ``gearbox`` model: a gear pair coupled to the sr5 bearing-pedestal model
 (seed 004, Tran, Furch & Cu; Sawalhi & Randall 2008).
 
-Model
------
+The gearbox model
+-----------------
 The scene's bearing carries the input shaft, and the pinion of ``scene.gears`` (a
 :class:`~ballpass.GearPair`) sits on that shaft; the gear turns on a second, elastically
 supported shaft. Degrees of freedom (kernels in :mod:`._gear_kernels`):

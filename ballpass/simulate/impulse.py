@@ -9,8 +9,8 @@ It represents the envelope-level signature (``envelope``, ``varying_speed``) at 
 fraction of sr5's cost; it has no contact dynamics (no varying compliance, no shaft
 response, no contact forces as output).
 
-Model
------
+The impulse model
+-----------------
 *Impact times.* The same kinematics and the same slip process as sr5, drawn from the
 same seed: the cage angle with its random walk (:func:`.sr5._slip_walk`,
 :func:`._kernels.cage_angle`) and the fault-edge crossings of every element path

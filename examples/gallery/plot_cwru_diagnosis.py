@@ -3,7 +3,8 @@ Diagnosing real recordings
 ==========================
 
 Short crops of Case Western Reserve University drive-end recordings (6205 bearing,
-1797 rpm, 12 kHz; shipped with the tests, see ``tests/data/README.md``) through the
+1797 rpm, 12 kHz) and of the MFPT set (another rig: an 8-roller bearing at 25 Hz,
+48.8 kHz), shipped with the tests (see ``tests/data/README.md``), through the
 physics-based envelope diagnoser, which needs no training. The squared envelope
 spectra show why it decides as it does.
 """
@@ -32,4 +33,10 @@ for ax, (name, file) in zip(axes, crops.items(), strict=True):
                               ax=ax)
     ax.set_title(f"{name}: diagnosed '{label}'")
 fig.tight_layout()
+
+X, meta = bp.datasets.load_mfpt(data / "mfpt_mat", segment_s=0.5)
+mfpt = bp.diagnose.EnvelopeDiagnoser(bearing="MFPT-NICE", fs=float(meta.fs[0]),
+                                     rpm=float(meta.rpm[0]))
+for label, predicted in zip(meta.label, mfpt.predict(X), strict=True):
+    print(f"MFPT {label}: diagnosed '{predicted}'")
 plt.show()
