@@ -96,6 +96,17 @@ CASES = [
     (["work-precision", "--no-scipy", "--csv", "same.csv", "--plot", "same.csv"],
      "--plot must end in"),
     (["work-precision", "--no-scipy", "--repeats", "0"], "--repeats"),
+    # bifurcation: outputs and the swept parameter before any simulation
+    (["bifurcation", "--parameter", "rpm", "--values", "1000", "--out", "afile/b.csv"],
+     "afile is a file"),
+    (["bifurcation", "--parameter", "rpm", "--values", "1000", "--out", "b.txt"],
+     "--out must end in .csv"),
+    (["bifurcation", "--parameter", "rpm", "--values", "1000", "--out", "b.csv", "--plot",
+      "afile/p.png"], "afile is a file"),
+    (["bifurcation", "--parameter", "nope", "--values", "1", "--out", "b.csv"],
+     "parameter must be one of"),
+    (["bifurcation", "--parameter", "rpm", "--values", "-5", "--out", "b.csv"],
+     "rpm must be a finite number"),
     # the others
     (["bearings", "--bearing", "nope"], "nope"),
     (["info", "nowhere"], "nowhere"),
