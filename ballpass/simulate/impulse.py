@@ -298,16 +298,9 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
     check_finite(scene, accel, "impulse")
 
     t = np.arange(n_samples) / scene.fs
-    truth = GroundTruth(
-        label=scene.label,
-        faults=scene.faults,
-        frequencies=scene.frequencies,
-        shaft_angle=scene.speed.shaft_angle(t, scene.duration_s),
-        rpm=scene.speed.rpm_at(t, scene.duration_s) * np.ones_like(t),
-        fault_crossings=FaultCrossings(time_s=before.copy(), fault=fault, element=elem,
-                                       edge=crossings_edge),
-        effective_depth_mm=tuple(f.effective_depth_mm(scene.bearing) for f in scene.faults),
-    )
+    truth = GroundTruth.of_scene(
+        scene, t, FaultCrossings(time_s=before.copy(), fault=fault, element=elem,
+                                 edge=crossings_edge))
     info = {"solver": solver, "n_impacts": int(t_hit.size), "n_events": int(before.size),
             "wall_time_s": time.perf_counter() - t_wall}
     return SimulationResult(accel=accel[0] if len(scene.sensors) == 1 else accel,

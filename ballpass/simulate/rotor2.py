@@ -507,16 +507,11 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
                           + bound.p[_K.P_CAGE] * shaft_angle[None, :])
         displacement = xs[idx].T.copy()
     empty = np.empty(0)
-    truth = GroundTruth(
-        label=scene.label,
-        faults=scene.faults,
-        frequencies=scene.frequencies,
-        shaft_angle=shaft_angle,
-        rpm=scene.speed.rpm_at(t, scene.duration_s) * np.ones_like(t),
+    truth = GroundTruth.of_scene(
+        scene, t,
         # rotor2 does not scan fault-edge crossings (its solvers need no events)
-        fault_crossings=FaultCrossings(time_s=empty, fault=empty.astype(int),
-                                       element=empty.astype(int), edge=empty.astype(str)),
-        effective_depth_mm=tuple(f.effective_depth_mm(scene.bearing) for f in scene.faults),
+        FaultCrossings(time_s=empty, fault=empty.astype(int), element=empty.astype(int),
+                       edge=empty.astype(str)),
         contact_forces=forces,
         element_angles=element_angles,
         displacement=displacement,
