@@ -406,11 +406,11 @@ SR4 = Model(
     description="Sawalhi-Randall 4-DOF: shaft and pedestal, sensors read the housing "
                 "acceleration (no resonator)",
     represents=frozenset({"contact_dynamics", "contact_forces", "varying_speed", "waviness"}),
-    # measured by benchmarks/models_cost.py (docs/models_cost.md: 1.95 at 48 kHz, 1.25 at
+    # measured by benchmarks/models_cost.py (docs/models_cost.md: 2.7 at 48 kHz, 1.5 at
     # 12 kHz, median of interleaved rounds): the same steps as sr5, but its output, the
     # housing acceleration, is evaluated from the contact forces at every internal
     # sample, while sr5's resonators are advanced exactly
-    relative_cost=2.0,
+    relative_cost=2.7,
     solvers=tuple(SOLVERS),
     fixed_step_solvers=("rk4",),
     reference=_REFERENCE,

@@ -325,10 +325,10 @@ IMPULSE = Model(
                 "slip, Stribeck load-zone and transmission modulation, ringing the "
                 "scene's resonance; no contact dynamics",
     represents=frozenset({"envelope", "varying_speed"}),
-    # measured by benchmarks/models_cost.py (docs/models_cost.md): 0.095 of sr5 per
-    # simulated second at 48 kHz (median of interleaved rounds on a quiet machine, IQR
-    # 0.088-0.098; 0.076-0.11 over six runs), 0.056 at 12 kHz
-    relative_cost=0.09,
+    # measured by benchmarks/models_cost.py (docs/models_cost.md), after sr5's mass change:
+    # 0.083 of sr5 per simulated second at 48 kHz (median of 5 interleaved rounds of 3
+    # back-to-back calls on a quiet machine, IQR 0.081-0.085), 0.081 at 12 kHz
+    relative_cost=0.083,
     solvers=("analytic",),
     fixed_step_solvers=(),
     reference="P. D. McFadden, J. D. Smith, J. Sound Vib. 96 (1984) 69-82; D. Ho, R. B. "

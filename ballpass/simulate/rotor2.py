@@ -531,9 +531,10 @@ ROTOR2 = Model(
                 "Newmark-beta",
     represents=frozenset({"rotor_dynamics", "contact_dynamics", "contact_forces",
                           "varying_speed"}),
-    # wall time per simulated second against sr5, measured side by side on a healthy
-    # NJ 305 at 500 N, 48 kHz (benchmarks/seed003.py, docs/seed003.md): 7.2x and 8.7x
-    relative_cost=8.0,
+    # wall time per simulated second against sr5, side by side: 25x on the 6205 reference
+    # scene of benchmarks/models_cost.py at 48 kHz (docs/models_cost.md, after sr5's mass
+    # change made sr5 faster); 7.2-8.7x on a healthy NJ 305 before it (docs/seed003.md)
+    relative_cost=25.0,
     solvers=tuple(SOLVERS),
     fixed_step_solvers=("newmark",),
     reference="Dynamic behaviour of rotor roller bearing system with bearing defects "
