@@ -144,6 +144,9 @@ def run(args) -> int:
     print(f"{res.truth.label}: {len(res.t)} samples x {len(res.sensor_names)} sensor(s) at "
           f"{res.fs:g} Hz, model {info['model']}, solver {info['solver']}, "
           f"{info['n_steps']} steps in {info['wall_time_s']:.2f} s -> {out}")
+    if info.get("compile_time_s", 0.0) > 0.5:
+        print(f"(compiling the simulator's kernels took {info['compile_time_s']:.1f} s more: "
+              "once per install)")
     print("defect frequencies (Hz): " + ", ".join(
         f"{k} {v:.2f}" for k, v in freqs.as_dict().items()))
     if plot is not None:

@@ -318,6 +318,10 @@ def add_modes(scene: Scene, out: np.ndarray, fs: float) -> np.ndarray:
     return total
 
 
+#: (solver, resonator) pairs already run in this process (kernels compiled or loaded)
+_WARM: set = set()
+
+
 def _run(scene: Scene, solver: str, *, resonator: bool, dt=None, rtol=None, atol=None,
          params: SR5Parameters | None = None, return_forces: bool = False,
          oversample: int = OVERSAMPLE) -> SimulationResult:
@@ -328,6 +332,17 @@ def _run(scene: Scene, solver: str, *, resonator: bool, dt=None, rtol=None, atol
     if scene.resonances and not resonator:
         raise ValueError(f"Scene.resonances={scene.resonances!r} adds modes beside the main "
                          "resonator, which sr4 does not have: use model='sr5'")
+    compile_s = 0.0
+    if (solver, resonator) not in _WARM:
+        # the first run of a process compiles the kernels (or loads them from numba's
+        # cache): time that once on a few samples, so it is not reported as the run
+        _WARM.add((solver, resonator))
+        t0 = time.perf_counter()
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # the real run below warns, once
+            _run(scene.replace(duration_s=8.0 / scene.fs), solver, resonator=resonator,
+                 dt=dt, rtol=rtol, atol=atol, params=params, oversample=oversample)
+        compile_s = time.perf_counter() - t0
     t_wall = time.perf_counter()
     bm = build_model(scene, params, resonator=resonator)
     n_samples = scene.n_samples
@@ -357,6 +372,7 @@ def _run(scene: Scene, solver: str, *, resonator: bool, dt=None, rtol=None, atol
         displacement=displacement,
     )
     info["wall_time_s"] = time.perf_counter() - t_wall
+    info["compile_time_s"] = compile_s
     return SimulationResult(
         accel=accel[0] if n_sensors == 1 else accel,
         fs=scene.fs,

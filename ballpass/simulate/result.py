@@ -130,7 +130,9 @@ class SimulationResult:
     info : dict
         ``model``, ``solver``, ``n_steps`` (accepted), ``n_rejected``, ``dt_s`` (fixed
         step) or ``dt_min_s`` (adaptive), ``rtol``, ``internal_fs`` (Hz), ``wall_time_s``,
-        ``n_events``.
+        ``n_events``. sr5/sr4 also report ``compile_time_s``: the time the first call in a
+        process spent compiling (or loading from numba's cache) the integrator, s, 0.0
+        afterwards; ``wall_time_s`` and ``integration_time_s`` leave it out.
     """
 
     accel: np.ndarray
