@@ -406,12 +406,15 @@ def signal_overview(
         raise ValueError("bearing and shaft_hz go together: give both or neither")
     bearing = as_bearing(bearing) if bearing is not None else None
     marks = bearing.frequencies(float(shaft_hz)) if bearing is not None else None
-    result = features.fast_kurtogram(data[0], fs)
-    if band is None:
-        bands = [result.best_band] + [features.fast_kurtogram(r, fs).best_band for r in data[1:]]
+    if band is None:  # one envelope analysis per channel: kurtogram, band and SES
+        analyses = [features.envelope_analysis(row, fs) for row in data]
+        result = analyses[0].kurtogram
+        bands = [a.band for a in analyses]
+        spectra = [(a.freqs, a.ses) for a in analyses]
     else:
+        result = features.fast_kurtogram(data[0], fs)
         bands = [tuple(band)] * len(data)
-    spectra = [features.envelope_spectrum(row, fs, b) for row, b in zip(data, bands, strict=True)]
+        spectra = [features.envelope_spectrum(row, fs, band) for row in data]
 
     fig = Figure(figsize=(12, 7.5), layout="constrained")
     grid = fig.add_gridspec(2, 2, height_ratios=(1, 1.35), width_ratios=(1.5, 1))

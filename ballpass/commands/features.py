@@ -280,7 +280,14 @@ def feature_rows(signals: list[Signal], band=None, progress: bool = True) -> lis
     for sig in tqdm(signals, desc="features", unit="signal", disable=not progress,
                     leave=False, file=sys.stderr):
         x = np.asarray(sig.x, dtype=np.float64)
-        kg = F.fast_kurtogram(x, sig.fs)
+        known = _known(sig.bearing) and _known(sig.rpm)
+        analysis = None
+        if band is None:  # kurtogram, band, SES and indicators in one pass
+            analysis = F.envelope_analysis(x, sig.fs, rpm=float(sig.rpm) if known else None,
+                                           bearing=sig.bearing if known else None)
+            kg = analysis.kurtogram
+        else:
+            kg = F.fast_kurtogram(x, sig.fs)
         lo, hi = check_band(band, sig.fs) if band is not None else kg.best_band
         row = {
             "source": sig.name,
@@ -293,9 +300,11 @@ def feature_rows(signals: list[Signal], band=None, progress: bool = True) -> lis
             "band_hi_hz": hi,
             "kurtogram_sk": kg.best_kurtosis,
         }
-        row.update({k: float(v) for k, v in F.indicators(x).items()})
-        if _known(sig.bearing) and _known(sig.rpm):
-            levels = F.fault_band_features(x, sig.fs, sig.bearing, float(sig.rpm), band=(lo, hi))
+        ind = analysis.indicators if analysis is not None else F.indicators(x)
+        row.update({k: float(v) for k, v in ind.items()})
+        if known:
+            levels = (analysis.fault_bands if analysis is not None else
+                      F.fault_band_features(x, sig.fs, sig.bearing, float(sig.rpm), band=(lo, hi)))
             row.update({k: float(v) for k, v in levels.items()})
         else:
             row.update(dict.fromkeys(F.fault_band_names(), np.nan))

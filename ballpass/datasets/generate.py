@@ -259,8 +259,9 @@ FEATURE_KEYS = ("label", "bearing", "fault_width_mm", "fault_depth_mm", "rpm", "
 
 
 def feature_columns(signals: np.ndarray, fs: float, bearing, rpm) -> dict[str, np.ndarray]:
-    """Features of stored signals: :func:`ballpass.features.indicators` and
-    :func:`ballpass.features.fault_band_features` (demodulation band from the kurtogram).
+    """Features of stored signals: :func:`ballpass.features.indicators` and the fault-band
+    levels of :func:`ballpass.features.fault_band_features` (demodulation band from the
+    kurtogram), both from one :func:`ballpass.features.envelope_analysis` per bearing.
 
     Parameters
     ----------
@@ -278,15 +279,15 @@ def feature_columns(signals: np.ndarray, fs: float, bearing, rpm) -> dict[str, n
     """
     from .. import features
 
-    out = dict(features.indicators(signals))
     bearing, rpm = np.asarray(bearing), np.asarray(rpm, dtype=float)
-    bands = {name: np.empty(len(signals)) for name in features.fault_band_names()}
+    names = list(features.INDICATORS) + features.fault_band_names()
+    out = {name: np.empty(len(signals)) for name in names}
     for name in np.unique(bearing):
         rows = bearing == name
-        for key, value in features.fault_band_features(signals[rows], fs, str(name),
-                                                       rpm[rows]).items():
-            bands[key][rows] = value
-    return out | bands
+        result = features.envelope_analysis(signals[rows], fs, rpm=rpm[rows], bearing=str(name))
+        for key, value in (result.indicators | result.fault_bands).items():
+            out[key][rows] = value
+    return out
 
 
 def _write_features(folder: Path, index: int, signals: np.ndarray,

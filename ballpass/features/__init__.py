@@ -6,6 +6,7 @@ axis return ``(freqs, values)``.
 
 Envelope analysis
 -----------------
+envelope_analysis          kurtogram, band, SES, indicators (and fault bands) in one call
 envelope_spectrum          (squared) envelope spectrum; SES by default, band from the kurtogram
 squared_envelope_spectrum  the SES, explicitly
 envelope                   Hilbert envelope of the band-passed signal
@@ -49,6 +50,7 @@ Examples
 ['clearance_factor', 'crest_factor', 'impulse_factor']
 """
 
+from .analysis import EnvelopeAnalysis, envelope_analysis
 from .bands import FAULT_LINES, fault_band_features, fault_band_levels, fault_band_names
 from .envelope import (
     bandpass,
@@ -69,6 +71,7 @@ _LAZY = {"FaultBandTransformer", "IndicatorTransformer"}
 __all__ = [
     "FAULT_LINES",
     "INDICATORS",
+    "EnvelopeAnalysis",
     "FaultBandTransformer",
     "IndicatorTransformer",
     "KurtogramResult",
@@ -76,6 +79,7 @@ __all__ = [
     "bandpass",
     "cepstrum_prewhiten",
     "envelope",
+    "envelope_analysis",
     "envelope_spectrum",
     "fast_kurtogram",
     "fault_band_features",

@@ -236,6 +236,15 @@ def fast_kurtogram(
     if not math.isfinite(floor_db):
         raise ValueError(f"floor_db must be a finite number of dB, got {floor_db!r}")
 
+    return _kurtogram(x, fs, nlevel, min_bandwidth, float(floor_db))[0]
+
+
+def _kurtogram(
+    x: np.ndarray, fs: float, nlevel: int, min_bandwidth: float, floor_db: float
+) -> tuple[KurtogramResult, np.ndarray]:
+    """Fast kurtogram of validated ``x`` (samples last), and the one-sided spectrum of
+    ``x`` minus its mean (``scipy.fft.rfft``) it was computed from, for reuse."""
+    n = x.shape[-1]
     levels, n_bands, rows = _tree(n, fs, nlevel)
     spectrum = scipy.fft.rfft(x - x.mean(axis=-1, keepdims=True), axis=-1)
     mean_power = np.mean(spectrum.real**2 + spectrum.imag**2, axis=-1)[..., None]
@@ -284,7 +293,7 @@ def fast_kurtogram(
         best_kurtosis=best_k,
         admissible=ok,
         floor_db=float(floor_db),
-    )
+    ), spectrum
 
 
 def spectral_kurtosis(
