@@ -74,6 +74,15 @@ class BearingFrequencies:
         Ball pass frequency, outer race, Hz.
     bpfi : float
         Ball pass frequency, inner race, Hz.
+
+    Examples
+    --------
+    >>> import ballpass as bp
+    >>> f = bp.Bearing.catalog("6205").frequencies(29.95)
+    >>> round(f.bpfo, 2), round(f.bpfi, 2), round(f.ftf, 3)     # Hz
+    (107.36, 162.19, 11.929)
+    >>> round(f.ball_defect / f.bsf, 6)
+    2.0
     """
 
     shaft: float
@@ -84,7 +93,15 @@ class BearingFrequencies:
     bpfi: float
 
     def as_dict(self) -> dict[str, float]:
-        """Return the frequencies as ``{name: Hz}``."""
+        """Return the frequencies as ``{name: Hz}``.
+
+        Examples
+        --------
+        >>> import ballpass as bp
+        >>> f = bp.Bearing.catalog("6205").frequencies(29.95)
+        >>> {name: round(hz, 2) for name, hz in f.as_dict().items()}
+        {'shaft': 29.95, 'ftf': 11.93, 'bsf': 70.58, 'ball_defect': 141.17, 'bpfo': 107.36, 'bpfi': 162.19}
+        """
         return {
             "shaft": self.shaft,
             "ftf": self.ftf,
@@ -241,7 +258,15 @@ class Bearing:
         return list(_CATALOG)
 
     def with_clearance(self, radial_clearance_mm: float) -> Bearing:
-        """Return a copy with another radial clearance (mm; negative = preload)."""
+        """Return a copy with another radial clearance (mm; negative = preload).
+
+        Examples
+        --------
+        >>> import ballpass as bp
+        >>> loose = bp.Bearing.catalog("6205").with_clearance(0.02)
+        >>> loose.radial_clearance_mm, loose.radial_clearance_m
+        (0.02, 2e-05)
+        """
         return replace(self, radial_clearance_mm=float(radial_clearance_mm))
 
     # ------------------------------------------------------------------ SI geometry
@@ -302,6 +327,13 @@ class Bearing:
         -------
         BearingFrequencies
             ``.ftf .bsf .ball_defect .bpfo .bpfi`` in Hz.
+
+        Examples
+        --------
+        >>> import ballpass as bp
+        >>> f = bp.Bearing.catalog("6205").frequencies(shaft_hz=1797 / 60)
+        >>> round(f.bpfi, 1), round(f.bpfo, 1)                    # Hz
+        (162.2, 107.4)
         """
         check_number("shaft_hz", shaft_hz, 0.0, lo_open=True, unit="Hz")
         r = self.diameter_ratio
@@ -687,6 +719,13 @@ class HertzFactors:
         Deflection factor: delta = delta* (3 Q / (2 sum_rho E'))^(2/3) sum_rho / 2,
         with 1/E' = (1 - nu_1^2)/E_1 + (1 - nu_2^2)/E_2. Equal to 1 for a circular
         contact (F(rho) = 0).
+
+    Examples
+    --------
+    >>> from ballpass.bearing import hertz_factors
+    >>> h = hertz_factors(0.9)                   # a conforming ball-race contact
+    >>> h.kappa > 1.0, round(h.a_star * h.b_star, 3)
+    (True, 1.425)
     """
 
     curvature_difference: float
@@ -1006,6 +1045,15 @@ class LoadDistribution:
         Largest element load, N.
     radial_load_n, clearance_m, stiffness, load_exponent : float
         The inputs: F_r (N), c (m), K (N/m^n), n.
+
+    Examples
+    --------
+    >>> import ballpass as bp
+    >>> ld = bp.Bearing.catalog("6205").load_distribution(1000.0)
+    >>> ld.element_loads_n.shape, ld.n_loaded
+    ((9,), 5)
+    >>> round(float(ld.element_loads_n.sum()), 1) > 1000.0  # the loads' projections balance F_r
+    True
     """
 
     element_angles_deg: np.ndarray

@@ -133,6 +133,17 @@ class SimulationResult:
         ``n_events``. sr5/sr4 also report ``compile_time_s``: the time the first call in a
         process spent compiling (or loading from numba's cache) the integrator, s, 0.0
         afterwards; ``wall_time_s`` and ``integration_time_s`` leave it out.
+
+    Examples
+    --------
+    >>> import ballpass as bp
+    >>> scene = bp.Scene("6205", rpm=1797, fault=bp.Fault("outer"), duration_s=0.1,
+    ...                  fs=48_000, sensors=("loaded", "unloaded"), seed=0)
+    >>> res = bp.simulate(scene, model="impulse")
+    >>> res.accel.shape, res.fs, res.sensor_names
+    ((2, 4800), 48000.0, ('loaded', 'unloaded'))
+    >>> res.info["model"]
+    'impulse'
     """
 
     accel: np.ndarray
@@ -144,7 +155,16 @@ class SimulationResult:
     info: dict = field(default_factory=dict)
 
     def channel(self, name: str) -> np.ndarray:
-        """The signal of one sensor by name, (n_samples,), m/s^2."""
+        """The signal of one sensor by name, (n_samples,), m/s^2.
+
+        Examples
+        --------
+        >>> import ballpass as bp
+        >>> scene = bp.Scene("6205", rpm=1797, duration_s=0.1, sensors=("loaded", "unloaded"))
+        >>> res = bp.simulate(scene, model="impulse")
+        >>> res.channel("unloaded").shape
+        (4800,)
+        """
         if name not in self.sensor_names:
             raise ValueError(f"sensor must be one of {self.sensor_names}, got {name!r}")
         data = np.atleast_2d(self.accel)
