@@ -66,6 +66,16 @@ def check_needs(needs: Iterable[str] | str, name: str = "needs") -> frozenset[st
         ``needs`` is not a string or an iterable of strings.
     ValueError
         A name is not in the vocabulary; the message lists the allowed ones.
+
+    Examples
+    --------
+    >>> from ballpass.phenomena import check_needs
+    >>> sorted(check_needs(["envelope", "contact_forces"]))
+    ['contact_forces', 'envelope']
+    >>> check_needs("envelop")                              # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+        ...
+    ValueError: needs names an unknown phenomenon 'envelop'; allowed: ball_dynamics, ...
     """
     if isinstance(needs, str):
         needs = (needs,)
