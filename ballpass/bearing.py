@@ -99,8 +99,9 @@ class BearingFrequencies:
         --------
         >>> import ballpass as bp
         >>> f = bp.Bearing.catalog("6205").frequencies(29.95)
-        >>> {name: round(hz, 2) for name, hz in f.as_dict().items()}
-        {'shaft': 29.95, 'ftf': 11.93, 'bsf': 70.58, 'ball_defect': 141.17, 'bpfo': 107.36, 'bpfi': 162.19}
+        >>> {k: round(hz, 1) for k, hz in f.as_dict().items()}  # doctest: +NORMALIZE_WHITESPACE
+        {'shaft': 29.9, 'ftf': 11.9, 'bsf': 70.6, 'ball_defect': 141.2,
+         'bpfo': 107.4, 'bpfi': 162.2}
         """
         return {
             "shaft": self.shaft,

@@ -70,6 +70,19 @@ def build(scene: Scene, model: str = "sr5", params: SR5Parameters | None = None
     Returns
     -------
     BearingModel
+
+    Examples
+    --------
+    The bound model starts at the static equilibrium, where the right-hand side vanishes:
+
+    >>> import numpy as np
+    >>> import ballpass as bp
+    >>> from ballpass.simulate import build
+    >>> bm = build(bp.Scene("6205", rpm=1797, duration_s=0.01))
+    >>> bm.n_state, bm.n_res                # shaft, pedestal, resonator: positions, velocities
+    (10, 1)
+    >>> bool(np.abs(bm.rhs(0.0, bm.y0)).max() < 1e-9)          # m/s^2 against g = 9.81
+    True
     """
     if model not in ("auto", "sr5", "sr4"):
         raise ValueError(f"build binds the sr5/sr4 kernels: model must be 'sr5' or 'sr4', "
@@ -210,6 +223,17 @@ def integrate(bm: BearingModel, solver: str, *, h_out: float, n_out: int,
     Returns
     -------
     RawIntegration
+
+    Examples
+    --------
+    >>> import ballpass as bp
+    >>> from ballpass.simulate import build, integrate
+    >>> bm = build(bp.Scene("6205", rpm=1797, fault=bp.Fault("outer"), duration_s=0.01))
+    >>> raw = integrate(bm, "rk4", h_out=1 / 48_000, n_out=480)
+    >>> raw.output.shape, raw.info["solver"]
+    ((480, 1), 'rk4')
+    >>> raw.crossings.edge[:2].tolist()            # the first ball reaching the fault
+    ['ramp_start', 'exit']
     """
     scene = bm.scene
     check_solver_args("sr5", solver, SOLVERS, ("rk4",), dt, rtol, atol, OVERSAMPLE)
