@@ -739,12 +739,12 @@ class HertzFactors:
 def hertz_factors(curvature_difference: float) -> HertzFactors:
     """Exact Hertz factors kappa, a*, b*, delta* from the curvature difference F(rho).
 
-    Harris & Kotzalas [1]_ ch. 6: with e^2 = m = 1 - 1/kappa^2, K and E the complete
+    Harris & Kotzalas (module reference 1) ch. 6: with e^2 = m = 1 - 1/kappa^2, K and E the complete
     elliptic integrals of the first and second kind,
     F(rho) = [(kappa^2 + 1) E - 2 K] / [(kappa^2 - 1) E],
     delta* = (2 K / pi) (pi / (2 kappa^2 E))^(1/3), a* = (2 kappa^2 E / pi)^(1/3),
     b* = (2 E / (pi kappa))^(1/3). The first relation cancels to second order near the
-    circular contact, so it is solved in Carlson's form (Johnson [6]_, DLMF 19.25.1):
+    circular contact, so it is solved in Carlson's form (Johnson, module reference 6, DLMF 19.25.1):
     (1 + F)/(1 - F) = R_D(0, 1, p) / R_D(0, p, 1) with p = 1/kappa^2, for ln p by
     :func:`scipy.optimize.brentq`. This replaces seed 000's delta* polynomial, which
     follows the chart within 3 % only for F(rho) in [0.9, 0.99] (it is 7 % off at 0.88,
@@ -813,7 +813,7 @@ def point_contact_stiffness(
 ) -> float:
     """Hertz load-deflection constant of one point contact between like materials.
 
-    Harris & Kotzalas [1]_ ch. 6, seed 000 eq. 6 (printed "2E2", read 2 sqrt(2) E),
+    Harris & Kotzalas (module reference 1) ch. 6, seed 000 eq. 6 (printed "2E2", read 2 sqrt(2) E),
     seed 001 eq. 3: K = 2 sqrt(2) E / (3 (1 - nu^2)) sum_rho^(-1/2) delta*^(-3/2), so
     that Q = K delta^1.5. With E = 2.075e5 MPa and nu = 0.3 the prefactor is Harris's
     2.15e5 (N/mm^1.5 with sum_rho in 1/mm). delta* comes from :func:`hertz_factors`.
@@ -861,7 +861,7 @@ PALMGREN_COEFFICIENT = 3.84e-5
 def line_contact_stiffness(length_m: float) -> float:
     """Palmgren's load-deflection constant of one roller-raceway line contact.
 
-    Palmgren [5]_ (seed 003 eq. 1): delta = 3.84e-5 Q^0.9 / l^0.8 with delta and l in
+    Palmgren (module reference 5; seed 003 eq. 1): delta = 3.84e-5 Q^0.9 / l^0.8 with delta and l in
     mm and Q in N, for bearing steel. Inverted: Q = K delta^(10/9) with
     K = (l^0.8 / 3.84e-5)^(10/9) N/mm^(10/9), returned in SI (times 1000^(10/9)).
 
@@ -921,8 +921,9 @@ def series_stiffness(k_inner: float, k_outer: float, load_exponent: float) -> fl
 def stribeck_integral(epsilon: float, load_exponent: float = 1.5) -> float:
     """Harris's radial load integral J_r(epsilon) of the continuous Stribeck distribution.
 
-    Harris & Kotzalas [1]_ ch. 7; seed 001 eqs. 5, 8, 9: for infinitely many elements,
-    Q(psi) = Q_max [1 - (1 - cos psi)/(2 eps)]^n inside the zone |psi| <= psi_l with
+    Harris & Kotzalas (module reference 1) ch. 7; seed 001 eqs. 5, 8, 9: for infinitely many
+    elements,
+    Q(psi) = Q_max [1 - (1 - cos psi)/(2 eps)]^n inside the zone ``|psi| <= psi_l`` with
     psi_l = arccos(1 - 2 eps) (pi when eps >= 1), and F_r = Z Q_max J_r cos(alpha) with
 
     J_r(eps) = 1/(2 pi) int_{-psi_l}^{psi_l} [1 - (1 - cos psi)/(2 eps)]^n cos psi dpsi.
