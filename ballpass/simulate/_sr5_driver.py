@@ -425,12 +425,19 @@ _REFERENCE = ("N. Sawalhi, R. B. Randall, 'Simulating gear and bearing interacti
               "presence of faults: Part I', MSSP 22 (2008) 1924-1951 (equations as printed in "
               "seed 004, with the sprung mass restored; see ballpass.simulate.sr5)")
 
+#: the scene options the sr5 kernels and driver honour (``Scene.clearance_um`` and
+#: ``resonances``, pit faults, intermittent ball defects); sr4 has no resonator to add
+#: modes to
+SR5_SCENE_OPTIONS = frozenset({"mounted_clearance", "structural_modes", "pit_faults",
+                               "intermittent_faults"})
+
 #: the 5-DOF model with the high-frequency resonator per sensor
 SR5 = Model(
     name="sr5",
     description="Sawalhi-Randall 5-DOF: shaft, pedestal and a high-frequency resonator per "
                 "sensor; Hertz contacts, clearance, slip, localized faults",
-    represents=DEFAULT_NEEDS | {"contact_forces", "varying_speed", "waviness"},
+    represents=DEFAULT_NEEDS | {"contact_forces", "varying_speed", "waviness",
+                                *SR5_SCENE_OPTIONS},
     relative_cost=1.0,
     solvers=tuple(SOLVERS),
     fixed_step_solvers=("rk4",),
@@ -445,7 +452,8 @@ SR4 = Model(
     name="sr4",
     description="Sawalhi-Randall 4-DOF: shaft and pedestal, sensors read the housing "
                 "acceleration (no resonator)",
-    represents=frozenset({"contact_dynamics", "contact_forces", "varying_speed", "waviness"}),
+    represents=frozenset({"contact_dynamics", "contact_forces", "varying_speed", "waviness",
+                          *(SR5_SCENE_OPTIONS - {"structural_modes"})}),
     # measured by benchmarks/models_cost.py (docs/models_cost.md: 2.7 at 48 kHz, 1.5 at
     # 12 kHz, median of interleaved rounds): the same steps as sr5, but its output, the
     # housing acceleration, is evaluated from the contact forces at every internal
