@@ -60,6 +60,14 @@ class EnvelopeAnalysis:
     frequencies : BearingFrequencies or None
         Fault frequencies (Hz) of the bearing at the mean of ``rpm``, for markers;
         None without a bearing.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ballpass.features import envelope_analysis
+    >>> res = envelope_analysis(np.random.default_rng(0).standard_normal(12_000), 12_000.0)
+    >>> res.ses.shape, res.fault_bands is None, round(float(res.indicators["kurtosis"]), 1)
+    ((6001,), True, 3.0)
     """
 
     kurtogram: KurtogramResult
@@ -84,6 +92,15 @@ class EnvelopeAnalysis:
         Returns
         -------
         matplotlib.figure.Figure
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from ballpass.features import envelope_analysis
+        >>> x = np.random.default_rng(0).standard_normal(12_000)
+        >>> fig = envelope_analysis(x, 12_000.0, rpm=1797, bearing="6205").plot()
+        >>> len(fig.axes)                                # SES, kurtogram, colour bar
+        3
         """
         from matplotlib.figure import Figure
 
