@@ -278,12 +278,17 @@ def _kurtogram(
     kurt = np.empty(x.shape[:-1] + (len(levels), n_cols))
     dens = np.empty_like(kurt)
     for r, (idx, w) in enumerate(rows):
-        bands = spectrum[..., idx] * w
-        band_power = np.sum(bands.real**2 + bands.imag**2, axis=-1) / np.sum(w**2, axis=-1)
-        c = scipy.fft.ifft(bands, axis=-1, overwrite_x=True)
-        p = c.real**2 + c.imag**2
+        bands = spectrum[..., idx]
+        bands *= w
+        c = np.ascontiguousarray(scipy.fft.ifft(bands, axis=-1, overwrite_x=True))
+        parts = c.view(np.float64)  # real, imaginary, real, ...: |c|^2 in place
+        parts *= parts
+        p = parts[..., ::2] + parts[..., 1::2]
+        n_taps = p.shape[-1]
         m2 = p.mean(axis=-1)
-        m4 = np.einsum("...i,...i->...", p, p) / p.shape[-1]
+        m4 = np.einsum("...i,...i->...", p, p) / n_taps
+        # Parseval: sum |bands|^2 = n_taps * sum |c|^2 = n_taps^2 * m2
+        band_power = m2 * n_taps**2 / np.sum(w**2, axis=-1)
         k = np.divide(m4, m2**2, out=np.full_like(m2, 2.0), where=m2 > 0) - 2.0
         ratio = np.divide(band_power, mean_power, out=np.zeros_like(m2), where=mean_power > 0)
         reps = n_cols // n_bands[r]
