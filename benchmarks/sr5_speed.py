@@ -155,10 +155,10 @@ def figure(summary: pd.DataFrame, path: Path) -> None:
     for i, name in enumerate(names):
         s = summary[summary.method == name].set_index("scene").loc[FAULTS]
         err = [s.wall_ms - s.wall_lo, s.wall_hi - s.wall_ms]
-        ax.bar(x + i * width, s.wall_ms, width, yerr=err, capsize=3, label=name)
+        ax.bar(x + i * width, s.wall_ms, width, yerr=err, capsize=3, label=name, color=f"C{i}")
         if not name.startswith("naive"):
             rerr = [s.ratio - s.ratio_lo, s.ratio_hi - s.ratio]
-            bx.bar(x + i * width, s.ratio, width, yerr=rerr, capsize=3,
+            bx.bar(x + i * width, s.ratio, width, yerr=rerr, capsize=3, color=f"C{i}",
                    label=f"{name} (error {s.error.max():.0e} at most)")
     ax.set_yscale("log")
     ax.set_ylabel("wall time per simulated second, ms")
