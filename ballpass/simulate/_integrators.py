@@ -65,7 +65,6 @@ from numba import njit
 
 from ._kernels import (
     K_CACHE,
-    K_Q,
     KC_INSIDE,
     KC_RAMP,
     N_CORE,
@@ -315,17 +314,6 @@ def _on_ramp(kin):
 
 
 @njit(cache=True, error_model="numpy")
-def _contact_mask(kin, z):
-    """Which contacts carry load in ``kin[K_Q]`` (left by :func:`._kernels.core_forces`),
-    as bits of an integer (element j on bit j mod 63)."""
-    mask = 0
-    for j in range(z):
-        if kin[K_Q, j] != 0.0:
-            mask |= 1 << (j % 63)
-    return mask
-
-
-@njit(cache=True, error_model="numpy")
 def _depths_needed(t0, t1, p, walk, faults, kin):
     """Whether the fault depths can be non-zero between consecutive split times t0 and
     t1 (s): the flag :func:`._kernels.fault_depths` sets (a path inside a localized
@@ -354,13 +342,14 @@ def _next_split(t, ev, ev_before, t_end):
 def _excitation(t, seg, r_y, r_f, r_a, p, walk, faults, sensors, kin):
     """Core derivative (row ``r_f``) at time t and core state row ``r_y`` of ``seg``,
     and the housing excitation of every sensor and its rate (rows ``r_a``,
-    ``r_a + 1``)."""
+    ``r_a + 1``). Returns the loaded contacts (see :func:`._kernels.core_forces`)."""
     y = seg[r_y]
     f = seg[r_f]
     rate = element_angles(t, p, walk, kin)
     fault_depths(t, p, faults, kin, rate, True)
-    core_forces(y, p, kin, f)
+    mask = core_forces(y, p, kin, f)
     housing_accel(y, f, p, sensors, kin, rate, seg, r_a, True)
+    return mask
 
 
 @njit(cache=True, error_model="numpy")
@@ -627,8 +616,7 @@ def rk4(y0, p, walk, faults, sensors, n_res, h_out, mult, n_sub, n_out, ev_befor
     # a contact that opens or closes inside a step puts a kink of the Hertz law
     # (Q ~ delta^n, no longer smooth at delta = 0) in it, which costs RK4 its order:
     # such a step is redone from grid point to grid point
-    z = int(p[P_Z])
-    mask0 = _contact_mask(kin, z)
+    mask0 = core_forces(y, p, kin, f0)  # f0 again (kin holds t = 0): the loaded contacts
     refine_end = -1.0
     # outside every localized defect (and without waviness) the fault depths are
     # exactly zero and stay so until the next event: they are not recomputed (kin's
@@ -661,23 +649,19 @@ def rk4(y0, p, walk, faults, sensors, n_res, h_out, mult, n_sub, n_out, ev_befor
                 if depths:
                     fault_depths(t + 0.5 * h, p, faults, kin, rate, True)
                 n_pieces = _ramp_pieces(h, t_ramp) if _on_ramp(kin) else 1
-                core_forces(tmp, p, kin, k2)
-                changed = _contact_mask(kin, z) != mask0
+                changed = core_forces(tmp, p, kin, k2) != mask0
                 for i in range(N_CORE):
                     tmp[i] = y[i] + 0.5 * h * k2[i]
-                core_forces(tmp, p, kin, k3)
-                changed = changed or _contact_mask(kin, z) != mask0
+                changed = core_forces(tmp, p, kin, k3) != mask0 or changed
                 for i in range(N_CORE):
                     tmp[i] = y[i] + h * k3[i]
                 rate = element_angles(te, p, walk, kin)
                 if depths:
                     fault_depths(te, p, faults, kin, rate, n_res > 0)
-                core_forces(tmp, p, kin, k4)
-                changed = changed or _contact_mask(kin, z) != mask0
+                changed = core_forces(tmp, p, kin, k4) != mask0 or changed
                 for i in range(N_CORE):
                     y1[i] = y[i] + h / 6.0 * (f0[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
-                core_forces(y1, p, kin, f1)
-                mask1 = _contact_mask(kin, z)
+                mask1 = core_forces(y1, p, kin, f1)
                 if (changed or mask1 != mask0) and h > (1.0 + GRID_TOL) * h_out:
                     refine_end = te  # redo [t, te] in grid steps
                     continue
@@ -703,9 +687,8 @@ def rk4(y0, p, walk, faults, sensors, n_res, h_out, mult, n_sub, n_out, ev_befor
                 if t < t_end:
                     depths = _depths_needed(t, _next_split(t, ev, ev_before, t_end), p,
                                             walk, faults, kin)
-                _excitation(t, seg, R_Y0, R_F0, R_A0, p, walk, faults, sensors, kin)
+                mask0 = _excitation(t, seg, R_Y0, R_F0, R_A0, p, walk, faults, sensors, kin)
                 ramp = _on_ramp(kin)
-                mask0 = _contact_mask(kin, z)
             else:
                 t = te
     return STATUS_OK, n_steps, t

@@ -456,6 +456,8 @@ def pedestal_forces(p, up, vp, dup, dvp):
 def core_forces(y, p, kin, dydt):
     """Core right-hand side (layout ``yc``) at state ``y`` with the kinematics already in
     ``kin`` (see :func:`kinematics`); the contact loads are left in ``kin[K_Q]``.
+    Returns which contacts carry load, as the bits of an integer (element j on bit
+    j mod 62), for the integrators' contact-state checks.
 
     Shaft:      m_s a_s = -k_s (x_s - x_s0) - c_s v_s - sum_j Q_j n_j + F_r e_u + m_s g e_u
     Pedestal:   m_p a_p = -k_p x_p - c_p v_p + sum_j Q_j n_j + m_p g e_u
@@ -479,15 +481,18 @@ def core_forces(y, p, kin, dydt):
         for j in range(z):
             d = du * kin[K_COS, j] + dv * kin[K_SIN, j] - c - kin[K_DEPTH, j]
             kin[K_Q, j] = hertz(d if d > 0.0 else 0.0, kh, nh)
-        for j in range(z):
-            fu += kin[K_Q, j] * kin[K_COS, j]
-            fv += kin[K_Q, j] * kin[K_SIN, j]
     else:
         for j in range(z):
-            q = contact_load(j, du, dv, ddu, ddv, p, kin)
-            kin[K_Q, j] = q
-            fu += q * kin[K_COS, j]
-            fv += q * kin[K_SIN, j]
+            kin[K_Q, j] = contact_load(j, du, dv, ddu, ddv, p, kin)
+    mask = 0
+    bit = 1
+    for j in range(z):
+        q = kin[K_Q, j]
+        fu += q * kin[K_COS, j]
+        fv += q * kin[K_SIN, j]
+        if q != 0.0:
+            mask |= bit
+        bit = bit << 1 if j % 62 != 61 else 1
     ms = p[P_MS]
     mp = p[P_MP]
     dydt[0] = y[4]
@@ -499,6 +504,7 @@ def core_forces(y, p, kin, dydt):
     pu, pv = pedestal_forces(p, y[2], y[3], y[6], y[7])
     dydt[6] = (pu + fu) / mp
     dydt[7] = (pv + fv) / mp
+    return mask
 
 
 @njit(cache=True, error_model="numpy")
