@@ -1,15 +1,18 @@
 """The fast paths of sr5's default RK4 against the reference paths they replace
 (issue 14, P1): the vectorised contact loads against the contact law element by
 element, the skipped fault depths against computing them, the propagator-table output
-against grid-to-grid propagation, and the default step with its contact-state
-refinement against dopri5 at rtol 1e-10."""
+against grid-to-grid propagation, the polyphase decimation against scipy's
+resample_poly, and the default step with its contact-state refinement against dopri5
+at rtol 1e-10."""
 
 import numpy as np
 import pytest
+from scipy import signal
 
 import ballpass as bp
 from ballpass.simulate import _kernels as K
 from ballpass.simulate import build, integrate
+from ballpass.simulate._shared import decimate
 from ballpass.simulate._sr5_driver import _split_times
 
 
@@ -117,3 +120,19 @@ def test_rk4_within_1e3_of_dopri5(kind, rpm, width, duration, dt):
     res = bp.simulate(sc, dt=dt)
     ref = bp.simulate(sc, solver="dopri5", rtol=1e-10)
     assert rel_l2(res.accel, ref.accel) < 1e-3
+
+
+@pytest.mark.parametrize("n,n_sensors", [(19_200, 1), (1003, 2), (5, 1)])
+def test_decimation_is_resample_poly_with_line_padding(n, n_sensors):
+    # The same 81-tap filter and straight-line end extension as scipy, summed tap by
+    # tap: equal up to rounding of 81-term sums (|h| <= 0.25, so ~1e-14 of the largest
+    # sample; 1e-12 is safe). A signal with a large offset and a trend, where the end
+    # extension decides the first and last outputs (zero or constant padding errs by
+    # O(1) there); lengths a multiple of 4 and not, and shorter than the filter.
+    rng = np.random.default_rng(3)
+    t = np.arange(n)[:, None]
+    x = 5.0 + 0.01 * t + rng.standard_normal((n, n_sensors)).cumsum(axis=0)
+    ref = signal.resample_poly(x, 1, 4, axis=0, padtype="line").T
+    got = decimate(x, 4)
+    assert got.shape == ref.shape
+    assert np.max(np.abs(got - ref)) < 1e-12 * np.max(np.abs(x))
