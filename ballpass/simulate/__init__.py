@@ -253,9 +253,10 @@ def simulate(scene: Scene, model: str = "auto", solver: str = "auto", *, dt: flo
     dt : float, optional
         Step of a fixed-step solver, s (refused with an adaptive one). sr5's RK4 rounds
         it down to a multiple of the internal output spacing (or, below it, to a
-        divisor), with a warning; default 0.35 / omega_c with omega_c the linearised
-        contact natural frequency (rad/s): about 20 us for a 6205 at 500 N, a relative
-        L2 error below 1e-3 (see docs/solvers.md).
+        divisor), with a warning; default 0.3 / omega_c with omega_c the linearised
+        contact natural frequency (rad/s), rounded down: 31 us for a 6205 at 500 N and
+        48 kHz, a relative L2 error below 1e-3 (see docs/solvers.md); steps in which a
+        contact opens or closes are redone on the internal grid.
     rtol : float, optional
         Relative tolerance of an adaptive solver (default 1e-6); refused with a
         fixed-step one.

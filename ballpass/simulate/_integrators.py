@@ -21,8 +21,12 @@ Both integrators
   before it (``ev_before``), and integration resumes just after it (``ev_after``),
   with the right-hand side re-evaluated there. Events are the fault edges and ramp
   ends and the knots of the slip random walk (where the cage speed jumps), all known
-  functions of time (rigid kinematics), so every non-smooth point of the right-hand
-  side falls on a step boundary and the methods keep their order through them;
+  functions of time (rigid kinematics), so every such non-smooth point of the
+  right-hand side falls on a step boundary and the methods keep their order through
+  them. The one that depends on the state, a contact opening or closing (the Hertz
+  law's kink at zero deflection), is caught by rk4 from the loaded contacts at its
+  stages: such a step is redone from grid point to grid point (dopri5's error control
+  shrinks its steps there);
 * on the ramps of a defect, where the excitation follows the depth profile rather
   than the core, sample the resonator input up to ``REFINE_PIECES`` times per step
   (rk4 also limits its step to h_out on short ramps that end in impacts; dopri5
@@ -34,8 +38,12 @@ Both integrators
 * stop with a status code as soon as the state is not finite or leaves a bound,
   so the caller can raise a clear error (no NaN ever leaves the simulator).
 
-Speed notes. numba reference-counts the array arguments of a function unless its
-refcount-pruning pass can prove the counts balanced, which fails as soon as the
+Speed notes (rk4, the default). Between events no element is inside a localized
+defect most of the time: the fault depths are then exactly zero and are not
+recomputed (:func:`_depths_needed`). The resonators of a step of n whole grid
+intervals are advanced with a table of the propagators of 1 .. n intervals
+(:func:`_emit_grid`). numba reference-counts the array arguments of a function unless
+its refcount-pruning pass can prove the counts balanced, which fails as soon as the
 function calls another looping kernel or may raise (hence ``error_model="numpy"``:
 no division-by-zero branches). The per-stage kernels are therefore leaves (they call
 only loop-free helpers) and the output routines take few arrays: the segment's
@@ -57,6 +65,7 @@ from numba import njit
 
 from ._kernels import (
     K_CACHE,
+    KC_INSIDE,
     KC_RAMP,
     N_CORE,
     P_WR,
@@ -305,16 +314,42 @@ def _on_ramp(kin):
 
 
 @njit(cache=True, error_model="numpy")
+def _depths_needed(t0, t1, p, walk, faults, kin):
+    """Whether the fault depths can be non-zero between consecutive split times t0 and
+    t1 (s): the flag :func:`._kernels.fault_depths` sets (a path inside a localized
+    defect, or waviness), read at the middle of (t0, t1). Paths enter and leave the
+    defects only at the fault-edge crossings the steps are split at, so it holds for
+    the whole interval; at the crossings themselves (the interval's ends) a path may
+    sit on an edge. Overwrites the kinematics in ``kin``."""
+    tm = 0.5 * (t0 + t1)
+    rate = element_angles(tm, p, walk, kin)
+    fault_depths(tm, p, faults, kin, rate, False)
+    return kin[K_CACHE, KC_INSIDE] != 0.0
+
+
+@njit(cache=True, error_model="numpy")
+def _next_split(t, ev, ev_before, t_end):
+    """The first split time after t (s), searching the sorted ``ev_before`` from index
+    ev; t_end without one."""
+    while ev < ev_before.shape[0]:
+        if ev_before[ev] > t:
+            return min(ev_before[ev], t_end)
+        ev += 1
+    return t_end
+
+
+@njit(cache=True, error_model="numpy")
 def _excitation(t, seg, r_y, r_f, r_a, p, walk, faults, sensors, kin):
     """Core derivative (row ``r_f``) at time t and core state row ``r_y`` of ``seg``,
     and the housing excitation of every sensor and its rate (rows ``r_a``,
-    ``r_a + 1``)."""
+    ``r_a + 1``). Returns the loaded contacts (see :func:`._kernels.core_forces`)."""
     y = seg[r_y]
     f = seg[r_f]
     rate = element_angles(t, p, walk, kin)
     fault_depths(t, p, faults, kin, rate, True)
-    core_forces(y, p, kin, f)
+    mask = core_forces(y, p, kin, f)
     housing_accel(y, f, p, sensors, kin, rate, seg, r_a, True)
+    return mask
 
 
 @njit(cache=True, error_model="numpy")
@@ -442,21 +477,34 @@ def _emit(t0, t1, n_pieces, k_next, h_out, seg, res, prop, p, walk, faults, sens
 
 
 @njit(cache=True, error_model="numpy")
-def _emit_grid(t0, t1, k_next, h_out, seg, res, prop, w, zeta, out):
-    """:func:`_emit` for the common case of an sr5 segment from grid point to grid point
-    without states to keep: full h_out pieces only. Its helpers are inlined and it
-    takes few arrays, so numba can drop the reference counting of its arguments."""
+def _emit_grid(t0, t1, n, k_next, seg, res, tab, w, zeta, out):
+    """:func:`_emit` for the common case of an sr5 segment of ``n`` whole grid intervals
+    from grid point to grid point without states to keep. ``tab[j]`` holds the
+    propagator of j h_out (j = 1 .. n, :func:`lti_propagator`), so each grid point's
+    resonator state comes straight from the segment start and the input cubic about
+    it: x_j = Phi(j h_out) x_0 + sum_m c_m g_m(j h_out), the same exact solution as
+    propagating from grid point to grid point, without re-expanding the cubic or a
+    chain of dependent updates. Its helpers are inlined and it takes few arrays, so
+    numba can drop the reference counting of its arguments."""
     _hermite_input(t0, t1, seg, R_A0, R_DA0, R_A1, R_DA1, res)
-    tc = t0
-    while k_next < out.shape[0]:
-        tk = k_next * h_out
-        if tk > t1 + GRID_TOL * h_out:
-            break
-        _propagate(res, tc - t0, prop, PROP_H)
-        tc = tk
-        _resonator_output(res, w, zeta, out, k_next)
-        k_next += 1
-    return k_next
+    for i in range(res.shape[0]):
+        z = res[i, X_Z]
+        dz = res[i, X_DZ]
+        c0 = res[i, X_C]
+        c1 = res[i, X_C + 1]
+        c2 = res[i, X_C + 2]
+        c3 = res[i, X_C + 3]
+        zj = z
+        dzj = dz
+        for j in range(1, n + 1):
+            zj = (tab[j, 0, 0] * z + tab[j, 0, 1] * dz + c0 * tab[j, 2, 0]
+                  + c1 * tab[j, 3, 0] + c2 * tab[j, 4, 0] + c3 * tab[j, 5, 0])
+            dzj = (tab[j, 1, 0] * z + tab[j, 1, 1] * dz + c0 * tab[j, 2, 1]
+                   + c1 * tab[j, 3, 1] + c2 * tab[j, 4, 1] + c3 * tab[j, 5, 1])
+            out[k_next + j - 1, i] = -(2.0 * zeta * w * dzj + w * w * zj)
+        res[i, X_Z] = zj
+        res[i, X_DZ] = dzj
+    return k_next + n
 
 
 @njit(cache=True, error_model="numpy")
@@ -556,11 +604,25 @@ def rk4(y0, p, walk, faults, sensors, n_res, h_out, mult, n_sub, n_out, ev_befor
     k_next = 1
     t = 0.0
     n = 0
-    # steps from grid point to grid point of sr5 without states take the fast output
+    # steps from grid point to grid point of sr5 without states take the fast output,
+    # with the resonator propagators of 1 .. mult grid intervals
     fast = n_sub == 1 and n_res > 0 and states.shape[0] == 0
+    tab = np.zeros((mult + 1 if fast else 0, 6, 2))
+    for j in range(1, tab.shape[0]):
+        lti_propagator(j * h_out, p[P_WR], p[P_ZETA], tab, j)
     ramp = _on_ramp(kin)  # on a defect's ramp; changes only at events
     h_step = h_out * mult / n_sub
     sub_ramp = mult > 1 and t_impact < RAMP_STEPS * h_step
+    # a contact that opens or closes inside a step puts a kink of the Hertz law
+    # (Q ~ delta^n, no longer smooth at delta = 0) in it, which costs RK4 its order:
+    # such a step is redone from grid point to grid point
+    mask0 = core_forces(y, p, kin, f0)  # f0 again (kin holds t = 0): the loaded contacts
+    refine_end = -1.0
+    # outside every localized defect (and without waviness) the fault depths are
+    # exactly zero and stay so until the next event: they are not recomputed (kin's
+    # depth rows stay the zeros the check left)
+    depths = _depths_needed(0.0, _next_split(0.0, 0, ev_before, t_end), p, walk, faults,
+                            kin)
     while t < t_end:
         n += 1
         q, r = divmod(n, n_sub)
@@ -571,10 +633,10 @@ def rk4(y0, p, walk, faults, sensors, n_res, h_out, mult, n_sub, n_out, ev_befor
             while ev < n_ev and ev_after[ev] <= t:
                 ev += 1
             te = t_next
-            if ramp and sub_ramp:
+            if (ramp and sub_ramp) or t < refine_end:
                 # on a defect's ramp the depth profile, not the core, sets the pace
                 # (an impact can stiffen the contacts many times): step from grid point
-                # to grid point
+                # to grid point; so across a contact opening or closing
                 te = min(te, k_next * h_out)
             hit = ev < n_ev and ev_before[ev] < te
             if hit:
@@ -584,24 +646,33 @@ def rk4(y0, p, walk, faults, sensors, n_res, h_out, mult, n_sub, n_out, ev_befor
                 for i in range(N_CORE):
                     tmp[i] = y[i] + 0.5 * h * f0[i]
                 rate = element_angles(t + 0.5 * h, p, walk, kin)
-                fault_depths(t + 0.5 * h, p, faults, kin, rate, True)
+                if depths:
+                    fault_depths(t + 0.5 * h, p, faults, kin, rate, True)
                 n_pieces = _ramp_pieces(h, t_ramp) if _on_ramp(kin) else 1
-                core_forces(tmp, p, kin, k2)
+                changed = core_forces(tmp, p, kin, k2) != mask0
                 for i in range(N_CORE):
                     tmp[i] = y[i] + 0.5 * h * k2[i]
-                core_forces(tmp, p, kin, k3)
+                changed = core_forces(tmp, p, kin, k3) != mask0 or changed
                 for i in range(N_CORE):
                     tmp[i] = y[i] + h * k3[i]
                 rate = element_angles(te, p, walk, kin)
-                fault_depths(te, p, faults, kin, rate, n_res > 0)
-                core_forces(tmp, p, kin, k4)
+                if depths:
+                    fault_depths(te, p, faults, kin, rate, n_res > 0)
+                changed = core_forces(tmp, p, kin, k4) != mask0 or changed
                 for i in range(N_CORE):
                     y1[i] = y[i] + h / 6.0 * (f0[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
-                core_forces(y1, p, kin, f1)
+                mask1 = core_forces(y1, p, kin, f1)
+                if (changed or mask1 != mask0) and h > (1.0 + GRID_TOL) * h_out:
+                    refine_end = te  # redo [t, te] in grid steps
+                    continue
+                mask0 = mask1
                 if n_res > 0:
                     housing_accel(y1, f1, p, sensors, kin, rate, seg, R_A1, True)
-                if fast and not hit and n_pieces == 1 and t == (k_next - 1) * h_out:
-                    k_next = _emit_grid(t, te, k_next, h_out, seg, res, prop, p[P_WR],
+                n_grid = int(round((te - t) / h_out))
+                if (fast and not hit and n_pieces == 1 and t == (k_next - 1) * h_out
+                        and 1 <= n_grid <= mult
+                        and abs(te - t - n_grid * h_out) <= GRID_TOL * h_out):
+                    k_next = _emit_grid(t, te, n_grid, k_next, seg, res, tab, p[P_WR],
                                         p[P_ZETA], out)
                 else:
                     k_next = _emit(t, te, n_pieces, k_next, h_out, seg, res, prop, p, walk,
@@ -613,7 +684,10 @@ def rk4(y0, p, walk, faults, sensors, n_res, h_out, mult, n_sub, n_out, ev_befor
             if hit:
                 t = ev_after[ev]
                 ev += 1
-                _excitation(t, seg, R_Y0, R_F0, R_A0, p, walk, faults, sensors, kin)
+                if t < t_end:
+                    depths = _depths_needed(t, _next_split(t, ev, ev_before, t_end), p,
+                                            walk, faults, kin)
+                mask0 = _excitation(t, seg, R_Y0, R_F0, R_A0, p, walk, faults, sensors, kin)
                 ramp = _on_ramp(kin)
             else:
                 t = te

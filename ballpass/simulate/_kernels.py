@@ -60,10 +60,11 @@ S_ANG, S_ATT, S_COS, S_SIN = 0, 1, 2, 3
 N_SCOLS = 4
 # rows of the kinematics scratch; row K_CACHE holds the last cage angle, its cos and
 # sin, the number of rotations since they were last computed exactly, the cage speed
-# (rad/s, column KC_RATE) and whether an element is on a defect ramp (KC_RAMP)
+# (rad/s, column KC_RATE), whether an element is on a defect ramp (KC_RAMP) and whether
+# the depths can be non-zero: a path inside a localized defect, or waviness (KC_INSIDE)
 K_PSI, K_COS, K_SIN, K_DEPTH, K_DDEPTH, K_Q, K_CACHE = 0, 1, 2, 3, 4, 5, 6
 N_KIN = 7
-KC_RATE, KC_RAMP = 4, 5
+KC_RATE, KC_RAMP, KC_INSIDE = 4, 5, 6
 #: cos/sin of the cage angle are recomputed exactly after this many small rotations
 #: (each rotation may add a rounding; 64 bound the drift to ~1e-14)
 CACHE_REFRESH = 64
@@ -131,7 +132,7 @@ def cage_angle(t, p, walk):
 @njit(cache=True, error_model="numpy")
 def kinematics_scratch(z):
     """Fresh ``kin`` scratch for Z elements (zeroed: no cached cage angle yet)."""
-    return np.zeros((N_KIN, max(z, 6)))
+    return np.zeros((N_KIN, max(z, KC_INSIDE + 1)))
 
 
 @njit(cache=True, error_model="numpy")
@@ -308,7 +309,11 @@ def fault_depths(t, p, faults, kin, cage_rate, rates):
     ``kin[K_DEPTH]``; with ``rates`` (always with contact damping, which needs them)
     also its time derivative (m/s) into ``kin[K_DDEPTH]`` (``cage_rate`` in rad/s).
     Needs the element angles in ``kin``. Sets ``kin[K_CACHE, KC_RAMP]`` to 1 when an
-    element is on a defect ramp.
+    element is on a defect ramp, and ``kin[K_CACHE, KC_INSIDE]`` to 1 when some path
+    lies inside a localized defect (|offset| < half extent) or the table has waviness
+    rows: otherwise every depth and rate written is exactly zero. Both flags change
+    only at fault-edge crossings, which the integrators step to: read between two
+    crossings, they hold from one to the next.
 
     Outer race: fixed centre. Inner race: centre turns with the shaft. Ball defect on
     element e: its spin phase advances at the ball spin rate relative to the cage
@@ -322,12 +327,14 @@ def fault_depths(t, p, faults, kin, cage_rate, rates):
         kin[K_DEPTH, j] = 0.0
         kin[K_DDEPTH, j] = 0.0
     on_ramp = 0.0
+    inside = 0.0
     th = shaft_angle(t, p)
     w = shaft_rate(t, p)
     for i in range(faults.shape[0]):
         kind = int(faults[i, F_KIND])
         if kind >= KIND_WAVY_OUTER:
             waviness(faults, i, p, kin, th, w, cage_rate, rates)
+            inside = 1.0
             continue
         half = faults[i, F_HALF]
         depth = faults[i, F_DEPTH]
@@ -339,7 +346,10 @@ def fault_depths(t, p, faults, kin, cage_rate, rates):
             spin = faults[i, F_CENTRE] + p[P_SPIN] * (kin[K_PSI, e] - faults[i, F_PSI0])
             for face in range(2):
                 off = path_offset(faults, i, p, kin[K_PSI, e], th, face)
-                if abs(off) >= half or not engaged(faults, i, spin):
+                if abs(off) >= half:
+                    continue
+                inside = 1.0
+                if not engaged(faults, i, spin):
                     continue
                 kin[K_DEPTH, e] += profile(off, half, depth, ramp, shape)
                 slope = profile_slope(off, half, depth, ramp, shape)
@@ -365,6 +375,8 @@ def fault_depths(t, p, faults, kin, cage_rate, rates):
             for c in range(n_cand):
                 j = (near + c) % z
                 off = wrap_pi(kin[K_PSI, j] - ref)  # = path_offset, hoisted
+                if abs(off) < half:
+                    inside = 1.0
                 kin[K_DEPTH, j] += profile(off, half, depth, ramp, shape)
                 slope = profile_slope(off, half, depth, ramp, shape)
                 if slope != 0.0:
@@ -372,6 +384,7 @@ def fault_depths(t, p, faults, kin, cage_rate, rates):
                 if rates:
                     kin[K_DDEPTH, j] += dr * slope
     kin[K_CACHE, KC_RAMP] = on_ramp
+    kin[K_CACHE, KC_INSIDE] = inside
 
 
 @njit(cache=True, error_model="numpy")
@@ -385,7 +398,8 @@ def kinematics(t, p, walk, faults, kin):
 
 @njit(cache=True, error_model="numpy")
 def hertz(d, kh, nh):
-    """Hertz load K d^n of a compressed contact (d > 0, m), N; d^1.5 as d sqrt(d)."""
+    """Hertz load K d^n of a contact compressed by d >= 0 (m), N (exactly 0 at d = 0);
+    d^1.5 as d sqrt(d)."""
     return kh * d * math.sqrt(d) if nh == 1.5 else kh * d**nh
 
 
@@ -442,6 +456,8 @@ def pedestal_forces(p, up, vp, dup, dvp):
 def core_forces(y, p, kin, dydt):
     """Core right-hand side (layout ``yc``) at state ``y`` with the kinematics already in
     ``kin`` (see :func:`kinematics`); the contact loads are left in ``kin[K_Q]``.
+    Returns which contacts carry load, as the bits of an integer (element j on bit
+    j mod 62), for the integrators' contact-state checks.
 
     Shaft:      m_s a_s = -k_s (x_s - x_s0) - c_s v_s - sum_j Q_j n_j + F_r e_u + m_s g e_u
     Pedestal:   m_p a_p = -k_p x_p - c_p v_p + sum_j Q_j n_j + m_p g e_u
@@ -454,11 +470,29 @@ def core_forces(y, p, kin, dydt):
     ddv = y[5] - y[7]
     fu = 0.0
     fv = 0.0
-    for j in range(int(p[P_Z])):
-        q = contact_load(j, du, dv, ddu, ddv, p, kin)
-        kin[K_Q, j] = q
+    z = int(p[P_Z])
+    if p[P_CD] == 0.0:
+        # without contact damping the loads are K max(delta, 0)^n, branch-free so the
+        # loop vectorises (K 0 sqrt(0) = 0: separated contacts carry exactly zero);
+        # the same values as :func:`contact_load`, summed in the same order
+        kh = p[P_KH]
+        nh = p[P_NH]
+        c = p[P_CLEAR]
+        for j in range(z):
+            d = du * kin[K_COS, j] + dv * kin[K_SIN, j] - c - kin[K_DEPTH, j]
+            kin[K_Q, j] = hertz(d if d > 0.0 else 0.0, kh, nh)
+    else:
+        for j in range(z):
+            kin[K_Q, j] = contact_load(j, du, dv, ddu, ddv, p, kin)
+    mask = 0
+    bit = 1
+    for j in range(z):
+        q = kin[K_Q, j]
         fu += q * kin[K_COS, j]
         fv += q * kin[K_SIN, j]
+        if q != 0.0:
+            mask |= bit
+        bit = bit << 1 if j % 62 != 61 else 1
     ms = p[P_MS]
     mp = p[P_MP]
     dydt[0] = y[4]
@@ -470,6 +504,7 @@ def core_forces(y, p, kin, dydt):
     pu, pv = pedestal_forces(p, y[2], y[3], y[6], y[7])
     dydt[6] = (pu + fu) / mp
     dydt[7] = (pv + fv) / mp
+    return mask
 
 
 @njit(cache=True, error_model="numpy")

@@ -38,8 +38,8 @@ from ._shared import (
 from .result import FaultCrossings, GroundTruth, SimulationResult
 from .sr5 import BearingModel, SR5Parameters, build_model
 
-__all__ = ["SR5", "SR4", "SOLVERS", "DT_DEFAULT_OMEGA", "RawIntegration", "integrate",
-           "build"]
+__all__ = ["SR5", "SR4", "SOLVERS", "DT_DEFAULT_OMEGA", "DT_SR5_OMEGA", "RawIntegration",
+           "integrate", "build"]
 
 #: solver name -> description
 SOLVERS = {
@@ -49,10 +49,15 @@ SOLVERS = {
               "fault edges; sensor resonators integrated exactly",
 }
 
-#: default RK4 step = DT_DEFAULT_OMEGA / omega_contact (see :func:`simulate`): the
-#: largest step at which RK4 keeps the output's relative L2 error below 1e-3 on the
-#: work-precision scenes (docs/work_precision.md), with a margin of ~2
+#: default RK4 step of the gearbox model = DT_DEFAULT_OMEGA / its fastest linearised mode
 DT_DEFAULT_OMEGA = 0.35
+#: default sr4/sr5 RK4 step = DT_SR5_OMEGA / omega_contact (see :func:`simulate`),
+#: rounded down to the internal output grid: the largest grid multiple at which RK4
+#: keeps the output's relative L2 error below 1e-3 on the work-precision scenes and
+#: the 1797 rpm speed scenes (6205 at 500 N: omega dt = 0.26, six grid intervals at
+#: 48 kHz; errors 6e-4 to 7e-4, against 2e-3 to 3e-3 at the former 0.35, which the
+#: heavier shaft of issue 9 had stretched to eight intervals; benchmarks/sr5_speed.py)
+DT_SR5_OMEGA = 0.3
 
 
 def build(scene: Scene, model: str = "sr5", params: SR5Parameters | None = None
@@ -253,7 +258,7 @@ def integrate(bm: BearingModel, solver: str, *, h_out: float, n_out: int,
     t_ramp, t_impact = _ramp_times(bm)
     info = {"solver": solver, "internal_fs": 1.0 / h_out, "n_events": int(ev_before.shape[0])}
     if solver == "rk4":
-        dt_req = dt if dt is not None else DT_DEFAULT_OMEGA / omega
+        dt_req = dt if dt is not None else DT_SR5_OMEGA / omega
         # step ends on the output grid: a multiple or a divisor of h_out (1e-9: a dt
         # meant as an exact multiple/divisor must not round the other way)
         if dt_req >= h_out:
