@@ -486,8 +486,12 @@ def _fault_table(scene: Scene, rb: float, ri: float, ro: float, psi0: np.ndarray
             # spin phase at t = 0, 0 = facing the outer race (Fault.angle_deg)
             kind = K.KIND_BALL
             centre = psi0[f.element] + math.radians(f.angle_deg) - thb0
-        row[[K.F_KIND, K.F_CENTRE, K.F_HALF, K.F_DEPTH, K.F_ELEM, K.F_REFF_I, K.F_REFF_O]] = (
-            kind, centre, 0.5 * f.width_mm * 1e-3, f.depth_mm * 1e-3, f.element, r_in, r_out)
+        half = 0.5 * f.width_mm * 1e-3
+        surface = {K.KIND_OUTER: ro, K.KIND_INNER: ri, K.KIND_BALL: rb}[kind]
+        row[[K.F_KIND, K.F_CENTRE, K.F_HALF, K.F_DEPTH, K.F_ELEM, K.F_REFF_I, K.F_REFF_O,
+             K.F_COS, K.F_SIN, K.F_COSHALF]] = (
+            kind, centre, half, f.depth_mm * 1e-3, f.element, r_in, r_out, math.cos(centre),
+            math.sin(centre), math.cos(min(half / surface + 1e-9, math.pi)))
         rows.append(row)
     return np.array(rows, dtype=np.float64).reshape(-1, K.N_FCOLS)
 
@@ -549,6 +553,8 @@ def build(scene: Scene, params: MultibodyParameters | None = None) -> MultibodyS
     p[K.P_KPOCK] = prm.pocket_stiffness
     p[K.P_CPOCK] = prm.pocket_damping
     p[K.P_EPOCK] = prm.pocket_clearance
+    play = prm.pocket_clearance / rp
+    p[K.P_POCK_SIN2] = math.sin(play) ** 2 * (1.0 - 1e-9) if play < 0.5 * math.pi else -1.0
     p[K.P_KH] = prm.housing_stiffness
     p[K.P_CH] = prm.damping_time * prm.housing_stiffness
     p[K.P_FR] = scene.radial_load_n
