@@ -566,6 +566,7 @@ def build(scene: Scene, params: MultibodyParameters | None = None) -> MultibodyS
     p[K.P_CPOCK] = prm.pocket_damping
     p[K.P_EPOCK] = prm.pocket_clearance
     play = prm.pocket_clearance / rp
+    p[K.P_PITCH_COS], p[K.P_PITCH_SIN] = math.cos(2.0 * math.pi / z), math.sin(2.0 * math.pi / z)
     p[K.P_POCK_SIN2] = math.sin(play) ** 2 * (1.0 - 1e-9) if play < 0.5 * math.pi else -1.0
     p[K.P_KH] = prm.housing_stiffness
     p[K.P_CH] = prm.damping_time * prm.housing_stiffness

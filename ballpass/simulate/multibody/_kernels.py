@@ -28,11 +28,12 @@ from numba import njit
 (P_Z, P_RB, P_RI, P_RO, P_KI, P_KO, P_TAU, P_MI, P_JI, P_MO, P_MB, P_JB, P_JC, P_RP,
  P_KPOCK, P_CPOCK, P_EPOCK, P_KH, P_CH, P_FR, P_G, P_W0, P_W1, P_T, P_KD, P_CD, P_TLOAD,
  P_NU, P_F0, P_DPMM, P_WBD, P_HD, P_TRACTION, P_UFLOOR, P_WEPS, P_LUB, P_RELAX,
- P_POCK_SIN2) = range(38)
-N_PARAMS = 38
+ P_POCK_SIN2, P_PITCH_COS, P_PITCH_SIN) = range(40)
+N_PARAMS = 40
 # P_POCK_SIN2: sin^2 of the pocket play's half angle (pocket_clearance / r_p), shrunk by
 # 1e-9 against rounding (-1 when the play exceeds 90 deg): below it a ball cannot touch
-# its pocket, which spares the angle of every free ball
+# its pocket, which spares the angle of every free ball; P_PITCH_COS, P_PITCH_SIN: cos and
+# sin of the pocket pitch 2 pi / Z
 
 # fault table columns: kind, centre in the body frame (rad), half width (m), depth (m),
 # ball index (ball faults), effective radius of the pair at the inner and the outer
@@ -161,7 +162,8 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
     traction = p[P_TRACTION] != 0.0
     w_bd, hd, ufloor, weps = p[P_WBD], p[P_HD], p[P_UFLOOR], p[P_WEPS]
     has_faults = faults.shape[0] > 0
-    relax = p[P_RELAX]
+    inv_relax = 1.0 / p[P_RELAX]
+    inv_mb = 1.0 / mb
 
     xi, yi, thi = y[0], y[1], y[2]
     xo, yo, thc = y[3], y[4], y[5]
@@ -195,7 +197,7 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
     ci = math.cos(thi) if has_faults else 1.0
     si = math.sin(thi) if has_faults else 0.0
     uc, us = math.cos(thc), math.sin(thc)
-    pc, ps = math.cos(TWO_PI / z), math.sin(TWO_PI / z)
+    pc, ps = p[P_PITCH_COS], p[P_PITCH_SIN]
     for j in range(z):
         b = 6 + 3 * j
         xb, yb, thb = y[b], y[b + 1], y[b + 2]
@@ -211,8 +213,9 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
         dx = xb - xi
         dy = yb - yi
         dist = math.sqrt(dx * dx + dy * dy)
-        nx = dx / dist
-        ny = dy / dist
+        inv_dist = 1.0 / dist
+        nx = dx * inv_dist
+        ny = dy * inv_dist
         drop = 0.0
         fl_i = 0
         if has_faults:
@@ -230,7 +233,7 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
         q = _contact_force(ki, tau, delta, -(nx * rvx + ny * rvy))
         qi[j] = q
         if traction and q == 0.0:
-            dydt[2 * nd + j] = -y[2 * nd + j] * 1e3 * ufloor / relax
+            dydt[2 * nd + j] = -y[2 * nd + j] * 1e3 * ufloor * inv_relax
         if q > 0.0:
             fxb += q * nx
             fyb += q * ny
@@ -239,13 +242,13 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
             if traction:
                 vt = -rvx * ny + rvy * nx
                 vs = vt - wb * rb - wi * ri
-                om = vt / dist
+                om = vt * inv_dist
                 ur = 0.5 * (abs((wi - om) * ri) + abs((wb - om) * rb)) + ufloor
                 target = mu_slide_roll(abs(vs) / ur, w_bd, hd) * q
                 if vs > 0.0:
                     target = -target
                 f = y[2 * nd + j]
-                dydt[2 * nd + j] = (target - f) * ur / relax
+                dydt[2 * nd + j] = (target - f) * ur * inv_relax
                 fxb -= f * ny
                 fyb += f * nx
                 fxi += f * ny
@@ -256,8 +259,9 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
         dx = xb - xo
         dy = yb - yo
         dist = math.sqrt(dx * dx + dy * dy)
-        nx = dx / dist
-        ny = dy / dist
+        inv_dist = 1.0 / dist
+        nx = dx * inv_dist
+        ny = dy * inv_dist
         drop = 0.0
         fl_o = 0
         if has_faults:
@@ -274,7 +278,7 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
         q = _contact_force(ko, tau, delta, nx * rvx + ny * rvy)
         qo[j] = q
         if traction and q == 0.0:
-            dydt[2 * nd + z + j] = -y[2 * nd + z + j] * 1e3 * ufloor / relax
+            dydt[2 * nd + z + j] = -y[2 * nd + z + j] * 1e3 * ufloor * inv_relax
         if q > 0.0:
             fxb -= q * nx
             fyb -= q * ny
@@ -289,13 +293,13 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
             if traction:
                 vt = -rvx * ny + rvy * nx
                 vs = vt + wb * rb
-                om = vt / dist
+                om = vt * inv_dist
                 ur = 0.5 * (abs(om * ro) + abs((wb - om) * rb)) + ufloor
                 target = mu_slide_roll(abs(vs) / ur, w_bd, hd) * q
                 if vs > 0.0:
                     target = -target
                 f = y[2 * nd + z + j]
-                dydt[2 * nd + z + j] = (target - f) * ur / relax
+                dydt[2 * nd + z + j] = (target - f) * ur * inv_relax
                 fxb -= f * ny
                 fyb += f * nx
                 fxo += f * ny
@@ -325,8 +329,8 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
         dydt[b] = vxb
         dydt[b + 1] = vyb
         dydt[b + 2] = wb
-        dydt[nd + b] = fxb / mb
-        dydt[nd + b + 1] = fyb / mb
+        dydt[nd + b] = fxb * inv_mb
+        dydt[nd + b + 1] = fyb * inv_mb
         dydt[nd + b + 2] = tb / jb
     if not traction:
         for k in range(2 * nd, dydt.shape[0]):
