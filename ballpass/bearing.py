@@ -74,6 +74,15 @@ class BearingFrequencies:
         Ball pass frequency, outer race, Hz.
     bpfi : float
         Ball pass frequency, inner race, Hz.
+
+    Examples
+    --------
+    >>> import ballpass as bp
+    >>> f = bp.Bearing.catalog("6205").frequencies(29.95)
+    >>> round(f.bpfo, 2), round(f.bpfi, 2), round(f.ftf, 3)     # Hz
+    (107.36, 162.19, 11.929)
+    >>> round(f.ball_defect / f.bsf, 6)
+    2.0
     """
 
     shaft: float
@@ -84,7 +93,16 @@ class BearingFrequencies:
     bpfi: float
 
     def as_dict(self) -> dict[str, float]:
-        """Return the frequencies as ``{name: Hz}``."""
+        """Return the frequencies as ``{name: Hz}``.
+
+        Examples
+        --------
+        >>> import ballpass as bp
+        >>> f = bp.Bearing.catalog("6205").frequencies(29.95)
+        >>> {k: round(hz, 1) for k, hz in f.as_dict().items()}  # doctest: +NORMALIZE_WHITESPACE
+        {'shaft': 29.9, 'ftf': 11.9, 'bsf': 70.6, 'ball_defect': 141.2,
+         'bpfo': 107.4, 'bpfi': 162.2}
+        """
         return {
             "shaft": self.shaft,
             "ftf": self.ftf,
@@ -241,7 +259,15 @@ class Bearing:
         return list(_CATALOG)
 
     def with_clearance(self, radial_clearance_mm: float) -> Bearing:
-        """Return a copy with another radial clearance (mm; negative = preload)."""
+        """Return a copy with another radial clearance (mm; negative = preload).
+
+        Examples
+        --------
+        >>> import ballpass as bp
+        >>> loose = bp.Bearing.catalog("6205").with_clearance(0.02)
+        >>> loose.radial_clearance_mm, loose.radial_clearance_m
+        (0.02, 2e-05)
+        """
         return replace(self, radial_clearance_mm=float(radial_clearance_mm))
 
     # ------------------------------------------------------------------ SI geometry
@@ -302,6 +328,13 @@ class Bearing:
         -------
         BearingFrequencies
             ``.ftf .bsf .ball_defect .bpfo .bpfi`` in Hz.
+
+        Examples
+        --------
+        >>> import ballpass as bp
+        >>> f = bp.Bearing.catalog("6205").frequencies(shaft_hz=1797 / 60)
+        >>> round(f.bpfi, 1), round(f.bpfo, 1)                    # Hz
+        (162.2, 107.4)
         """
         check_number("shaft_hz", shaft_hz, 0.0, lo_open=True, unit="Hz")
         r = self.diameter_ratio
@@ -687,6 +720,13 @@ class HertzFactors:
         Deflection factor: delta = delta* (3 Q / (2 sum_rho E'))^(2/3) sum_rho / 2,
         with 1/E' = (1 - nu_1^2)/E_1 + (1 - nu_2^2)/E_2. Equal to 1 for a circular
         contact (F(rho) = 0).
+
+    Examples
+    --------
+    >>> from ballpass.bearing import hertz_factors
+    >>> h = hertz_factors(0.9)                   # a conforming ball-race contact
+    >>> h.kappa > 1.0, round(h.a_star * h.b_star, 3)
+    (True, 1.425)
     """
 
     curvature_difference: float
@@ -699,12 +739,12 @@ class HertzFactors:
 def hertz_factors(curvature_difference: float) -> HertzFactors:
     """Exact Hertz factors kappa, a*, b*, delta* from the curvature difference F(rho).
 
-    Harris & Kotzalas [1]_ ch. 6: with e^2 = m = 1 - 1/kappa^2, K and E the complete
+    Harris & Kotzalas (module reference 1) ch. 6: with e^2 = m = 1 - 1/kappa^2, K and E the complete
     elliptic integrals of the first and second kind,
     F(rho) = [(kappa^2 + 1) E - 2 K] / [(kappa^2 - 1) E],
     delta* = (2 K / pi) (pi / (2 kappa^2 E))^(1/3), a* = (2 kappa^2 E / pi)^(1/3),
     b* = (2 E / (pi kappa))^(1/3). The first relation cancels to second order near the
-    circular contact, so it is solved in Carlson's form (Johnson [6]_, DLMF 19.25.1):
+    circular contact, so it is solved in Carlson's form (Johnson, module reference 6, DLMF 19.25.1):
     (1 + F)/(1 - F) = R_D(0, 1, p) / R_D(0, p, 1) with p = 1/kappa^2, for ln p by
     :func:`scipy.optimize.brentq`. This replaces seed 000's delta* polynomial, which
     follows the chart within 3 % only for F(rho) in [0.9, 0.99] (it is 7 % off at 0.88,
@@ -773,7 +813,7 @@ def point_contact_stiffness(
 ) -> float:
     """Hertz load-deflection constant of one point contact between like materials.
 
-    Harris & Kotzalas [1]_ ch. 6, seed 000 eq. 6 (printed "2E2", read 2 sqrt(2) E),
+    Harris & Kotzalas (module reference 1) ch. 6, seed 000 eq. 6 (printed "2E2", read 2 sqrt(2) E),
     seed 001 eq. 3: K = 2 sqrt(2) E / (3 (1 - nu^2)) sum_rho^(-1/2) delta*^(-3/2), so
     that Q = K delta^1.5. With E = 2.075e5 MPa and nu = 0.3 the prefactor is Harris's
     2.15e5 (N/mm^1.5 with sum_rho in 1/mm). delta* comes from :func:`hertz_factors`.
@@ -821,7 +861,7 @@ PALMGREN_COEFFICIENT = 3.84e-5
 def line_contact_stiffness(length_m: float) -> float:
     """Palmgren's load-deflection constant of one roller-raceway line contact.
 
-    Palmgren [5]_ (seed 003 eq. 1): delta = 3.84e-5 Q^0.9 / l^0.8 with delta and l in
+    Palmgren (module reference 5; seed 003 eq. 1): delta = 3.84e-5 Q^0.9 / l^0.8 with delta and l in
     mm and Q in N, for bearing steel. Inverted: Q = K delta^(10/9) with
     K = (l^0.8 / 3.84e-5)^(10/9) N/mm^(10/9), returned in SI (times 1000^(10/9)).
 
@@ -881,8 +921,9 @@ def series_stiffness(k_inner: float, k_outer: float, load_exponent: float) -> fl
 def stribeck_integral(epsilon: float, load_exponent: float = 1.5) -> float:
     """Harris's radial load integral J_r(epsilon) of the continuous Stribeck distribution.
 
-    Harris & Kotzalas [1]_ ch. 7; seed 001 eqs. 5, 8, 9: for infinitely many elements,
-    Q(psi) = Q_max [1 - (1 - cos psi)/(2 eps)]^n inside the zone |psi| <= psi_l with
+    Harris & Kotzalas (module reference 1) ch. 7; seed 001 eqs. 5, 8, 9: for infinitely many
+    elements,
+    Q(psi) = Q_max [1 - (1 - cos psi)/(2 eps)]^n inside the zone ``|psi| <= psi_l`` with
     psi_l = arccos(1 - 2 eps) (pi when eps >= 1), and F_r = Z Q_max J_r cos(alpha) with
 
     J_r(eps) = 1/(2 pi) int_{-psi_l}^{psi_l} [1 - (1 - cos psi)/(2 eps)]^n cos psi dpsi.
@@ -1006,6 +1047,15 @@ class LoadDistribution:
         Largest element load, N.
     radial_load_n, clearance_m, stiffness, load_exponent : float
         The inputs: F_r (N), c (m), K (N/m^n), n.
+
+    Examples
+    --------
+    >>> import ballpass as bp
+    >>> ld = bp.Bearing.catalog("6205").load_distribution(1000.0)
+    >>> ld.element_loads_n.shape, ld.n_loaded
+    ((9,), 5)
+    >>> round(float(ld.element_loads_n.sum()), 1) > 1000.0  # the loads' projections balance F_r
+    True
     """
 
     element_angles_deg: np.ndarray

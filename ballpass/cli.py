@@ -15,6 +15,7 @@ import warnings
 #: subcommand name -> module under ballpass.commands
 SUBCOMMANDS = {
     "simulate": "simulate",
+    "models": "models",
     "bearings": "bearings",
     "features": "features",
     "plot": "plot",

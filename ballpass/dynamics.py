@@ -127,7 +127,15 @@ def poincare_section(res, strobe: str = "shaft", discard_s: float | None = None)
 
 def sweepable_parameters(scene) -> list[str]:
     """Names :func:`bifurcation_diagram` can sweep for ``scene``: its numeric fields
-    (``rpm`` only at constant speed) and the bearing's ``radial_clearance_mm``."""
+    (``rpm`` only at constant speed) and the bearing's ``radial_clearance_mm``.
+
+    Examples
+    --------
+    >>> import ballpass as bp
+    >>> names = bp.dynamics.sweepable_parameters(bp.Scene("6205", rpm=1797))
+    >>> names[:3], names[-1]
+    (['rpm', 'radial_load_n', 'duration_s'], 'radial_clearance_mm')
+    """
     from dataclasses import fields
 
     names = [f.name for f in fields(scene)

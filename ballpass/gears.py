@@ -273,7 +273,15 @@ class GearPair:
         return cls(name=name.lower(), **{**GEAR_PRESETS[name.lower()], **changes})
 
     def replace(self, **changes) -> GearPair:
-        """A validated copy with some fields changed."""
+        """A validated copy with some fields changed.
+
+        Examples
+        --------
+        >>> import ballpass as bp
+        >>> g = bp.GearPair.preset("seed004").replace(teeth=(16, 32))
+        >>> g.teeth, g.ratio
+        ((16, 32), 2.0)
+        """
         return replace(self, **changes)
 
     # ------------------------------------------------------------------ geometry
@@ -366,11 +374,25 @@ class GearPair:
         return self.torque_nm / self.base_radius_m[0]
 
     def mesh_frequency(self, shaft_hz: float) -> float:
-        """Mesh frequency teeth[0] * shaft_hz (pinion shaft at ``shaft_hz``), Hz."""
+        """Mesh frequency teeth[0] * shaft_hz (pinion shaft at ``shaft_hz``), Hz.
+
+        Examples
+        --------
+        >>> import ballpass as bp
+        >>> bp.GearPair.preset("seed004").mesh_frequency(shaft_hz=25.0)     # 15 teeth x 25 Hz
+        375.0
+        """
         return self.teeth[0] * shaft_hz
 
     def gear_shaft_hz(self, shaft_hz: float) -> float:
-        """Speed of the gear's shaft when the pinion turns at ``shaft_hz``, Hz."""
+        """Speed of the gear's shaft when the pinion turns at ``shaft_hz``, Hz.
+
+        Examples
+        --------
+        >>> import ballpass as bp
+        >>> bp.GearPair.preset("seed004").gear_shaft_hz(32.0)               # 32 Hz x 15/32
+        15.0
+        """
         return shaft_hz * self.teeth[0] / self.teeth[1]
 
 

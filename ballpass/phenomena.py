@@ -39,6 +39,14 @@ PHENOMENA: dict[str, str] = {
                  "error, gear faults",
     "rotor_dynamics": "the rotor's own non-linear response: unbalance, clearance-driven "
                       "periodic, quasi-periodic and chaotic motion",
+    "mounted_clearance": "a mounted clearance or preload that replaces the catalogue "
+                         "bearing's (Scene(clearance_um=...)): the load zone it shapes",
+    "structural_modes": "several structural modes in the transmission path beside the "
+                        "main resonance (Scene(resonances=...))",
+    "pit_faults": "round EDM pits narrower than the contact ellipse, which unload the "
+                  "contact only partly (Fault(geometry='pit'))",
+    "intermittent_faults": "ball defects that meet the races on some revolutions only, "
+                           "as a ball's spin axis wanders (Fault(engagement<1))",
 }
 
 #: what a scene that states no needs asks for: the envelope signature (with its
@@ -66,6 +74,16 @@ def check_needs(needs: Iterable[str] | str, name: str = "needs") -> frozenset[st
         ``needs`` is not a string or an iterable of strings.
     ValueError
         A name is not in the vocabulary; the message lists the allowed ones.
+
+    Examples
+    --------
+    >>> from ballpass.phenomena import check_needs
+    >>> sorted(check_needs(["envelope", "contact_forces"]))
+    ['contact_forces', 'envelope']
+    >>> check_needs("envelop")                              # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+        ...
+    ValueError: needs names an unknown phenomenon 'envelop'; allowed: ball_dynamics, ...
     """
     if isinstance(needs, str):
         needs = (needs,)

@@ -41,7 +41,14 @@ MIN_RESONANCE_HZ = 100.0
 
 
 def wrap_deg(angle: float) -> float:
-    """Wrap an angle in degrees to [0, 360)."""
+    """Wrap an angle in degrees to [0, 360).
+
+    Examples
+    --------
+    >>> from ballpass.scene import wrap_deg
+    >>> wrap_deg(-90.0), wrap_deg(725.0)
+    (270.0, 5.0)
+    """
     wrapped = math.fmod(angle, 360.0)
     if wrapped < 0.0:
         wrapped += 360.0
@@ -143,7 +150,18 @@ class Fault:
                              f"engagement={self.engagement!r} for a {self.kind}-race fault")
 
     def check_fits(self, bearing: Bearing) -> None:
-        """Raise ``ValueError`` if the defect does not fit on ``bearing``."""
+        """Raise ``ValueError`` if the defect does not fit on ``bearing``.
+
+        Examples
+        --------
+        >>> import ballpass as bp
+        >>> b = bp.Bearing.catalog("6205")
+        >>> bp.Fault("outer", width_mm=1.0).check_fits(b)          # fits: returns None
+        >>> bp.Fault("outer", width_mm=50.0).check_fits(b)   # doctest: +ELLIPSIS
+        Traceback (most recent call last):
+            ...
+        ValueError: outer-race fault width_mm must be < the element spacing ... got 50.0
+        """
         if self.kind == "ball":
             limit = bearing.element_diameter_mm
             if self.width_mm >= limit:
@@ -175,6 +193,15 @@ class Fault:
         ``min(h, d/2 (1 - sqrt(1 - (w/d)^2)))`` for a defect narrower than the element
         diameter d; a defect at least as wide as the element lets it reach depth h
         (seed 001 eq. 26, with d_b in place of the printed d_p).
+
+        Examples
+        --------
+        >>> import ballpass as bp
+        >>> b = bp.Bearing.catalog("6205")                       # ball diameter 7.94 mm
+        >>> round(bp.Fault("outer", width_mm=0.5, depth_mm=0.2).effective_depth_mm(b), 4)
+        0.0079
+        >>> bp.Fault("outer", width_mm=10.0, depth_mm=0.2).effective_depth_mm(b)
+        0.2
         """
         d = bearing.element_diameter_mm
         w = self.width_mm
@@ -312,11 +339,27 @@ class SpeedProfile:
         return 0.5 * (self.rpm_start + self.rpm_end)
 
     def rpm_at(self, t, duration_s: float):
-        """Speed at time(s) ``t`` (s) of a scene lasting ``duration_s``, rpm."""
+        """Speed at time(s) ``t`` (s) of a scene lasting ``duration_s``, rpm.
+
+        Examples
+        --------
+        >>> from ballpass import SpeedProfile
+        >>> SpeedProfile(600.0, 1200.0).rpm_at(0.25, duration_s=1.0)
+        750.0
+        """
         return self.rpm_start + (self.rpm_end - self.rpm_start) * (t / duration_s)
 
     def shaft_angle(self, t, duration_s: float):
-        """Shaft angle turned since t = 0, rad: the integral of 2 pi rpm/60 dt."""
+        """Shaft angle turned since t = 0, rad: the integral of 2 pi rpm/60 dt.
+
+        Examples
+        --------
+        >>> import math
+        >>> from ballpass import SpeedProfile
+        >>> turned = SpeedProfile(600.0, 1200.0).shaft_angle(1.0, duration_s=1.0)   # rad
+        >>> round(turned / (2 * math.pi), 6)                  # revolutions at a mean 15 rev/s
+        15.0
+        """
         w0 = self.rpm_start * math.pi / 30.0
         w1 = self.rpm_end * math.pi / 30.0
         return w0 * t + 0.5 * (w1 - w0) * t * t / duration_s
@@ -609,5 +652,13 @@ class Scene:
         return max(1, int(round(self.duration_s * self.fs)))
 
     def replace(self, **changes) -> Scene:
-        """Return a validated copy with some fields changed."""
+        """Return a validated copy with some fields changed.
+
+        Examples
+        --------
+        >>> import ballpass as bp
+        >>> scene = bp.Scene(bp.Bearing.catalog("6205"), rpm=1797)
+        >>> scene.replace(rpm=1200).rpm
+        1200.0
+        """
         return replace(self, **changes)

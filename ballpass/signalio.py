@@ -71,6 +71,16 @@ class SignalFile:
         Channel names, one per row of ``accel``.
     meta : dict
         Free-form metadata (JSON types), e.g. ``rpm``, ``bearing``, the scene.
+
+    Examples
+    --------
+    >>> import numpy as np, tempfile, pathlib
+    >>> from ballpass.signalio import read_signal, write_signal
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "run.npz"
+    >>> _ = write_signal(path, np.ones((2, 50)), 12_000.0, channels=["loaded", "unloaded"])
+    >>> sig = read_signal(path)
+    >>> sig.accel.shape, sig.fs, sig.channels
+    ((2, 50), 12000.0, ('loaded', 'unloaded'))
     """
 
     accel: np.ndarray
@@ -79,7 +89,16 @@ class SignalFile:
     meta: dict = field(default_factory=dict)
 
     def channel(self, name: str) -> np.ndarray:
-        """The signal of one channel, shape (n_samples,)."""
+        """The signal of one channel, shape (n_samples,).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from ballpass.signalio import SignalFile
+        >>> sig = SignalFile(np.arange(6.0).reshape(2, 3), 12_000.0, ("loaded", "unloaded"))
+        >>> sig.channel("unloaded")
+        array([3., 4., 5.])
+        """
         if name not in self.channels:
             raise ValueError(f"channel must be one of {self.channels}, got {name!r}")
         return self.accel[self.channels.index(name)]
@@ -177,6 +196,24 @@ def atomic_write(path, write) -> None:
         Called with the temporary :class:`pathlib.Path` to fill. If it raises, the
         temporary file is removed, ``path`` is left as it was and the original error
         propagates (an error while removing the temporary file never replaces it).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from ballpass.signalio import atomic_write
+    >>> target = pathlib.Path(tempfile.mkdtemp()) / "notes" / "run.txt"
+    >>> atomic_write(target, lambda tmp: tmp.write_text("done"))
+    >>> target.read_text()
+    'done'
+    >>> def broken(tmp):
+    ...     tmp.write_text("half")
+    ...     raise RuntimeError("disk full")
+    >>> atomic_write(target, broken)
+    Traceback (most recent call last):
+        ...
+    RuntimeError: disk full
+    >>> target.read_text(), sorted(p.name for p in target.parent.iterdir())   # untouched
+    ('done', ['run.txt'])
     """
     atomic_write_many([(path, write)])
 
@@ -188,6 +225,21 @@ def atomic_write_many(items) -> None:
     ----------
     items : sequence of (path, write)
         As for :func:`atomic_write`. If any ``write`` fails, no target is touched.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from ballpass.signalio import atomic_write_many
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> def fail(tmp):
+    ...     raise OSError("no space left")
+    >>> atomic_write_many([(folder / "a.txt", lambda tmp: tmp.write_text("a")),
+    ...                    (folder / "b.txt", fail)])
+    Traceback (most recent call last):
+        ...
+    OSError: no space left
+    >>> list(folder.iterdir())                    # all or nothing: a.txt was not written
+    []
     """
     pending = []
     try:
@@ -262,6 +314,19 @@ def signal_writer(path, accel, fs: float, *, channels=None, meta=None):
 
     For :func:`atomic_write_many` (a signal and its figure, all or nothing); the
     arguments are those of :func:`write_signal`, checked here before anything is written.
+
+    Examples
+    --------
+    >>> import numpy as np, tempfile, pathlib
+    >>> from ballpass.signalio import atomic_write, read_signal, signal_writer
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "run.csv"
+    >>> atomic_write(path, signal_writer(path, np.zeros(10), 12_000.0, meta={"rpm": 1797}))
+    >>> read_signal(path).meta["rpm"]
+    1797
+    >>> signal_writer(path, np.zeros(10), fs=-1.0)
+    Traceback (most recent call last):
+        ...
+    ValueError: fs must be a finite number > 0 Hz, got -1.0
     """
     from .features._validation import check_fs
 

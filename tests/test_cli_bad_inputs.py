@@ -109,6 +109,8 @@ CASES = [
      "rpm must be a finite number"),
     # the others
     (["bearings", "--bearing", "nope"], "nope"),
+    (["models", "--needs", "gear_mesh", "rotor_dynamics"], "no model represents"),
+    (["simulate", "--needs", "gear_mesh", "--out", "x.npz"], "has no gear pair"),
     (["info", "nowhere"], "nowhere"),
     (["generate", "missing.toml", "--out", "new"], "missing.toml"),
 ]

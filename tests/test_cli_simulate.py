@@ -56,3 +56,29 @@ def test_written_files_follow_the_umask_like_any_other(tmp_path):
     # the atomic write's temporary file must not leave the result private (0600)
     assert out.stat().st_mode & 0o777 == 0o644
     assert not [p for p in tmp_path.iterdir() if p.name.endswith(".tmp")]
+
+
+def test_needs_picks_the_model_and_the_signal_matches_the_api(tmp_path, capsys):
+    out = tmp_path / "env.npz"
+    assert main([*ARGS, "--needs", "envelope", "--out", str(out)]) == 0
+    assert "model impulse" in capsys.readouterr().out  # envelope alone: the cheapest model
+    sig = read_signal(out)
+    expected = bp.simulate(bp.Scene(bearing="6205", rpm=1500.0, fault=bp.Fault("inner"),
+                                    duration_s=0.2, fs=12_000.0, resonance_hz=3000.0, seed=4,
+                                    needs=("envelope",)))
+    assert sig.meta["info"]["model"] == expected.info["model"] == "impulse"
+    np.testing.assert_array_equal(sig.accel[0], expected.accel)  # npz keeps float64
+
+
+def test_models_lists_the_registry_and_what_auto_picks(capsys):
+    assert main(["models"]) == 0
+    out = capsys.readouterr().out
+    names = [line.split()[0] for line in out.splitlines()[2:] if line.strip()]
+    assert names == list(bp.simulate.MODELS)  # cheapest first, every model once
+    assert main(["models", "--needs", "ball_dynamics"]) == 0
+    assert "model='auto' runs multibody" in capsys.readouterr().out
+    # csv stays machine-readable: the answer to --needs goes to stderr
+    assert main(["models", "--format", "csv", "--needs", "envelope"]) == 0
+    captured = capsys.readouterr()
+    assert captured.out.splitlines()[0] == "model,relative_cost,solvers,represents,reference"
+    assert "runs impulse" in captured.err

@@ -119,3 +119,12 @@ def test_progress_bars_on_a_terminal_unless_quiet(monkeypatch, capsys):
     x = np.random.default_rng(0).standard_normal(2400)
     feature_rows([Signal("a", x, 12_000.0), Signal("b", x, 12_000.0)], progress=True)
     assert "features" in capsys.readouterr().err
+
+
+def test_generate_says_it_compiles_before_the_first_dataset(tmp_path, monkeypatch, capsys):
+    grid = tmp_path / "g.toml"
+    grid.write_text('[dataset]\nduration_s = 0.01\nfs = 12000\n[grid]\nbearing = ["6205"]\n'
+                    'fault = ["outer"]\nrpm = [1797]\nresonance_hz = [3000]\n')
+    monkeypatch.setattr(_output, "kernels_cached", lambda: False)
+    assert main(["generate", str(grid), "--out", str(tmp_path / "ds"), "--no-progress"]) == 0
+    assert capsys.readouterr().err.startswith("ballpass: compiling the simulator")

@@ -281,3 +281,57 @@ def test_resampling_between_unrelated_rates_keeps_frequencies_exact():
     phase = np.unwrap(np.angle(scipy.signal.hilbert(X[0].astype(float))))
     drift = (phase - 2 * np.pi * 1000.0 * t)[5000:-5000]
     assert np.ptp(drift) < 0.05
+
+
+SHARED_CWRU = Path(__file__).resolve().parents[2] / "shared" / "data" / "cwru"
+
+
+def _unlisted(tmp_path, x_g: np.ndarray, channel: str = "DE") -> Path:
+    """``x_g`` saved as a renamed file of an unlisted record: no RPM, no load, no name."""
+    path = tmp_path / "recording.mat"
+    scipy.io.savemat(path, {f"X999_{channel}_time": x_g[:, None]})
+    return path
+
+
+@pytest.mark.parametrize("rpm", [1725.0, 1762.0, 1799.0])  # the rig's 3 hp .. 0 hp range
+def test_a_speed_nothing_states_is_estimated_from_the_shaft_comb(tmp_path, rpm):
+    fs, fr = 12_000.0, rpm / 60.0
+    t = np.arange(int(3 * fs)) / fs
+    rng = np.random.default_rng(0)
+    # shaft harmonics 1x..8x decaying, phases random, in noise: a motor's signature
+    x = sum(np.cos(2 * np.pi * k * fr * t + rng.uniform(0, 2 * np.pi)) / k for k in range(1, 9))
+    x = 0.01 * (x + rng.standard_normal(t.size))
+    with pytest.warns(UserWarning, match="estimated .* rpm from the signal's shaft-harmonic"):
+        rec = load_cwru_mat(_unlisted(tmp_path, x), fs=fs)
+    assert rec.rpm_source == "estimated"
+    # 3 s padded to a quarter bin: the search steps 1/12 Hz at the 10th harmonic, i.e.
+    # 0.5 rpm of shaft speed; 1 rpm allows a step either side. A search that stays near
+    # one nominal speed (e.g. +-1 % around 1797) misses 1725 rpm by tens of rpm.
+    assert rec.rpm == pytest.approx(rpm, abs=1.0)
+
+
+def test_no_clear_comb_or_too_short_leaves_the_speed_unknown(tmp_path):
+    rng = np.random.default_rng(1)
+    with pytest.warns(UserWarning, match=r"comb stands only .* dB"):
+        noise = load_cwru_mat(_unlisted(tmp_path, rng.standard_normal(36_000)), fs=12_000.0)
+    assert noise.rpm_source == "unknown" and math.isnan(noise.rpm)
+    with pytest.warns(UserWarning, match="shorter than the 2 s"):
+        short = load_cwru_mat(_unlisted(tmp_path, rng.standard_normal(12_000)), fs=12_000.0)
+    assert short.rpm_source == "unknown" and math.isnan(short.rpm)
+
+
+@pytest.mark.skipif(not SHARED_CWRU.is_dir(), reason="needs ../shared/data/cwru")
+@pytest.mark.parametrize(("name", "channel"), [("12k_DE_B021_0", "DE"),
+                                               ("12k_FE_OR014@3_0", "FE"),
+                                               ("Normal_0_48k", "FE")])
+def test_real_records_stripped_of_their_speed_get_it_back(tmp_path, name, channel):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        ref = load_cwru_mat(SHARED_CWRU / f"{name}.mat", channel=channel)
+    with pytest.warns(UserWarning, match="estimated"):
+        rec = load_cwru_mat(_unlisted(tmp_path, ref.accel / STANDARD_GRAVITY, channel),
+                            channel=channel, fs=ref.fs)
+    # the stored speed is the rig's tachometer reading, in whole rpm; the comb of a 10 s
+    # record resolves 0.1 Hz bins (6 rpm / 10 harmonics): 0.1 % = 1.8 rpm covers both
+    assert rec.rpm_source == "estimated"
+    assert rec.rpm == pytest.approx(ref.rpm, rel=1e-3)

@@ -226,3 +226,22 @@ def test_first_call_reports_compile_time_apart_from_the_run():
     # loading the kernels, even from numba's cache, takes ~0.4 s; integrating this 0.05 s
     # scene ~4 ms: a first-call wall time that still contained the load would exceed it
     assert 0.0 <= wall < first
+
+
+@pytest.mark.parametrize(("fields", "need"), [
+    ({"clearance_um": -3.0}, "mounted_clearance"),
+    ({"resonances": ((4_000.0, 0.02, 0.5),)}, "structural_modes"),
+    ({"fault": bp.Fault("outer", geometry="pit")}, "pit_faults"),
+    ({"fault": bp.Fault("ball", engagement=0.4)}, "intermittent_faults"),
+])
+def test_auto_never_picks_a_model_that_drops_a_field_the_scene_sets(fields, need):
+    # with needs=("envelope",) alone the impulse model would be cheapest, but it ignores
+    # these four fields: auto must go to sr5, which honours them
+    scene = bp.Scene(bearing="6205", needs=("envelope",), **fields)
+    assert need in bp.simulate.scene_needs(scene)
+    assert bp.simulate.resolve_model(scene) == "sr5"
+    plain = bp.Scene(bearing="6205", needs=("envelope",))
+    assert bp.simulate.resolve_model(plain) == "impulse"
+    # asked for by name, the model runs and says what it leaves out
+    res = bp.simulate(scene.replace(duration_s=0.05), model="impulse")
+    assert need in res.info["model_reason"]

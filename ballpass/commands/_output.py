@@ -11,7 +11,7 @@ from ..signalio import check_output_path
 FIGURE_SUFFIXES = (".png", ".pdf", ".svg", ".jpg", ".jpeg")
 
 __all__ = ["FIGURE_SUFFIXES", "check_output_path", "figure_writer", "show_progress",
-           "compile_notice"]
+           "compile_notice", "format_records"]
 
 
 def figure_writer(fig, path, dpi: int = 120):
@@ -54,3 +54,63 @@ def compile_notice() -> None:
     if not kernels_cached():
         print("ballpass: compiling the simulator's kernels (first run after an install or "
               "an update; about a minute, cached afterwards)", file=sys.stderr, flush=True)
+
+
+def format_records(records: list[dict], fmt: str, *, headers: dict | None = None,
+                   text_columns=(), cell=str) -> str:
+    """Rows of dicts as an aligned text table, CSV or JSON (what ``--format`` offers).
+
+    Parameters
+    ----------
+    records : list of dict
+        One dict per row, the same keys in the same order.
+    fmt : {"table", "csv", "json"}
+    headers : dict, optional
+        Key -> column header of the table (units in the header); default the keys.
+    text_columns : collection of str, optional
+        Keys aligned left in the table; the others (numbers) align right.
+    cell : callable, optional
+        ``cell(key, value) -> str`` for the table's cells; default ``str(value)``.
+
+    Returns
+    -------
+    str
+        Without a trailing newline.
+
+    Examples
+    --------
+    >>> from ballpass.commands._output import format_records
+    >>> print(format_records([{"model": "sr5", "cost": 1.0}], "table",
+    ...                      text_columns={"model"}))
+    model  cost
+    -----  ----
+    sr5     1.0
+    >>> format_records([{"model": "sr5", "cost": 1.0}], "csv").splitlines()
+    ['model,cost', 'sr5,1.0']
+    """
+    import csv
+    import io
+    import json
+
+    keys = list(records[0])
+    if fmt == "json":
+        return json.dumps(records, indent=2)
+    if fmt == "csv":
+        buf = io.StringIO()
+        writer = csv.DictWriter(buf, fieldnames=keys, lineterminator="\n")
+        writer.writeheader()
+        writer.writerows(records)
+        return buf.getvalue().rstrip("\n")
+    show = cell if cell is not str else (lambda key, value: str(value))
+    headers = headers or {}
+    cells = [[headers.get(k, k) for k in keys]] + [[show(k, r[k]) for k in keys]
+                                                    for r in records]
+    widths = [max(len(row[i]) for row in cells) for i in range(len(keys))]
+    lines = []
+    for j, row in enumerate(cells):
+        lines.append("  ".join(
+            c.ljust(w) if (k in text_columns or j == 0) else c.rjust(w)
+            for k, c, w in zip(keys, row, widths, strict=True)).rstrip())
+        if j == 0:
+            lines.append("  ".join("-" * w for w in widths))
+    return "\n".join(lines)

@@ -135,45 +135,19 @@ def rows(bearing: str | None = None, rpm: float | None = None) -> list[dict]:
     return out
 
 
-def _table(records: list[dict]) -> str:
-    def fmt(key: str, value) -> str:
-        if isinstance(value, float):
-            return f"{value:.2f}" if key.endswith("_hz") else f"{value:g}"
-        return str(value)
-
-    keys = list(records[0])
-    cells = [[_LABELS[k] for k in keys]] + [[fmt(k, r[k]) for k in keys] for r in records]
-    widths = [max(len(row[i]) for row in cells) for i in range(len(keys))]
-    text_cols = {"designation", "element", "source"}
-    lines = []
-    for j, row in enumerate(cells):
-        parts = [
-            c.ljust(w) if (k in text_cols or j == 0) else c.rjust(w)
-            for k, c, w in zip(keys, row, widths, strict=True)
-        ]
-        lines.append("  ".join(parts).rstrip())
-        if j == 0:
-            lines.append("  ".join("-" * w for w in widths))
-    return "\n".join(lines)
+def _cell(key: str, value) -> str:
+    if isinstance(value, float):
+        return f"{value:.2f}" if key.endswith("_hz") else f"{value:g}"
+    return str(value)
 
 
 def run(args: argparse.Namespace) -> int:
     """Print the catalogue (and frequencies) in the requested format; returns 0."""
-    import csv
-    import io
-    import json
     import sys
 
-    records = rows(args.bearing, args.rpm)
-    if args.format == "json":
-        text = json.dumps(records, indent=2)
-    elif args.format == "csv":
-        buf = io.StringIO()
-        writer = csv.DictWriter(buf, fieldnames=list(records[0]), lineterminator="\n")
-        writer.writeheader()
-        writer.writerows(records)
-        text = buf.getvalue().rstrip("\n")
-    else:
-        text = _table(records)
+    from ._output import format_records
+
+    text = format_records(rows(args.bearing, args.rpm), args.format, headers=_LABELS,
+                          text_columns={"designation", "element", "source"}, cell=_cell)
     sys.stdout.write(text + "\n")
     return 0

@@ -48,7 +48,9 @@ def add_parser(subparsers) -> None:
 def run(args) -> int:
     """Run ``ballpass generate``; returns the exit code."""
     from ..datasets import dry_run, generate
+    from ._output import compile_notice
 
+    compile_notice()  # both paths simulate (dry-run times one run per model)
     if args.dry_run:
         print(dry_run(args.grid, out_dir=args.out, n_jobs=args.jobs, force=args.force))
         return 0

@@ -20,8 +20,9 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     p = subparsers.add_parser(
         "simulate",
         help="simulate one scene and write its signal (.npz/.csv/.parquet)",
-        description="Simulate a bearing with the Sawalhi-Randall model and write the "
-        "acceleration at each sensor (m/s^2). The output format follows the extension.",
+        description="Simulate a bearing and write the acceleration at each sensor (m/s^2). "
+        "The model is the cheapest that represents what the scene needs (--model auto; "
+        "`ballpass models` lists them). The output format follows the extension.",
         epilog=EXAMPLE,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
@@ -33,10 +34,21 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
                    "Table 1 presets); runs the gearbox model")
     p.add_argument("--torque", type=float, default=None,
                    help="input torque of the gear pair, N m (default: the preset's, 50)")
-    p.add_argument("--model", default="auto", help="auto (default), sr5, sr4 or gearbox")
-    p.add_argument("--solver", default="auto", help="auto (default, = rk4), rk4 or dopri5")
-    p.add_argument("--dt", type=float, default=None, help="RK4 step, s (default: automatic)")
-    p.add_argument("--rtol", type=float, default=None, help="dopri5 relative tolerance")
+    from ..phenomena import PHENOMENA
+
+    p.add_argument("--model", default="auto",
+                   help="auto (default: the cheapest model that represents --needs) or a "
+                   "model name from `ballpass models`, e.g. impulse, sr5, multibody")
+    p.add_argument("--needs", nargs="+", metavar="PHENOMENON", choices=sorted(PHENOMENA),
+                   default=None, help="phenomena the signal must show, for --model auto: "
+                   + ", ".join(sorted(PHENOMENA)) + " (default: envelope, contact_dynamics)")
+    p.add_argument("--solver", default="auto",
+                   help="auto (default: the model's own) or one of the model's solvers "
+                   "(`ballpass models`)")
+    p.add_argument("--dt", type=float, default=None,
+                   help="step of a fixed-step solver, s (default: automatic)")
+    p.add_argument("--rtol", type=float, default=None,
+                   help="relative tolerance of an adaptive solver")
     p.add_argument("--out", "-o", required=True, help="output file: .npz, .csv or .parquet")
     p.add_argument("--plot", default=None, metavar="PNG",
                    help="also draw waveform, squared envelope spectrum and kurtogram")
@@ -96,7 +108,7 @@ def scene_from_args(args):
         bearing=args.bearing, rpm=rpm, radial_load_n=args.load, fault=fault, gears=gears,
         duration_s=args.duration, fs=args.fs, seed=args.seed, slip=args.slip,
         resonance_hz=args.resonance, resonance_damping=args.damping, sensors=tuple(sensors),
-        snr_db=args.snr,
+        snr_db=args.snr, needs=tuple(getattr(args, "needs", None) or ()),
     )
 
 
@@ -143,7 +155,8 @@ def run(args) -> int:
     info = res.info
     print(f"{res.truth.label}: {len(res.t)} samples x {len(res.sensor_names)} sensor(s) at "
           f"{res.fs:g} Hz, model {info['model']}, solver {info['solver']}, "
-          f"{info['n_steps']} steps in {info['wall_time_s']:.2f} s -> {out}")
+          + (f"{info['n_steps']} steps " if "n_steps" in info else "")
+          + f"in {info['wall_time_s']:.2f} s -> {out}")
     if info.get("compile_time_s", 0.0) > 0.5:
         print(f"(compiling the simulator's kernels took {info['compile_time_s']:.1f} s more: "
               "once per install)")

@@ -148,8 +148,15 @@ def regenerate(row) -> np.ndarray:
 
     Examples
     --------
-    >>> X, meta = load("out/quick")                                  # doctest: +SKIP
-    >>> (regenerate(meta.iloc[3]) == X[3]).all()                     # doctest: +SKIP
+    >>> import tempfile
+    >>> from ballpass.datasets import generate, load, regenerate
+    >>> grid = {"dataset": {"duration_s": 0.25, "fs": 12_000, "repeats": 2, "model": "impulse"},
+    ...         "grid": {"bearing": ["6205"], "fault": ["healthy", "outer"], "rpm": [1797],
+    ...                  "resonance_hz": [3000]}}
+    >>> out = tempfile.mkdtemp() + "/quick"
+    >>> _ = generate(grid, out, progress=False)
+    >>> X, meta = load(out)
+    >>> bool((regenerate(meta.iloc[3]) == X[3]).all())    # bit for bit from its row
     True
     """
     missing = [k for k in _ROW_KEYS if k not in row]
@@ -730,6 +737,17 @@ class GenerateSummary:
         ``rows_written / wall_time_s``.
     models : dict
         Runs simulated per resolved model.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from ballpass.datasets import generate
+    >>> grid = {"dataset": {"duration_s": 0.25, "fs": 12_000, "model": "impulse"},
+    ...         "grid": {"bearing": ["6205"], "fault": ["outer"], "rpm": [1797],
+    ...                  "resonance_hz": [3000]}}
+    >>> summary = generate(grid, tempfile.mkdtemp(), progress=False)
+    >>> summary.n_rows, summary.rows_written, summary.models
+    (1, 1, {'impulse': 1})
     """
 
     path: str
@@ -809,9 +827,20 @@ def generate(grid, out_dir, n_jobs: int = 1, executor: cf.Executor | None = None
 
     Examples
     --------
+    >>> import tempfile
     >>> from ballpass.datasets import generate, load
-    >>> summary = generate("examples/quick.toml", "out/quick", n_jobs=2)  # doctest: +SKIP
-    >>> X, meta = load("out/quick")                                       # doctest: +SKIP
+    >>> grid = {"dataset": {"duration_s": 0.25, "fs": 12_000, "repeats": 2, "model": "impulse"},
+    ...         "grid": {"bearing": ["6205"], "fault": ["healthy", "outer"], "rpm": [1797],
+    ...                  "resonance_hz": [3000]}}
+    >>> out = tempfile.mkdtemp() + "/quick"
+    >>> summary = generate(grid, out, features=True, progress=False)
+    >>> summary.n_rows
+    4
+    >>> X, meta = load(out)
+    >>> X.shape, meta["label"].tolist()
+    ((4, 3000), ['healthy', 'healthy', 'outer', 'outer'])
+    >>> generate(grid, out, progress=False).rows_written    # resumed: nothing left to do
+    0
     """
     t0 = time.perf_counter()
     grid = read_grid(grid)
@@ -878,6 +907,16 @@ class Estimate:
         size of one measured run).
     models : dict
         Runs per resolved model.
+
+    Examples
+    --------
+    >>> from ballpass.datasets import dry_run
+    >>> grid = {"dataset": {"duration_s": 0.5, "fs": 12_000, "model": "impulse"},
+    ...         "grid": {"bearing": ["6205"], "fault": ["healthy", "outer"], "rpm": [1797],
+    ...                  "resonance_hz": [3000]}}
+    >>> est = dry_run(grid)
+    >>> est.n_rows, est.n_runs, bool(est.size_bytes > 0)
+    (2, 2, True)
     """
 
     n_rows: int
@@ -931,6 +970,16 @@ def dry_run(grid, out_dir=None, n_jobs: int = 1, force: bool = False) -> Estimat
     ValueError
         As :func:`generate`, before any simulation: a grid too large for the free disk
         or memory is refused (unless ``force``).
+
+    Examples
+    --------
+    >>> from ballpass.datasets import dry_run
+    >>> grid = {"dataset": {"duration_s": 1.0, "fs": 48_000, "repeats": 10, "model": "impulse"},
+    ...         "grid": {"bearing": ["6205"], "fault": ["healthy", "outer", "inner", "ball"],
+    ...                  "rpm": [1730, 1797]}}
+    >>> estimate = dry_run(grid)
+    >>> estimate.n_rows, estimate.signal_length
+    (80, 48000)
     """
     grid = read_grid(grid)
     n_jobs = _check_jobs(n_jobs)

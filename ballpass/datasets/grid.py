@@ -286,6 +286,19 @@ class Grid:
         and ``needs`` (phenomena every run asks for).
     axes : dict
         The [grid] axes as lists of normalized values (ranges expanded).
+
+    Examples
+    --------
+    >>> from ballpass.datasets import read_grid
+    >>> grid = read_grid({
+    ...     "dataset": {"duration_s": 1.0, "fs": 48_000, "repeats": 3, "segment_s": 0.25,
+    ...                 "shard_size": 4},
+    ...     "grid": {"bearing": ["6205"], "fault": ["healthy", "outer"], "rpm": [1797]},
+    ... })
+    >>> grid.n_runs, grid.rows_per_run, grid.n_rows     # 2 points x 3 repeats; 4 segments each
+    (6, 4, 24)
+    >>> grid.runs[0].scene["fs"], grid.dataset["model"]
+    (48000.0, 'auto')
     """
 
     dataset: dict
@@ -335,7 +348,19 @@ class Grid:
         return -(-self.n_runs // self.dataset["shard_size"])
 
     def shard_runs(self, index: int) -> range:
-        """Run ids of shard ``index``."""
+        """Run ids of shard ``index``.
+
+        Examples
+        --------
+        >>> from ballpass.datasets import read_grid
+        >>> grid = read_grid({
+        ...     "dataset": {"duration_s": 1.0, "fs": 48_000, "repeats": 3, "segment_s": 0.25,
+        ...                 "shard_size": 4},
+        ...     "grid": {"bearing": ["6205"], "fault": ["healthy", "outer"], "rpm": [1797]},
+        ... })
+        >>> grid.n_shards, grid.shard_runs(0), grid.shard_runs(1)
+        (2, range(0, 4), range(4, 6))
+        """
         size = self.dataset["shard_size"]
         return range(index * size, min((index + 1) * size, self.n_runs))
 
@@ -354,7 +379,21 @@ class Grid:
         return tuple(out)
 
     def as_dict(self) -> dict:
-        """The normalized grid as a strict-JSON dict; ``read_grid`` of it gives this grid."""
+        """The normalized grid as a strict-JSON dict; ``read_grid`` of it gives this grid.
+
+        Examples
+        --------
+        >>> from ballpass.datasets import read_grid
+        >>> grid = read_grid({
+        ...     "dataset": {"duration_s": 1.0, "fs": 48_000, "repeats": 3, "segment_s": 0.25,
+        ...                 "shard_size": 4},
+        ...     "grid": {"bearing": ["6205"], "fault": ["healthy", "outer"], "rpm": [1797]},
+        ... })
+        >>> grid.as_dict()["dataset"]["segment_s"]
+        0.25
+        >>> read_grid(grid.as_dict()) == grid                # round trip
+        True
+        """
         return _json_safe({"dataset": dict(self.dataset), "grid": dict(self.axes)})
 
 
@@ -426,6 +465,19 @@ def read_grid(source) -> Grid:
     ``sensor`` ("loaded", "unloaded" or a table of :class:`~ballpass.Sensor` fields),
     the channels of each run. Axes left out take the :class:`~ballpass.Scene`
     defaults; ``bearing``, ``fault`` and ``rpm`` are required.
+
+    Examples
+    --------
+    >>> from ballpass.datasets import read_grid
+    >>> grid = read_grid({"dataset": {"duration_s": 0.5, "fs": 48_000},
+    ...                   "grid": {"bearing": ["6205"], "fault": ["healthy", "inner"],
+    ...                            "rpm": {"start": 1730, "stop": 1797, "step": 67}}})
+    >>> grid.axes["rpm"], grid.n_runs
+    ([1730.0, 1797.0], 4)
+    >>> read_grid({"grid": {"bearing": ["6205"], "fault": ["cracked"], "rpm": [1797]}})
+    Traceback (most recent call last):
+        ...
+    ValueError: grid.fault[0] must be one of ('healthy', 'outer', 'inner', 'ball'), got 'cracked'
     """
     if isinstance(source, Grid):
         return source

@@ -23,6 +23,9 @@ by suffix. Pitfalls that catch most users:
   number names another load that the speed fits: ``12k_FE_OR014@3_0`` stores 1774 rpm
   at "0 hp", but holds record 309, the 1 hp test (1772 rpm nominal), and its
   shaft-harmonic comb peaks at 1773.6 rpm; the name is wrong, so it loads as 1 hp.
+  A file with neither a stored speed nor a known load (a renamed file of an unlisted
+  record) gets the speed of its own shaft-harmonic comb, searched over the rig's range
+  (``rpm_source = "estimated"``), when the record is long enough and the comb clear.
 
 The drive-end bearing is an SKF 6205-2RS JEM, the fan-end bearing an SKF 6203-2RS JEM.
 Faults are EDM pits of 0.007-0.040 in (0.178-1.016 mm); outer-race faults sit at
@@ -70,6 +73,10 @@ CWRU_BEARINGS = {"DE": "6205", "FE": "6203"}
 #: A stored speed further than this from the nominal speed of the motor load is flagged.
 #: 1 %: the rig's speed at one load scatters by a few rpm (0.2-0.3 %) between records.
 RPM_TOLERANCE = 0.01
+#: Speed range of the CWRU induction motor, rpm: 1730 (3 hp) to 1797 (0 hp) nominal,
+#: below the 1800 rpm synchronous speed; a speed nothing states is searched in it,
+#: widened by a few rpm of scatter on each side.
+RIG_RPM_RANGE = (1720.0, 1800.0)
 _KINDS = {"ir": "inner", "or": "outer", "b": "ball"}
 _CLOCK_DEG = {6: 0.0, 3: 90.0, 12: 180.0}
 _RATE = re.compile(r"(?:^|_)(12|48)k(?=_|$)")
@@ -113,7 +120,8 @@ class CwruRecord:
         File name without extension.
     rpm_source : str
         ``"file"`` (the file's RPM variable), ``"nominal"`` (filled from the motor
-        load) or ``"unknown"`` (neither; ``rpm`` is NaN).
+        load), ``"estimated"`` (neither: the signal's shaft-harmonic comb, searched
+        over :data:`RIG_RPM_RANGE`) or ``"unknown"`` (no clear comb; ``rpm`` is NaN).
     rpm_nominal : float
         Nominal speed of the motor load, rpm (NaN when the load is unknown).
     rpm_mismatch : bool
@@ -354,9 +362,7 @@ def load_cwru_mat(path, channel: str = "DE", fs: float | None = None) -> CwruRec
     elif math.isfinite(nominal):
         rpm, source = nominal, "nominal"
     else:
-        rpm, source = math.nan, "unknown"
-        warnings.warn(f"{path.name}: no stored speed and no motor load in the name; rpm "
-                      "is NaN (pass it to the diagnoser yourself)", stacklevel=2)
+        rpm, source = _speed_from_signal(accel, float(fs), path.name)
     mismatch = source == "file" and math.isfinite(nominal) and not _fits(rpm, load)
     if mismatch:
         warnings.warn(f"{path.name}: stored speed {rpm:g} rpm differs from the nominal "
@@ -382,6 +388,32 @@ def load_cwru_mat(path, channel: str = "DE", fs: float | None = None) -> CwruRec
         record=record,
         fault_clock=info["clock"] if kind == "outer" else None,
     )
+
+
+def _speed_from_signal(accel: np.ndarray, fs: float, name: str) -> tuple[float, str]:
+    """Speed of a record that states none, from its shaft-harmonic comb over the rig's
+    range (:data:`RIG_RPM_RANGE`): ``(rpm, "estimated")``, or ``(nan, "unknown")`` when
+    the record is shorter than the speed check needs or its comb is not clear."""
+    from ..diagnose.evidence import MIN_COMB_DB, SPEED_CHECK_S
+    from ..diagnose.speed import estimate_shaft_speed
+
+    lo, hi = RIG_RPM_RANGE
+    centre, tolerance = 0.5 * (lo + hi), 0.5 * (hi - lo) / (0.5 * (lo + hi))
+    if accel.size >= SPEED_CHECK_S * fs:
+        found, comb, _ = estimate_shaft_speed(accel[None, :], fs, np.array([centre]),
+                                              tolerance=tolerance)
+        if comb[0] >= MIN_COMB_DB:
+            warnings.warn(f"{name}: no stored speed and no motor load in the name; "
+                          f"estimated {found[0]:.1f} rpm from the signal's shaft-harmonic "
+                          f"comb ({comb[0]:.0f} dB above the background; rpm_source "
+                          "'estimated')", stacklevel=3)
+            return float(found[0]), "estimated"
+        why = f"its shaft-harmonic comb stands only {comb[0]:.1f} dB above the background"
+    else:
+        why = f"the record is shorter than the {SPEED_CHECK_S:g} s a speed estimate needs"
+    warnings.warn(f"{name}: no stored speed and no motor load in the name, and {why}; rpm "
+                  "is NaN (pass it to the diagnoser yourself)", stacklevel=3)
+    return math.nan, "unknown"
 
 
 def mat_paths(paths) -> list[Path]:
@@ -496,8 +528,8 @@ def load_cwru(paths, fs: float = 12_000.0, segment_s: float = 1.0, channel: str 
         Acceleration, m/s^2.
     meta : pandas.DataFrame
         One row per segment: ``file``, ``group``, ``segment``, ``label``, ``fs``,
-        ``source_fs``, ``rpm``, ``rpm_source`` ("file" or "nominal"; "unknown" with
-        rpm NaN), ``rpm_nominal``, ``rpm_mismatch``, ``load_hp``, ``bearing``,
+        ``source_fs``, ``rpm``, ``rpm_source`` ("file", "nominal", "estimated";
+        "unknown" with rpm NaN), ``rpm_nominal``, ``rpm_mismatch``, ``load_hp``, ``bearing``,
         ``channel`` (also as ``sensor``), ``fault_end``, ``fault_width_mm``,
         ``fault_size_in``, ``fault_clock``, ``fault_angle_deg``, ``record``,
         ``start_s``, ``duration_s``, ``dataset``.

@@ -327,8 +327,16 @@ def load(path, columns=None, filters=None):
 
     Examples
     --------
-    >>> X, meta = load("out/cwru_like")                            # doctest: +SKIP
-    >>> X, meta = load("out/cwru_like", filters=[("sensor", "==", "loaded")])  # doctest: +SKIP
+    >>> import tempfile
+    >>> from ballpass.datasets import generate, load
+    >>> grid = {"dataset": {"duration_s": 0.25, "fs": 12_000, "repeats": 2, "model": "impulse"},
+    ...         "grid": {"bearing": ["6205"], "fault": ["healthy", "outer"], "rpm": [1797],
+    ...                  "resonance_hz": [3000]}}
+    >>> out = tempfile.mkdtemp() + "/quick"
+    >>> _ = generate(grid, out, progress=False)
+    >>> X, meta = load(out, filters=[("label", "==", "outer")])
+    >>> X.shape, X.dtype, meta["label"].unique().tolist()
+    ((2, 3000), dtype('float32'), ['outer'])
     """
     files, _ = _shard_paths(path)
     cols = None if columns is None else ["signal", *columns]
@@ -341,7 +349,22 @@ def load(path, columns=None, filters=None):
 
 
 def load_features(path, filters=None):
-    """The feature table of a dataset written with ``features=True``, as a DataFrame."""
+    """The feature table of a dataset written with ``features=True``, as a DataFrame.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from ballpass.datasets import generate
+    >>> grid = {"dataset": {"duration_s": 0.25, "fs": 12_000, "repeats": 2, "model": "impulse"},
+    ...         "grid": {"bearing": ["6205"], "fault": ["healthy", "outer"], "rpm": [1797],
+    ...                  "resonance_hz": [3000]}}
+    >>> out = tempfile.mkdtemp() + "/quick"
+    >>> _ = generate(grid, out, features=True, progress=False)
+    >>> from ballpass.datasets import load_features
+    >>> table = load_features(out)
+    >>> len(table), "crest_factor" in table.columns
+    (4, True)
+    """
     files, _ = _shard_paths(path, features=True)
     return _read(files, None, filters).to_pandas()
 
@@ -372,6 +395,22 @@ def info(path) -> dict:
     CorruptShardError
         A complete shard (signals or features) is missing or fails its SHA-256: every
         shard is read once to verify it.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from ballpass.datasets import generate
+    >>> grid = {"dataset": {"duration_s": 0.25, "fs": 12_000, "repeats": 2, "model": "impulse"},
+    ...         "grid": {"bearing": ["6205"], "fault": ["healthy", "outer"], "rpm": [1797],
+    ...                  "resonance_hz": [3000]}}
+    >>> out = tempfile.mkdtemp() + "/quick"
+    >>> _ = generate(grid, out, progress=False)
+    >>> from ballpass.datasets import info
+    >>> summary = info(out)
+    >>> summary["status"], summary["n_rows"], summary["fs"], summary["signal_length"]
+    ('complete', 4, 12000.0, 3000)
+    >>> summary["labels"].to_dict()
+    {'healthy': 2, 'outer': 2}
     """
     path = Path(path)
     if path.is_file():

@@ -193,6 +193,23 @@ class EnvelopeEvidence:
         True where the speed was corrected from the signal's shaft-harmonic comb.
     duration_s : float
         Record length, s.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import ballpass as bp
+    >>> from ballpass.diagnose import envelope_evidence
+    >>> fs, rpm = 12_000.0, 1797.0
+    >>> bpfo = bp.Bearing.catalog("6205").frequencies(rpm / 60).bpfo
+    >>> t = np.arange(12_000) / fs
+    >>> phase = (t * bpfo) % 1.0 / bpfo                       # time since the last impact, s
+    >>> x = np.exp(-800 * phase) * np.sin(2 * np.pi * 3000 * phase)
+    >>> x = x + 0.2 * np.random.default_rng(0).standard_normal(t.size)
+    >>> ev = envelope_evidence(x, fs, "6205", rpm)
+    >>> max(ev.evidence_db, key=lambda family: ev.evidence_db[family][0])
+    'outer'
+    >>> ev.line_names["outer"][:3], ev.levels_db["outer"].shape
+    (['1xBPFO', '1xBPFO-FTF', '1xBPFO+FTF'], (1, 9))
     """
 
     evidence_db: dict

@@ -67,6 +67,16 @@ def make_classifier(name: str, *, random_state=0):
     Returns
     -------
     sklearn classifier
+
+    Examples
+    --------
+    >>> from ballpass.diagnose import make_classifier
+    >>> make_classifier("random_forest").get_params()["n_estimators"]
+    300
+    >>> make_classifier("tree")                             # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+        ...
+    ValueError: classifier must be one of ['gradient_boosting', 'knn', ...], got 'tree'
     """
     # Grids give one healthy run per operating point against one per fault size and
     # kind: the classes are weighted to count equally (kNN has no weights).
@@ -128,6 +138,15 @@ def make_features(
     -------
     sklearn.pipeline.FeatureUnion
         Fault bands request ``rpm`` in ``transform`` (metadata routing).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ballpass.diagnose import make_features
+    >>> X = np.random.default_rng(0).standard_normal((2, 12_000))
+    >>> step = make_features("dimensionless", fs=12_000, rpm=1797)
+    >>> step.fit_transform(X).shape                 # 6 shape indicators + 21 fault bands
+    (2, 27)
     """
     if features not in FEATURE_SETS:
         raise ValueError(f"features must be one of {sorted(FEATURE_SETS)}, got {features!r}")

@@ -37,6 +37,15 @@ def plot_confusion(matrix, *, labels=LABELS, title: str | None = None, ax=None):
     Returns
     -------
     matplotlib.axes.Axes
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ballpass.diagnose import plot_confusion
+    >>> counts = np.array([[9, 1, 0, 0], [0, 8, 2, 0], [0, 0, 10, 0], [1, 0, 0, 9]])
+    >>> ax = plot_confusion(counts, title="held-out runs")
+    >>> ax.get_title(), [t.get_text() for t in ax.get_xticklabels()]
+    ('held-out runs', ['healthy', 'outer', 'inner', 'ball'])
     """
     if ax is None:
         from matplotlib.figure import Figure
@@ -108,6 +117,26 @@ def write_report(result: BenchmarkResult, out_dir, *, title: str = "Classifier b
     -------
     dict of str to pathlib.Path
         ``"markdown"``, ``"csv"``, ``"predictions"`` and ``"confusion_<split>"`` per split.
+
+    Examples
+    --------
+    Six simulated runs (three faults, three healthy), scored with runs held out:
+
+    >>> import tempfile
+    >>> import numpy as np, pandas as pd
+    >>> import ballpass as bp
+    >>> from ballpass.diagnose import run_benchmark, write_report
+    >>> faults = ["outer", "inner", "outer", "inner", None, None]
+    >>> scenes = [bp.Scene("6205", rpm=1797, fs=12_000, duration_s=1.0, resonance_hz=3_000,
+    ...                    fault=bp.Fault(f) if f else None, noise_rms=0.5, seed=i)
+    ...           for i, f in enumerate(faults)]
+    >>> X = np.stack([bp.simulate(s, model="impulse").accel for s in scenes])
+    >>> meta = pd.DataFrame({"label": [f or "healthy" for f in faults], "group": range(6),
+    ...                      "rpm": 1797.0, "bearing": "6205", "fs": 12_000.0})
+    >>> result = run_benchmark(X, meta, splits=["run"], models=["envelope"], n_splits=2)
+    >>> paths = write_report(result, tempfile.mkdtemp())
+    >>> sorted(paths), paths["markdown"].name
+    (['confusion_run', 'csv', 'markdown', 'predictions'], 'results.md')
     """
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)

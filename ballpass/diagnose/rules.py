@@ -100,6 +100,26 @@ class Explanation:
         fault only when they rival its carriers), ``shared`` (left out: another family
         explains it), ``nominal_hz``, ``found_hz``, ``level_db`` (above background)
         and ``decisive`` (True for the lines of the predicted family).
+
+    Examples
+    --------
+    An inner-race fault, impacts at BPFI modulated by the shaft:
+
+    >>> import numpy as np
+    >>> import ballpass as bp
+    >>> fs, rpm = 12_000.0, 1797.0
+    >>> bpfi = bp.Bearing.catalog("6205").frequencies(rpm / 60).bpfi
+    >>> t = np.arange(24_000) / fs
+    >>> phase = (t * bpfi) % 1.0 / bpfi                       # time since the last impact, s
+    >>> zone = 1 + np.cos(2 * np.pi * rpm / 60 * t)           # load-zone modulation
+    >>> x = zone * np.exp(-800 * phase) * np.sin(2 * np.pi * 3000 * phase)
+    >>> x = x + 0.2 * np.random.default_rng(0).standard_normal(t.size)
+    >>> diag = bp.diagnose.EnvelopeDiagnoser(bearing="6205", fs=fs, rpm=rpm)
+    >>> why = diag.explain(x[None])[0]
+    >>> why.label, why.grade, why.band_hz["inner"]
+    ('inner', 'Y', (2000.0, 4000.0))
+    >>> why.lines.loc[why.lines.decisive, "line"].tolist()[:3]
+    ['1xBPFI', '1xBPFI-fr', '1xBPFI+fr']
     """
 
     label: str
@@ -440,6 +460,24 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
         -------
         list of Explanation
             One per signal; ``print`` one for a summary.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import ballpass as bp
+        >>> fs, rpm = 12_000.0, 1797.0
+        >>> bpfi = bp.Bearing.catalog("6205").frequencies(rpm / 60).bpfi
+        >>> t = np.arange(24_000) / fs
+        >>> phase = (t * bpfi) % 1.0 / bpfi                       # time since the last impact, s
+        >>> zone = 1 + np.cos(2 * np.pi * rpm / 60 * t)           # load-zone modulation
+        >>> x = zone * np.exp(-800 * phase) * np.sin(2 * np.pi * 3000 * phase)
+        >>> x = x + 0.2 * np.random.default_rng(0).standard_normal(t.size)
+        >>> diag = bp.diagnose.EnvelopeDiagnoser(bearing="6205", fs=fs, rpm=rpm)
+        >>> why = diag.explain(x[None])[0]
+        >>> why.label, why.grade, bool(why.evidence_db["inner"] > why.threshold_db["inner"])
+        ('inner', 'Y', True)
+        >>> print(why)                                            # doctest: +ELLIPSIS
+        inner (grade Y) at 1797 rpm; evidence (threshold): outer ... inner 16.9 dB (6.0), ...
         """
         import pandas as pd
 

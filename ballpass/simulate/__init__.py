@@ -93,8 +93,11 @@ def scene_needs(scene: Scene, *, return_forces: bool = False) -> frozenset:
     """The phenomena a scene asks a model to represent.
 
     Derived from the scene's fields (a speed ramp needs ``varying_speed``, waviness
-    ``waviness``, gears ``gear_mesh``) plus ``Scene(needs=...)`` for what the fields
-    cannot say; a scene that states no needs asks for ``envelope`` and
+    ``waviness``, gears ``gear_mesh``, ``clearance_um`` ``mounted_clearance``, extra
+    ``resonances`` ``structural_modes``, a pit fault ``pit_faults``, a fault with
+    ``engagement < 1`` ``intermittent_faults``: a model that ignores a field the scene
+    sets would silently drop it) plus ``Scene(needs=...)`` for what the fields cannot
+    say; a scene that states no needs asks for ``envelope`` and
     ``contact_dynamics``. ``return_forces=True`` adds ``contact_forces``.
 
     Parameters
@@ -115,6 +118,9 @@ def scene_needs(scene: Scene, *, return_forces: bool = False) -> frozenset:
     >>> sorted(bp.simulate.scene_needs(bp.Scene(bearing="6205", rpm=(600, 1800),
     ...                                         needs=("envelope",))))
     ['envelope', 'varying_speed']
+    >>> sorted(bp.simulate.scene_needs(bp.Scene(bearing="6205", clearance_um=-3.0,
+    ...                                         needs=("envelope",))))
+    ['envelope', 'mounted_clearance']
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a ballpass.Scene, got {type(scene).__name__}")
@@ -125,6 +131,14 @@ def scene_needs(scene: Scene, *, return_forces: bool = False) -> frozenset:
         needs.add("waviness")
     if getattr(scene, "gears", None) is not None:
         needs.add("gear_mesh")
+    if scene.clearance_um is not None:
+        needs.add("mounted_clearance")
+    if scene.resonances:
+        needs.add("structural_modes")
+    if any(f.geometry == "pit" for f in scene.faults):
+        needs.add("pit_faults")
+    if any(f.engagement < 1.0 for f in scene.faults):
+        needs.add("intermittent_faults")
     if return_forces:
         needs.add("contact_forces")
     return frozenset(needs)

@@ -43,6 +43,13 @@ class Model:
         ``run(scene, solver, *, dt, rtol, atol, params, return_forces, oversample)``
         -> :class:`~ballpass.simulate.SimulationResult`; ``solver`` is resolved (never
         ``"auto"``) and every argument has been validated.
+
+    Examples
+    --------
+    >>> from ballpass.simulate import MODELS
+    >>> m = MODELS["impulse"]
+    >>> m.name, m.default_solver, sorted(m.represents)
+    ('impulse', 'analytic', ['envelope', 'varying_speed'])
     """
 
     name: str
@@ -70,7 +77,16 @@ class Model:
         return self.solvers[0]
 
     def covers(self, needs: frozenset) -> bool:
-        """Whether the model represents every phenomenon in ``needs``."""
+        """Whether the model represents every phenomenon in ``needs``.
+
+        Examples
+        --------
+        >>> from ballpass.simulate import MODELS
+        >>> MODELS["sr5"].covers(frozenset({"envelope"}))
+        True
+        >>> MODELS["impulse"].covers(frozenset({"contact_forces"}))
+        False
+        """
         return needs <= self.represents
 
     def __repr__(self) -> str:

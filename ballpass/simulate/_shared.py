@@ -22,7 +22,16 @@ OVERSAMPLE = 4
 
 
 class SimulationUnstableError(RuntimeError):
-    """The integration diverged (non-finite or unbounded state) or could not proceed."""
+    """The integration diverged (non-finite or unbounded state) or could not proceed.
+
+    Examples
+    --------
+    Raised instead of returning non-finite samples; catch it to skip a scene of a sweep:
+
+    >>> from ballpass.simulate import SimulationUnstableError
+    >>> issubclass(SimulationUnstableError, RuntimeError)
+    True
+    """
 
 
 def check_solver_args(model: str, solver: str, solvers: tuple[str, ...], fixed_step: tuple,

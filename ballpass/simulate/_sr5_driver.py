@@ -70,6 +70,19 @@ def build(scene: Scene, model: str = "sr5", params: SR5Parameters | None = None
     Returns
     -------
     BearingModel
+
+    Examples
+    --------
+    The bound model starts at the static equilibrium, where the right-hand side vanishes:
+
+    >>> import numpy as np
+    >>> import ballpass as bp
+    >>> from ballpass.simulate import build
+    >>> bm = build(bp.Scene("6205", rpm=1797, duration_s=0.01))
+    >>> bm.n_state, bm.n_res                # shaft, pedestal, resonator: positions, velocities
+    (10, 1)
+    >>> bool(np.abs(bm.rhs(0.0, bm.y0)).max() < 1e-9)          # m/s^2 against g = 9.81
+    True
     """
     if model not in ("auto", "sr5", "sr4"):
         raise ValueError(f"build binds the sr5/sr4 kernels: model must be 'sr5' or 'sr4', "
@@ -210,6 +223,17 @@ def integrate(bm: BearingModel, solver: str, *, h_out: float, n_out: int,
     Returns
     -------
     RawIntegration
+
+    Examples
+    --------
+    >>> import ballpass as bp
+    >>> from ballpass.simulate import build, integrate
+    >>> bm = build(bp.Scene("6205", rpm=1797, fault=bp.Fault("outer"), duration_s=0.01))
+    >>> raw = integrate(bm, "rk4", h_out=1 / 48_000, n_out=480)
+    >>> raw.output.shape, raw.info["solver"]
+    ((480, 1), 'rk4')
+    >>> raw.crossings.edge[:2].tolist()            # the first ball reaching the fault
+    ['ramp_start', 'exit']
     """
     scene = bm.scene
     check_solver_args("sr5", solver, SOLVERS, ("rk4",), dt, rtol, atol, OVERSAMPLE)
@@ -401,12 +425,19 @@ _REFERENCE = ("N. Sawalhi, R. B. Randall, 'Simulating gear and bearing interacti
               "presence of faults: Part I', MSSP 22 (2008) 1924-1951 (equations as printed in "
               "seed 004, with the sprung mass restored; see ballpass.simulate.sr5)")
 
+#: the scene options the sr5 kernels and driver honour (``Scene.clearance_um`` and
+#: ``resonances``, pit faults, intermittent ball defects); sr4 has no resonator to add
+#: modes to
+SR5_SCENE_OPTIONS = frozenset({"mounted_clearance", "structural_modes", "pit_faults",
+                               "intermittent_faults"})
+
 #: the 5-DOF model with the high-frequency resonator per sensor
 SR5 = Model(
     name="sr5",
     description="Sawalhi-Randall 5-DOF: shaft, pedestal and a high-frequency resonator per "
                 "sensor; Hertz contacts, clearance, slip, localized faults",
-    represents=DEFAULT_NEEDS | {"contact_forces", "varying_speed", "waviness"},
+    represents=DEFAULT_NEEDS | {"contact_forces", "varying_speed", "waviness",
+                                *SR5_SCENE_OPTIONS},
     relative_cost=1.0,
     solvers=tuple(SOLVERS),
     fixed_step_solvers=("rk4",),
@@ -421,7 +452,8 @@ SR4 = Model(
     name="sr4",
     description="Sawalhi-Randall 4-DOF: shaft and pedestal, sensors read the housing "
                 "acceleration (no resonator)",
-    represents=frozenset({"contact_dynamics", "contact_forces", "varying_speed", "waviness"}),
+    represents=frozenset({"contact_dynamics", "contact_forces", "varying_speed", "waviness",
+                          *(SR5_SCENE_OPTIONS - {"structural_modes"})}),
     # measured by benchmarks/models_cost.py (docs/models_cost.md: 2.7 at 48 kHz, 1.5 at
     # 12 kHz, median of interleaved rounds): the same steps as sr5, but its output, the
     # housing acceleration, is evaluated from the contact forces at every internal

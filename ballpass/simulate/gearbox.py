@@ -71,7 +71,7 @@ from . import _gear_kernels as G
 from . import _kernels as K
 from ._registry import Model
 from ._shared import OVERSAMPLE, SimulationUnstableError, add_noise, check_finite, to_output_rate
-from ._sr5_driver import DT_DEFAULT_OMEGA, SR5, _edge_names, _events
+from ._sr5_driver import DT_DEFAULT_OMEGA, SR5, _edge_names, _events, add_modes
 from .result import FaultCrossings, GroundTruth, SimulationResult
 from .sr5 import BearingModel, SR5Parameters, build_model
 
@@ -287,6 +287,7 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None,
             f"gearbox simulation (rk4, dt = {step:.3g} s) diverged at t = {t_fail:.6g} s: the "
             f"state became non-finite or unbounded. Try a smaller dt. Scene: {scene!r}")
     sensor = _resonator(out, h_out, 2.0 * math.pi * scene.resonance_hz, scene.resonance_damping)
+    sensor = add_modes(scene, sensor, 1.0 / h_out)
     accel = add_noise(scene, to_output_rate(sensor, n_samples, oversample))
     check_finite(scene, accel, "gearbox")
 
@@ -342,6 +343,8 @@ GEARBOX = Model(
     description="gear pair (pinion on the bearing's shaft, gear on an elastic shaft; "
                 "torsional and lateral DOF, time-varying mesh stiffness, transmission "
                 "error, tooth faults) coupled to the sr5 bearing-pedestal model",
+    # the bearing is sr5's (clearance, pits, intermittent defects through its fault
+    # table) and the further structural modes follow its resonator as in sr5
     represents=SR5.represents | {"gear_mesh"},
     # side by side with sr5 on the same 6208 scene without gears (1 s at 48 kHz, inner
     # fault, seed 004 helical pair): 16x after sr5's mass change (10x before, and 3x with

@@ -93,6 +93,61 @@ class GroundTruth:
     outer_contact_forces: np.ndarray | None = None
     gear: object | None = None
 
+    def outer_fault_load_fraction(self, bearing) -> tuple[float, ...]:
+        """How hard the loaded balls strike each outer-race fault: the largest contact
+        load any element carries while over the fault, over the steady load of the most
+        loaded element (the median over the run of the largest element load, which
+        leaves out the impact spikes a fault itself causes), clipped to 1.
+
+        A fault outside the load zone (12 o'clock under a radial load, 3 o'clock at
+        zero clearance) is never struck by a loaded element: 0 means the signal carries
+        nothing of the fault, whatever the label says. Training sets meant for real
+        machines can drop or relabel such runs (``benchmarks/sim2real.py --silent``).
+
+        Parameters
+        ----------
+        bearing : Bearing
+            The scene's bearing (for the fault's angular width on the outer raceway,
+            radius (d_p + d) / 2).
+
+        Returns
+        -------
+        tuple of float
+            One value in [0, 1] per fault of :attr:`faults`; NaN for inner-race and ball
+            faults (they pass through the load zone every revolution).
+
+        Raises
+        ------
+        ValueError
+            The result was simulated without ``return_forces=True``.
+
+        Examples
+        --------
+        >>> import ballpass as bp
+        >>> def fraction(angle_deg):
+        ...     scene = bp.Scene("6205", rpm=1797, duration_s=0.2, fs=12_000,
+        ...                      resonance_hz=3_000, fault=bp.Fault("outer", angle_deg=angle_deg))
+        ...     res = bp.simulate(scene, model="sr5", return_forces=True)
+        ...     return res.truth.outer_fault_load_fraction(scene.bearing)[0]
+        >>> fraction(0.0) > 0.8, fraction(180.0)      # 6 o'clock struck, 12 o'clock silent
+        (True, 0.0)
+        """
+        if self.contact_forces is None or self.element_angles is None:
+            raise ValueError("outer_fault_load_fraction needs the contact forces: simulate "
+                             "with return_forces=True")
+        steady = float(np.median(self.contact_forces.max(axis=0)))
+        out = []
+        for fault in self.faults:
+            if fault.kind != "outer":
+                out.append(float("nan"))
+                continue
+            half = fault.width_mm / (bearing.pitch_diameter_mm + bearing.element_diameter_mm)
+            offset = np.angle(np.exp(1j * (self.element_angles - np.deg2rad(fault.angle_deg))))
+            over = np.abs(offset) <= half
+            struck = float(self.contact_forces[over].max()) if over.any() else 0.0
+            out.append(min(1.0, struck / steady) if steady > 0.0 else 0.0)
+        return tuple(out)
+
     @classmethod
     def of_scene(cls, scene: Scene, t: np.ndarray, crossings: FaultCrossings,
                  **outputs) -> GroundTruth:
@@ -133,6 +188,17 @@ class SimulationResult:
         ``n_events``. sr5/sr4 also report ``compile_time_s``: the time the first call in a
         process spent compiling (or loading from numba's cache) the integrator, s, 0.0
         afterwards; ``wall_time_s`` and ``integration_time_s`` leave it out.
+
+    Examples
+    --------
+    >>> import ballpass as bp
+    >>> scene = bp.Scene("6205", rpm=1797, fault=bp.Fault("outer"), duration_s=0.1,
+    ...                  fs=48_000, sensors=("loaded", "unloaded"), seed=0)
+    >>> res = bp.simulate(scene, model="impulse")
+    >>> res.accel.shape, res.fs, res.sensor_names
+    ((2, 4800), 48000.0, ('loaded', 'unloaded'))
+    >>> res.info["model"]
+    'impulse'
     """
 
     accel: np.ndarray
@@ -144,7 +210,16 @@ class SimulationResult:
     info: dict = field(default_factory=dict)
 
     def channel(self, name: str) -> np.ndarray:
-        """The signal of one sensor by name, (n_samples,), m/s^2."""
+        """The signal of one sensor by name, (n_samples,), m/s^2.
+
+        Examples
+        --------
+        >>> import ballpass as bp
+        >>> scene = bp.Scene("6205", rpm=1797, duration_s=0.1, sensors=("loaded", "unloaded"))
+        >>> res = bp.simulate(scene, model="impulse")
+        >>> res.channel("unloaded").shape
+        (4800,)
+        """
         if name not in self.sensor_names:
             raise ValueError(f"sensor must be one of {self.sensor_names}, got {name!r}")
         data = np.atleast_2d(self.accel)

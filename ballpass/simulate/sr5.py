@@ -97,6 +97,17 @@ class SR5Parameters:
         ``"free"``: at the unloaded position, as in Sawalhi & Randall 2008, so k_s
         carries part of the static load (for a 6205 at 500 N about a third, see
         docs/sim2real.md) and the load zone shrinks.
+
+    Examples
+    --------
+    >>> import ballpass as bp
+    >>> from ballpass.simulate import SR5Parameters
+    >>> heavy = SR5Parameters(shaft_mass=6.0)
+    >>> heavy.shaft_mass, SR5Parameters().pedestal_stiffness
+    (6.0, 15100000.0)
+    >>> scene = bp.Scene("6205", rpm=1797, fault=bp.Fault("inner"), duration_s=0.05)
+    >>> bp.simulate(scene, params=heavy).accel.shape
+    (2400,)
     """
 
     shaft_mass: float = 3.26
@@ -149,6 +160,14 @@ class BearingModel:
         Angular offsets (rad) marking fault edges and ramp ends.
     static_deflection : float
         Largest contact deflection at the static equilibrium, m.
+
+    Examples
+    --------
+    >>> import ballpass as bp
+    >>> from ballpass.simulate import build
+    >>> bm = build(bp.Scene("6205", rpm=1797, duration_s=0.01), model="sr4")
+    >>> bm.n_res, bm.n_state, bm.psi0.shape     # no resonator; 9 balls
+    (0, 8, (9,))
     """
 
     scene: Scene
@@ -176,14 +195,36 @@ class BearingModel:
 
     def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
         """dy/dt of the full state (all resonators included) at (t, y): the compiled
-        right-hand side, callable from Python (e.g. by ``scipy.integrate.solve_ivp``)."""
+        right-hand side, callable from Python (e.g. by ``scipy.integrate.solve_ivp``).
+
+        Examples
+        --------
+        Integrate the compiled model with scipy (slower, for cross-checks):
+
+        >>> import ballpass as bp
+        >>> from scipy.integrate import solve_ivp
+        >>> from ballpass.simulate import build
+        >>> bm = build(bp.Scene("6205", rpm=1797, fault=bp.Fault("outer"), duration_s=0.002))
+        >>> sol = solve_ivp(bm.rhs, (0.0, 0.002), bm.y0, rtol=1e-8, atol=1e-12 * bm.scale)
+        >>> sol.status, sol.y.shape[0]
+        (0, 10)
+        """
         dydt = np.empty(self.n_state)
         K.rhs(float(t), np.ascontiguousarray(y, dtype=np.float64), dydt, *self.model,
               self.n_res, self._kin, self._buf, self._acc)
         return dydt
 
     def sensor_output(self, t: float, y: np.ndarray) -> np.ndarray:
-        """Sensor accelerations (m/s^2) at full state y, before AC coupling."""
+        """Sensor accelerations (m/s^2) at full state y, before AC coupling.
+
+        Examples
+        --------
+        >>> import ballpass as bp
+        >>> from ballpass.simulate import build
+        >>> bm = build(bp.Scene("6205", rpm=1797, duration_s=0.01, sensors=("loaded", "unloaded")))
+        >>> bm.sensor_output(0.0, bm.y0).shape          # one value per sensor, m/s^2
+        (2,)
+        """
         K.sensor_output(float(t), np.ascontiguousarray(y, dtype=np.float64), *self.model,
                         self.n_res, self._kin, self._acc)
         return self._acc[0].copy()

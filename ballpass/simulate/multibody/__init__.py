@@ -189,6 +189,19 @@ class MultibodyParameters:
         ER-16K at 110 N) would set an explicit step of 0.35 us.
     settle_s : float
         Time simulated before t = 0 from the quasi-static start, s. Default 0.005.
+
+    Examples
+    --------
+    Frictionless contacts in a full film, passed to ``simulate(..., params=...)``:
+
+    >>> from ballpass.simulate import MultibodyParameters
+    >>> p = MultibodyParameters(traction=False, film_parameter=2.0)
+    >>> p.traction, p.film_parameter, p.housing_stiffness      # -, -, N/m
+    (False, 2.0, 40000000000.0)
+    >>> MultibodyParameters(shaft_mass=-1)
+    Traceback (most recent call last):
+        ...
+    ValueError: shaft_mass must be a finite number > 0, got -1.0
     """
 
     shaft_mass: float = 1.0
