@@ -821,8 +821,8 @@ MULTIBODY = Model(
                 "traction, centrifugal load, friction torques, notch profiles",
     represents=frozenset({"ball_dynamics", "contact_dynamics", "contact_forces", "envelope",
                           "varying_speed"}),
-    # benchmarks/models_cost.py (docs/models_cost.md): 89-106x sr5 per simulated second
-    # on the 6205 reference scene at 48 kHz, side by side, in two runs on the loaded
+    # benchmarks/models_cost.py (docs/models_cost.md): 81-106x sr5 per simulated second
+    # on the 6205 reference scene at 48 kHz, side by side, in three runs on the loaded
     # shared machine (225x before the trig-free contact tests and the step from the
     # linearised spectrum, benchmarks/results/multibody_speed.md)
     relative_cost=90.0,
