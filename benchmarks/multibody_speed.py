@@ -9,7 +9,8 @@ seed 000's operating point (ER-16K, 35 Hz, 110 N) with a 1.0 x 0.5 mm outer-race
   multibody (default step) and sr5 (default rk4), without ``return_forces`` as in
   benchmarks/models_cost.py, interleaved in one run, ``--repeats``
   times each after a warm-up call (compilation not timed); medians with min-max spread
-  and the ratio of the medians.
+  and the ratio of the medians (1 s runs by default, as models_cost: at 0.2 s sr5's fixed
+  cost per call, ~25 ms, dominates and the ratio falls to 20-30).
 * Spectrum: eigenvalues of the Jacobian (central differences of the right-hand side)
   at the settled state of each scene, against the estimates ``omega_max`` (fastest
   oscillation) and ``lambda_max`` (stiffest real root) that set the default step, and
@@ -26,7 +27,7 @@ seed 000's operating point (ER-16K, 35 Hz, 110 N) with a 1.0 x 0.5 mm outer-race
 
 Writes ``benchmarks/results/multibody_speed.md`` and ``docs/multibody_work_precision.png``.
 
-    python benchmarks/multibody_speed.py               # 0.2 s scenes, 5 repeats
+    python benchmarks/multibody_speed.py               # 1 s scenes, 5 repeats
     python benchmarks/multibody_speed.py --repeats 2   # a quick run
 """
 
@@ -165,7 +166,7 @@ def work_precision(duration_s):
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeats", type=int, default=5)
-    ap.add_argument("--duration", type=float, default=0.2, help="simulated s per timed run")
+    ap.add_argument("--duration", type=float, default=1.0, help="simulated s per timed run")
     ap.add_argument("--wp-duration", type=float, default=0.1,
                     help="simulated s per work-precision run")
     args = ap.parse_args()
