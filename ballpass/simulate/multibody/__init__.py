@@ -61,14 +61,25 @@ of ISO 76) plus a constant seal torque resist the inner race's rotation; T_lub (
 resists the cage's, smoothed as tanh(omega / 1 rad/s) around zero speed.
 
 Integration: classical RK4 with a fixed step (:data:`SOLVERS`), justified by the
-eigenvalues of the linearised system: the fastest oscillation is a ball between its
-two contacts or the housing (tens of kHz); the stiffest real eigenvalue is the traction
-of a loaded ball, d(mu Q)/d(sliding speed) over the ball's reduced mass at the contact
-(~1e6 1/s). The default step keeps omega_max dt <= 0.5 and lambda_max dt <= 1.5, inside
-RK4's stability region with margin (benchmarks/multibody_speed.py measures the
-work-precision). The run starts from the quasi-static equilibrium with the centrifugal
-load and rolling kinematics and settles for ``settle_s`` before t = 0, so the cage
-finds its pockets and its slip before the record begins.
+eigenvalues of the linearised system (benchmarks/multibody_speed.py computes them from
+the Jacobian and measures the work-precision). With Kramer's damping a ball between its
+two contacts is overdamped (zeta = tau omega / 2 ~ 1.4 for the 6205 at 500 N): its fast
+root, at most tau omega^2 ~ 7e5 1/s, is the stiffest real eigenvalue (lambda_max). The
+fastest oscillation (omega_max, ~60 kHz) is the slip of a loaded ball against the lag of
+its traction, sqrt(d(mu Q)/d(v_s) / m_red * u_r / L), lightly damped by u_r / (2 L).
+The default step keeps lambda_max dt <= 1.8 (RK4 is stable to 2.79 on the real axis;
+the margin covers the stiffening of a contact at twice its static load, k ~ Q^(1/3),
++26 %, and the accuracy of the overdamped root) and omega_max dt <= 1.0 (stable to
+2.83; at 1.0 RK4 damps that 60 kHz mode by 0.6 % per step, above the output band,
+while modes below the 24 kHz Nyquist frequency of a 48 kHz output, omega dt <= 0.3,
+lose less than 1e-5 per step), rounded down to a divisor of the internal grid
+interval: three steps of 1.74 us per 192 kHz interval on the 6205 reference scene.
+Larger steps (two per interval, lambda_max dt = 2.1) stay stable but bias the mean
+contact forces (the centrifugal load of a 35 Hz ER-16K by 2 % at 4.2 us, 0.5 % at
+1.8 us); benchmarks/multibody_speed.py shows the work-precision. The run starts from
+the quasi-static equilibrium with the centrifugal load and rolling kinematics and
+settles for ``settle_s`` before t = 0, so the cage finds its pockets and its slip
+before the record begins.
 
 Outputs: each sensor reads the housing acceleration (housing spring and damper plus
 every outer contact force weighted by its transmission factor, as in sr5) through the
@@ -103,13 +114,14 @@ __all__ = ["MULTIBODY", "MultibodyParameters", "MultibodySystem", "build", "inte
            "SOLVERS", "mu_traction", "static_equilibrium"]
 
 SOLVERS = {
-    "rk4": "classical Runge-Kutta, fixed step (default: omega_max dt = 0.5 and "
-           "lambda_max dt = 1.5 from the linearised contact and traction dynamics)",
+    "rk4": "classical Runge-Kutta, fixed step (default: omega_max dt = 1.0 and "
+           "lambda_max dt = 1.8 from the linearised contact and traction dynamics)",
 }
 
-#: default step limits: omega_max dt (oscillatory, RK4 stable to 2.83) and
-#: lambda_max dt (real, traction; RK4 stable to 2.79); see benchmarks/multibody_speed.py
-OMEGA_DT, LAMBDA_DT = 0.5, 1.5
+#: default step limits: omega_max dt (the traction-slip oscillation, RK4 stable to 2.83)
+#: and lambda_max dt (the overdamped contact's fast root, RK4 stable to 2.79); see the
+#: module docstring and benchmarks/multibody_speed.py
+OMEGA_DT, LAMBDA_DT = 1.0, 1.8
 
 
 @dataclass(frozen=True)
@@ -499,8 +511,12 @@ def _fault_table(scene: Scene, rb: float, ri: float, ro: float, psi0: np.ndarray
             # spin phase at t = 0, 0 = facing the outer race (Fault.angle_deg)
             kind = K.KIND_BALL
             centre = psi0[f.element] + math.radians(f.angle_deg) - thb0
-        row[[K.F_KIND, K.F_CENTRE, K.F_HALF, K.F_DEPTH, K.F_ELEM, K.F_REFF_I, K.F_REFF_O]] = (
-            kind, centre, 0.5 * f.width_mm * 1e-3, f.depth_mm * 1e-3, f.element, r_in, r_out)
+        half = 0.5 * f.width_mm * 1e-3
+        surface = {K.KIND_OUTER: ro, K.KIND_INNER: ri, K.KIND_BALL: rb}[kind]
+        row[[K.F_KIND, K.F_CENTRE, K.F_HALF, K.F_DEPTH, K.F_ELEM, K.F_REFF_I, K.F_REFF_O,
+             K.F_COS, K.F_SIN, K.F_COSHALF]] = (
+            kind, centre, half, f.depth_mm * 1e-3, f.element, r_in, r_out, math.cos(centre),
+            math.sin(centre), math.cos(min(half / surface + 1e-9, math.pi)))
         rows.append(row)
     return np.array(rows, dtype=np.float64).reshape(-1, K.N_FCOLS)
 
@@ -562,6 +578,9 @@ def build(scene: Scene, params: MultibodyParameters | None = None) -> MultibodyS
     p[K.P_KPOCK] = prm.pocket_stiffness
     p[K.P_CPOCK] = prm.pocket_damping
     p[K.P_EPOCK] = prm.pocket_clearance
+    play = prm.pocket_clearance / rp
+    p[K.P_PITCH_COS], p[K.P_PITCH_SIN] = math.cos(2.0 * math.pi / z), math.sin(2.0 * math.pi / z)
+    p[K.P_POCK_SIN2] = math.sin(play) ** 2 * (1.0 - 1e-9) if play < 0.5 * math.pi else -1.0
     p[K.P_KH] = prm.housing_stiffness
     p[K.P_CH] = prm.damping_time * prm.housing_stiffness
     p[K.P_FR] = scene.radial_load_n
@@ -802,10 +821,11 @@ MULTIBODY = Model(
                 "traction, centrifugal load, friction torques, notch profiles",
     represents=frozenset({"ball_dynamics", "contact_dynamics", "contact_forces", "envelope",
                           "varying_speed"}),
-    # benchmarks/models_cost.py (docs/models_cost.md): 225x sr5 per simulated second on
-    # the 6205 reference scene at 48 kHz, side by side; 21-22x on ER-16K at 35 Hz
-    # (benchmarks/multibody_speed.py, before sr5's mass change made sr5 faster)
-    relative_cost=225.0,
+    # benchmarks/models_cost.py (docs/models_cost.md): 81-106x sr5 per simulated second
+    # on the 6205 reference scene at 48 kHz, side by side, in three runs on the loaded
+    # shared machine (225x before the trig-free contact tests and the step from the
+    # linearised spectrum, benchmarks/results/multibody_speed.md)
+    relative_cost=90.0,
     solvers=tuple(SOLVERS),
     fixed_step_solvers=("rk4",),
     reference="M. Nakhaeinejad, M. D. Bryant, 'Dynamic modeling of rolling element bearings "

@@ -27,14 +27,23 @@ from numba import njit
 # parameter vector p
 (P_Z, P_RB, P_RI, P_RO, P_KI, P_KO, P_TAU, P_MI, P_JI, P_MO, P_MB, P_JB, P_JC, P_RP,
  P_KPOCK, P_CPOCK, P_EPOCK, P_KH, P_CH, P_FR, P_G, P_W0, P_W1, P_T, P_KD, P_CD, P_TLOAD,
- P_NU, P_F0, P_DPMM, P_WBD, P_HD, P_TRACTION, P_UFLOOR, P_WEPS, P_LUB, P_RELAX) = range(37)
-N_PARAMS = 37
+ P_NU, P_F0, P_DPMM, P_WBD, P_HD, P_TRACTION, P_UFLOOR, P_WEPS, P_LUB, P_RELAX,
+ P_POCK_SIN2, P_PITCH_COS, P_PITCH_SIN) = range(40)
+N_PARAMS = 40
+# P_POCK_SIN2: sin^2 of the pocket play's half angle (pocket_clearance / r_p), shrunk by
+# 1e-9 against rounding (-1 when the play exceeds 90 deg): below it a ball cannot touch
+# its pocket, which spares the angle of every free ball; P_PITCH_COS, P_PITCH_SIN: cos and
+# sin of the pocket pitch 2 pi / Z
 
 # fault table columns: kind, centre in the body frame (rad), half width (m), depth (m),
 # ball index (ball faults), effective radius of the pair at the inner and the outer
-# contact (m; the notch profile follows the mating surface's relative curvature)
-F_KIND, F_CENTRE, F_HALF, F_DEPTH, F_ELEM, F_REFF_I, F_REFF_O = 0, 1, 2, 3, 4, 5, 6
-N_FCOLS = 7
+# contact (m; the notch profile follows the mating surface's relative curvature), the
+# centre's direction in the body frame (cos, sin) and the cosine of the notch's half
+# angle on its surface widened by 1e-9 rad (a contact point whose direction has a
+# smaller cosine cannot be on the notch)
+(F_KIND, F_CENTRE, F_HALF, F_DEPTH, F_ELEM, F_REFF_I, F_REFF_O, F_COS, F_SIN,
+ F_COSHALF) = range(10)
+N_FCOLS = 10
 KIND_OUTER, KIND_INNER, KIND_BALL = 0, 1, 2
 
 # sensor table columns: cos and sin of the sensor angle, transmission attenuation kappa
@@ -86,17 +95,23 @@ def theta_ref(t, p):
 
 
 @njit(cache=True, error_model="numpy")
-def _race_drop(faults, kind, ang, radius, j, which):
-    """Largest notch drop at a contact whose point sits at body-frame angle ``ang`` (rad)
-    on a race of ``kind`` (radius m), or on ball j's surface (kind ball, ``which`` 0 =
-    outer contact, 1 = inner); also flags (bit per fault) which faults hold the contact."""
+def _race_drop(faults, kind, bx, by, radius, j, which):
+    """Largest notch drop at a contact whose point sits in direction (bx, by) (unit
+    vector, body frame) on a race of ``kind`` (radius m), or on ball j's surface (kind
+    ball, ``which`` 0 = outer contact, 1 = inner); also flags (bit per fault) which
+    faults hold the contact. A point whose direction is further from a notch's centre
+    than its half angle is skipped before the arc offset (an atan2) is computed."""
     drop = 0.0
     flags = 0
     for f in range(faults.shape[0]):
         k = int(faults[f, F_KIND])
         if k != kind or (k == KIND_BALL and int(faults[f, F_ELEM]) != j):
             continue
-        x = radius * wrap_pi(ang - faults[f, F_CENTRE])
+        c, s = faults[f, F_COS], faults[f, F_SIN]
+        dot = bx * c + by * s
+        if dot <= faults[f, F_COSHALF]:
+            continue
+        x = radius * math.atan2(by * c - bx * s, dot)
         half = faults[f, F_HALF]
         if abs(x) < half:
             flags |= 1 << f
@@ -105,6 +120,15 @@ def _race_drop(faults, kind, ang, radius, j, which):
             if d > drop:
                 drop = d
     return drop, flags
+
+
+@njit(cache=True, error_model="numpy")
+def _has_ball_fault(faults, j):
+    """Whether ball j carries a fault."""
+    for f in range(faults.shape[0]):
+        if int(faults[f, F_KIND]) == KIND_BALL and int(faults[f, F_ELEM]) == j:
+            return True
+    return False
 
 
 @njit(cache=True, error_model="numpy")
@@ -138,7 +162,8 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
     traction = p[P_TRACTION] != 0.0
     w_bd, hd, ufloor, weps = p[P_WBD], p[P_HD], p[P_UFLOOR], p[P_WEPS]
     has_faults = faults.shape[0] > 0
-    relax = p[P_RELAX]
+    inv_relax = 1.0 / p[P_RELAX]
+    inv_mb = 1.0 / mb
 
     xi, yi, thi = y[0], y[1], y[2]
     xo, yo, thc = y[3], y[4], y[5]
@@ -168,7 +193,11 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
         for s in range(sensors.shape[0]):
             exc[s] = (fxo_h * sensors[s, S_COS] + fyo_h * sensors[s, S_SIN]) / p[P_MO]
 
-    pitch = TWO_PI / z
+    # inner race rotation (for its notches), the pocket of ball 0 and the pitch step
+    ci = math.cos(thi) if has_faults else 1.0
+    si = math.sin(thi) if has_faults else 0.0
+    uc, us = math.cos(thc), math.sin(thc)
+    pc, ps = p[P_PITCH_COS], p[P_PITCH_SIN]
     for j in range(z):
         b = 6 + 3 * j
         xb, yb, thb = y[b], y[b + 1], y[b + 2]
@@ -176,27 +205,35 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
         fxb = mb * g
         fyb = 0.0
         tb = 0.0
+        cb, sb = 1.0, 0.0
+        ball_fault = has_faults and _has_ball_fault(faults, j)
+        if ball_fault:
+            cb, sb = math.cos(thb), math.sin(thb)
         # ---- inner contact
         dx = xb - xi
         dy = yb - yi
         dist = math.sqrt(dx * dx + dy * dy)
-        nx = dx / dist
-        ny = dy / dist
+        inv_dist = 1.0 / dist
+        nx = dx * inv_dist
+        ny = dy * inv_dist
         drop = 0.0
         fl_i = 0
         if has_faults:
-            ang = math.atan2(ny, nx)
-            d1, f1 = _race_drop(faults, KIND_INNER, ang - thi, ri, j, 1)
-            d2, f2 = _race_drop(faults, KIND_BALL, ang + math.pi - thb, rb, j, 1)
-            drop = d1 if d1 > d2 else d2
-            fl_i = f1 | f2
+            # the contact point: direction n in the inner race, -n on the ball
+            drop, fl_i = _race_drop(faults, KIND_INNER, nx * ci + ny * si, ny * ci - nx * si,
+                                    ri, j, 1)
+            if ball_fault:
+                d2, f2 = _race_drop(faults, KIND_BALL, -(nx * cb + ny * sb),
+                                    -(ny * cb - nx * sb), rb, j, 1)
+                drop = drop if drop > d2 else d2
+                fl_i |= f2
         delta = rb + ri - dist - drop
         rvx = vxb - vxi
         rvy = vyb - vyi
         q = _contact_force(ki, tau, delta, -(nx * rvx + ny * rvy))
         qi[j] = q
         if traction and q == 0.0:
-            dydt[2 * nd + j] = -y[2 * nd + j] * 1e3 * ufloor / relax
+            dydt[2 * nd + j] = -y[2 * nd + j] * 1e3 * ufloor * inv_relax
         if q > 0.0:
             fxb += q * nx
             fyb += q * ny
@@ -205,13 +242,13 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
             if traction:
                 vt = -rvx * ny + rvy * nx
                 vs = vt - wb * rb - wi * ri
-                om = vt / dist
+                om = vt * inv_dist
                 ur = 0.5 * (abs((wi - om) * ri) + abs((wb - om) * rb)) + ufloor
                 target = mu_slide_roll(abs(vs) / ur, w_bd, hd) * q
                 if vs > 0.0:
                     target = -target
                 f = y[2 * nd + j]
-                dydt[2 * nd + j] = (target - f) * ur / relax
+                dydt[2 * nd + j] = (target - f) * ur * inv_relax
                 fxb -= f * ny
                 fyb += f * nx
                 fxi += f * ny
@@ -222,23 +259,26 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
         dx = xb - xo
         dy = yb - yo
         dist = math.sqrt(dx * dx + dy * dy)
-        nx = dx / dist
-        ny = dy / dist
+        inv_dist = 1.0 / dist
+        nx = dx * inv_dist
+        ny = dy * inv_dist
         drop = 0.0
         fl_o = 0
         if has_faults:
-            ang = math.atan2(ny, nx)
-            d1, f1 = _race_drop(faults, KIND_OUTER, ang, ro, j, 0)
-            d2, f2 = _race_drop(faults, KIND_BALL, ang - thb, rb, j, 0)
-            drop = d1 if d1 > d2 else d2
-            fl_o = f1 | f2
+            # the contact point: direction n in the (non-rotating) outer race and on the ball
+            drop, fl_o = _race_drop(faults, KIND_OUTER, nx, ny, ro, j, 0)
+            if ball_fault:
+                d2, f2 = _race_drop(faults, KIND_BALL, nx * cb + ny * sb, ny * cb - nx * sb,
+                                    rb, j, 0)
+                drop = drop if drop > d2 else d2
+                fl_o |= f2
         delta = dist + rb - ro - drop
         rvx = vxb - vxo
         rvy = vyb - vyo
         q = _contact_force(ko, tau, delta, nx * rvx + ny * rvy)
         qo[j] = q
         if traction and q == 0.0:
-            dydt[2 * nd + z + j] = -y[2 * nd + z + j] * 1e3 * ufloor / relax
+            dydt[2 * nd + z + j] = -y[2 * nd + z + j] * 1e3 * ufloor * inv_relax
         if q > 0.0:
             fxb -= q * nx
             fyb -= q * ny
@@ -253,13 +293,13 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
             if traction:
                 vt = -rvx * ny + rvy * nx
                 vs = vt + wb * rb
-                om = vt / dist
+                om = vt * inv_dist
                 ur = 0.5 * (abs(om * ro) + abs((wb - om) * rb)) + ufloor
                 target = mu_slide_roll(abs(vs) / ur, w_bd, hd) * q
                 if vs > 0.0:
                     target = -target
                 f = y[2 * nd + z + j]
-                dydt[2 * nd + z + j] = (target - f) * ur / relax
+                dydt[2 * nd + z + j] = (target - f) * ur * inv_relax
                 fxb -= f * ny
                 fyb += f * nx
                 fxo += f * ny
@@ -268,23 +308,29 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
         flags[j, 0] = fl_o
         flags[j, 1] = fl_i
         # ---- cage pocket (tangential, linear spring-damper beyond the pocket clearance)
+        # the ball's angle from its pocket centre (direction (uc, us)), an atan2 only
+        # when the sine test cannot rule out a touch
         r2 = xb * xb + yb * yb
-        r = math.sqrt(r2)
-        off = p[P_RP] * wrap_pi(math.atan2(yb, xb) - thc - pitch * j)
-        if abs(off) > p[P_EPOCK]:
-            sgn = 1.0 if off > 0.0 else -1.0
-            doff = p[P_RP] * ((xb * vyb - yb * vxb) / r2 - wc)
-            fp = p[P_KPOCK] * (abs(off) - p[P_EPOCK]) + p[P_CPOCK] * doff * sgn
-            if fp > 0.0:
-                fs = sgn * fp * p[P_RP] / r
-                fxb += fs * yb / r
-                fyb -= fs * xb / r
-                tc += sgn * fp * p[P_RP]
+        dot = xb * uc + yb * us
+        cr = yb * uc - xb * us
+        if dot <= 0.0 or cr * cr >= p[P_POCK_SIN2] * r2:
+            off = p[P_RP] * math.atan2(cr, dot)
+            if abs(off) > p[P_EPOCK]:
+                r = math.sqrt(r2)
+                sgn = 1.0 if off > 0.0 else -1.0
+                doff = p[P_RP] * ((xb * vyb - yb * vxb) / r2 - wc)
+                fp = p[P_KPOCK] * (abs(off) - p[P_EPOCK]) + p[P_CPOCK] * doff * sgn
+                if fp > 0.0:
+                    fs = sgn * fp * p[P_RP] / r
+                    fxb += fs * yb / r
+                    fyb -= fs * xb / r
+                    tc += sgn * fp * p[P_RP]
+        uc, us = uc * pc - us * ps, uc * ps + us * pc
         dydt[b] = vxb
         dydt[b + 1] = vyb
         dydt[b + 2] = wb
-        dydt[nd + b] = fxb / mb
-        dydt[nd + b + 1] = fyb / mb
+        dydt[nd + b] = fxb * inv_mb
+        dydt[nd + b + 1] = fyb * inv_mb
         dydt[nd + b + 2] = tb / jb
     if not traction:
         for k in range(2 * nd, dydt.shape[0]):
