@@ -792,13 +792,7 @@ def dopri5(y0, p, walk, faults, sensors, n_res, h_out, n_out, ev_before, ev_afte
             y_new[i] = y[i] + h * (B1 * k1[i] + B3 * k3[i] + B4 * k4[i] + B5 * k5[i]
                                    + B6 * k6[i])
         core_forces(y_new, p, kin, k7)
-        err = 0.0
-        for i in range(n):
-            e = h * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i]
-                     + E7 * k7[i])
-            sc = atol[i] + rtol * max(abs(y[i]), abs(y_new[i]))
-            err += (e / sc) ** 2
-        err = math.sqrt(err / n)
+        err = _dopri_error(h, k1, k3, k4, k5, k6, k7, y, y_new, atol, rtol, n)
         if n_res > 0:
             housing_accel(y_new, k7, p, sensors, kin, rate, seg, R_A1, True)
         if regime == 1 and n_res > 0:
@@ -878,6 +872,20 @@ STATUS_REASONS = {
     STATUS_MAX_STEPS: "the step budget was exhausted",
     STATUS_NEWTON: "the Newton iterations did not converge",
 }
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _dopri_error(h, k1, k3, k4, k5, k6, k7, y, y_new, atol, rtol, n):
+    """Hairer's RMS error norm of a DOPRI5 step of size ``h`` over the first ``n``
+    components: the embedded 4th-order difference sum_j E_j k_j, each component scaled
+    by atol_i + rtol max(|y_i|, |y_new_i|)."""
+    err = 0.0
+    for i in range(n):
+        e = h * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i]
+                 + E7 * k7[i])
+        sc = atol[i] + rtol * max(abs(y[i]), abs(y_new[i]))
+        err += (e / sc) ** 2
+    return math.sqrt(err / n)
 
 
 @njit(cache=True, error_model="numpy")
@@ -1168,13 +1176,7 @@ def _dopri5_second_order(p, minv, y0, h_out, n_out, rtol, atol, h_max, max_steps
                                     + B6 * k6[i])
         t_new = t_next if lands else t + h_try
         _second_order_rhs(t_new, y5, p, minv, f, kx, kv, k7)
-        err = 0.0
-        for i in range(m):
-            e = h_try * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i]
-                         + E7 * k7[i])
-            sc = atol[i] + rtol * max(abs(y[i]), abs(y5[i]))
-            err += (e / sc) ** 2
-        err = math.sqrt(err / m)
+        err = _dopri_error(h_try, k1, k3, k4, k5, k6, k7, y, y5, atol, rtol, m)
         if not math.isfinite(err):
             err = 1e10
         if err <= 1.0:
