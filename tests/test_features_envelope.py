@@ -269,3 +269,16 @@ def test_band_is_chosen_before_prewhitening():
     assert f[low][np.argmax(ses[low])] == pytest.approx(107.0, abs=0.5)
     at = lambda hz: ses[np.argmin(np.abs(f - hz))]  # noqa: E731
     assert at(107.0) > 10 * at(37.0)
+
+
+def test_cached_window_is_get_window_and_read_only():
+    """The Hann window of the spectra is computed once per length and shared: it must
+    equal scipy's and refuse writes (a caller scaling it in place would corrupt every
+    later spectrum)."""
+    from ballpass.features.envelope import _window
+
+    w = _window("hann", 1000)
+    np.testing.assert_array_equal(w, scipy.signal.get_window("hann", 1000))
+    assert _window("hann", 1000) is w
+    with pytest.raises(ValueError, match="read-only"):
+        w *= 2.0

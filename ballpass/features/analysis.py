@@ -19,7 +19,7 @@ import scipy.signal
 from ._validation import check_fs, check_rpm, check_signal
 from .bands import as_bearing, fault_band_levels
 from .envelope import _amplitude_spectrum, _sos
-from .indicators import indicators
+from .indicators import _indicators
 from .kurtogram import FLOOR_DB, MIN_BANDWIDTH_HZ, KurtogramResult, _default_nlevel, _kurtogram
 
 __all__ = ["EnvelopeAnalysis", "envelope_analysis"]
@@ -120,18 +120,26 @@ class EnvelopeAnalysis:
 
 
 @functools.lru_cache(maxsize=64)
-def _zero_phase_gain(n: int, fs: float, lo: float, hi: float) -> tuple[int, np.ndarray]:
-    """Gain ``|H|^2`` of the forward-backward Butterworth filter of :func:`bandpass` on
-    the rFFT bins of ``n`` samples: ``(first bin, gains)`` over the bins where it is at
-    least :data:`_GAIN_FLOOR`. Cached: a signal length and rate have few distinct bands."""
+def _band_weights(n: int, fs: float, lo: float, hi: float) -> tuple[int, np.ndarray]:
+    """Weights of the rFFT bins of ``n`` samples that give the band's analytic signal:
+    ``(first bin, weights)`` over the bins where the gain ``|H|^2`` of the
+    forward-backward Butterworth filter of :func:`bandpass` is at least
+    :data:`_GAIN_FLOOR`, each ``|H|^2`` times the analytic signal's factor (1 at 0 Hz
+    and Nyquist, 2 between; ``scipy.signal.hilbert``). Cached: a signal length and rate
+    have few distinct bands."""
     sos = _sos(lo, hi, fs, _ORDER)
     n_bins = n // 2 + 1
     if sos is None:
-        return 0, np.ones(n_bins)
-    _, h = scipy.signal.sosfreqz(sos, worN=np.arange(n_bins) * (fs / n), fs=fs)
-    gain = h.real**2 + h.imag**2
-    keep = np.flatnonzero(gain >= _GAIN_FLOOR)
-    return int(keep[0]), gain[keep[0] : keep[-1] + 1]
+        gain, first = np.ones(n_bins), 0
+    else:
+        _, h = scipy.signal.sosfreqz(sos, worN=np.arange(n_bins) * (fs / n), fs=fs)
+        gain = h.real**2 + h.imag**2
+        keep = np.flatnonzero(gain >= _GAIN_FLOOR)
+        first, gain = int(keep[0]), gain[keep[0] : keep[-1] + 1]
+    k = np.arange(first, first + gain.size)
+    weights = gain * np.where((k == 0) | (2 * k == n), 1.0, 2.0)
+    weights.flags.writeable = False  # shared by every call with this band
+    return first, weights
 
 
 def _ses_from_spectrum(spectrum: np.ndarray, n: int, fs: float, band) -> np.ndarray:
@@ -146,14 +154,15 @@ def _ses_from_spectrum(spectrum: np.ndarray, n: int, fs: float, band) -> np.ndar
     samples bin for bin (a periodic Hann window sampled at ``t_j`` is the ``m``-point
     one), zero above ``m / 2``.
     """
-    first, gain = _zero_phase_gain(n, fs, float(band[0]), float(band[1]))
-    k = np.arange(first, first + gain.size)
-    hilbert = np.where((k == 0) | (2 * k == n), 1.0, 2.0)
-    m = scipy.fft.next_fast_len(2 * gain.size + 2)
+    first, weights = _band_weights(n, fs, float(band[0]), float(band[1]))
+    m = scipy.fft.next_fast_len(2 * weights.size + 2)
     if m >= n:  # a wide band: no saving, sample at fs
         m = n
-    c = scipy.fft.ifft(spectrum[first : first + gain.size] * (gain * hilbert), n=m)
-    power = (c.real**2 + c.imag**2) * (m / n) ** 2
+    c = scipy.fft.ifft(spectrum[first : first + weights.size] * weights, n=m, overwrite_x=True)
+    parts = c.view(np.float64)  # real, imaginary, real, ...: |c|^2 in place
+    parts *= parts
+    power = parts[::2] + parts[1::2]
+    power *= (m / n) ** 2
     ses = np.zeros(n // 2 + 1)
     amp = _amplitude_spectrum(power, "hann", fs * m / n)[1]
     ses[: amp.size] = amp
@@ -267,7 +276,7 @@ def envelope_analysis(x, fs: float, *, rpm=None, bearing=None, axis: int = -1):
         band=kurt.best_band,
         freqs=freqs,
         ses=np.moveaxis(ses, -1, axis),
-        indicators=indicators(xv),
+        indicators=_indicators(xv),
         fault_bands=fault_bands,
         fs=fs,
         frequencies=frequencies,

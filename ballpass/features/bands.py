@@ -150,23 +150,40 @@ def fault_band_levels(
     n_bins = freqs.size
     margin = max(math.ceil(background_hz / df), _MIN_BACKGROUND_BINS)
     targets = (rpm[..., None] / 60.0) * _target_orders(bearing, harmonics)
-    flat_ses = ses.reshape(-1, n_bins)
-    flat_targets = targets.reshape(-1, targets.shape[-1])
-    levels = np.full(flat_targets.shape, np.nan)
+    flat_ses = np.ascontiguousarray(ses).reshape(-1, n_bins)
+    f = targets.reshape(-1, targets.shape[-1])
+    # Search window [lo, hi] (bins): the slip tolerance, at least the nearest bin.
+    in_range = f * (1.0 - tolerance) <= freqs[-1]
+    f = np.where(in_range, f, 0.0)
+    centre = np.round(f / df)
+    lo = np.maximum(1, np.minimum(centre, np.ceil(f * (1.0 - tolerance) / df)))
+    top = np.maximum(centre, np.floor(f * (1.0 + tolerance) / df))
+    hi = np.maximum(lo, np.minimum(n_bins - 1, top))
+    lo, hi = lo.astype(np.intp), hi.astype(np.intp)
+    levels = np.full(f.shape, np.nan)
     tiny = np.finfo(float).tiny
-    for row, (spectrum, row_targets) in enumerate(zip(flat_ses, flat_targets, strict=True)):
-        for j, f in enumerate(row_targets):
-            if f * (1.0 - tolerance) > freqs[-1]:
-                continue
-            centre = round(f / df)
-            lo = max(1, min(centre, math.ceil(f * (1.0 - tolerance) / df)))
-            hi = max(lo, min(n_bins - 1, max(centre, math.floor(f * (1.0 + tolerance) / df))))
-            line = spectrum[lo : hi + 1].max()
-            left = spectrum[max(1, lo - _GUARD_BINS - margin) : max(1, lo - _GUARD_BINS)]
-            right = spectrum[hi + _GUARD_BINS + 1 : hi + _GUARD_BINS + 1 + margin]
-            background = np.concatenate([left, right])
-            floor = np.median(background) if background.size else line
-            levels[row, j] = 10.0 * np.log10((line + tiny) / (floor + tiny))
+    # Lines with a full background (margin bins on each side of the window, beyond the
+    # guard bins), all at once; those cut by 0 Hz or the top of the spectrum below.
+    start = lo - _GUARD_BINS - margin
+    full = in_range & (start >= 1) & (hi + _GUARD_BINS + 1 + margin <= n_bins)
+    if full.any():
+        row = np.nonzero(full)[0] * n_bins
+        a, b, start = row + lo[full], row + hi[full], row + start[full]
+        each = np.arange(margin)
+        background = flat_ses.ravel()[
+            np.concatenate([start[:, None] + each, b[:, None] + _GUARD_BINS + 1 + each], axis=-1)
+        ]
+        line = np.maximum.reduceat(flat_ses.ravel(), np.stack([a, b + 1], axis=-1).ravel())[::2]
+        floor = np.median(background, axis=-1)
+        levels[full] = 10.0 * np.log10((line + tiny) / (floor + tiny))
+    for row, j in zip(*np.nonzero(in_range & ~full), strict=True):
+        spectrum, a, b = flat_ses[row], lo[row, j], hi[row, j]
+        line = spectrum[a : b + 1].max()
+        left = spectrum[max(1, a - _GUARD_BINS - margin) : max(1, a - _GUARD_BINS)]
+        right = spectrum[b + _GUARD_BINS + 1 : b + _GUARD_BINS + 1 + margin]
+        background = np.concatenate([left, right])
+        floor = np.median(background) if background.size else line
+        levels[row, j] = 10.0 * np.log10((line + tiny) / (floor + tiny))
     levels = levels.reshape(targets.shape)
     return {name: levels[..., j][()] for j, name in enumerate(fault_band_names(harmonics))}
 

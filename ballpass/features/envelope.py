@@ -167,6 +167,22 @@ def _envelope(
     return power if squared else np.sqrt(power)
 
 
+@functools.lru_cache(maxsize=32)
+def _cached_window(window, n: int) -> np.ndarray:
+    w = scipy.signal.get_window(window, n)
+    w.flags.writeable = False  # shared by every call with this window and length
+    return w
+
+
+def _window(window, n: int) -> np.ndarray:
+    """``scipy.signal.get_window(window, n)``, cached: computing a 20 000-point Hann
+    window takes longer than the FFT it weights."""
+    try:
+        return _cached_window(window, n)
+    except TypeError:  # an unhashable spec: get_window accepts or refuses it
+        return scipy.signal.get_window(window, n)
+
+
 def _amplitude_spectrum(e: np.ndarray, window, fs: float) -> tuple[np.ndarray, np.ndarray]:
     """One-sided amplitude spectrum of ``e`` (samples last) with its mean removed.
 
@@ -174,7 +190,7 @@ def _amplitude_spectrum(e: np.ndarray, window, fs: float) -> tuple[np.ndarray, n
     normalisation ``2 / sum(w)``); the 0 Hz bin is 0.
     """
     n = e.shape[-1]
-    w = scipy.signal.get_window(window, n)
+    w = _window(window, n)
     e = e - np.sum(e * w, axis=-1, keepdims=True) / w.sum()
     amp = np.abs(scipy.fft.rfft(e * w, axis=-1)) * (2.0 / w.sum())
     if n % 2 == 0:

@@ -11,10 +11,7 @@ ratios may miss the fault.
 
 from __future__ import annotations
 
-import warnings
-
 import numpy as np
-import scipy.stats
 
 from ._validation import check_signal
 
@@ -52,13 +49,16 @@ def indicators(x, *, axis: int = -1) -> dict[str, np.ndarray]:
     ======================  =======================================  =================
 
     RMS and the peak values include any mean (DC) of ``x``; kurtosis and skewness are
-    central moments (``scipy.stats``, biased estimators).
+    central moments (biased estimators), computed as :func:`scipy.stats.kurtosis`
+    (``fisher=False``) and :func:`scipy.stats.skew` compute them, to the last bit.
 
     A constant signal (all zeros: a dead or disconnected sensor) has no shape; its
     moments are 0/0. It gets, without NaN or warning: ``kurtosis = 0`` (a value no
     varying signal can take, since Pearson's kurtosis is >= 1: a marker of a dead
     channel), ``skewness = 0``, and crest, shape, impulse and clearance factors 1 (their
-    value for any non-zero constant, kept as the constant shrinks to 0).
+    value for any non-zero constant, kept as the constant shrinks to 0). A signal whose
+    variance is lost in the rounding of its mean (``var <= (eps * mean)^2``, where
+    scipy.stats returns NaN) gets ``kurtosis = skewness = 0`` too.
 
     Parameters
     ----------
@@ -81,30 +81,41 @@ def indicators(x, *, axis: int = -1) -> dict[str, np.ndarray]:
     >>> round(float(ind["crest_factor"]), 4), round(float(ind["kurtosis"]), 4)
     (1.4142, 1.5)
     """
-    x = check_signal(x, axis)
+    return _indicators(check_signal(x, axis))
+
+
+def _indicators(x: np.ndarray) -> dict[str, np.ndarray]:
+    """:func:`indicators` of validated ``x`` (float64, samples last)."""
     a = np.abs(x)
+    top, bottom = x.max(axis=-1), x.min(axis=-1)
     rms = np.sqrt(np.mean(x * x, axis=-1))
-    peak = a.max(axis=-1)
+    peak = np.maximum(top, -bottom)
     mean_abs = a.mean(axis=-1)
-    with np.errstate(divide="ignore", invalid="ignore"), warnings.catch_warnings():
-        warnings.simplefilter("ignore", RuntimeWarning)  # scipy on constant rows: see below
+    # Central moments as scipy.stats._moment forms them (exponentiation by squaring).
+    mean = x.mean(axis=-1, keepdims=True)
+    d = x - mean
+    d2 = d * d
+    m2 = d2.mean(axis=-1)
+    m3 = (d2 * d).mean(axis=-1)
+    m4 = (d2 * d2).mean(axis=-1)
+    # scipy.stats's test for a variance lost in rounding (NaN there; 0 here, see above)
+    shapeless = m2 <= (np.finfo(float).eps * mean[..., 0]) ** 2
+    constant = top == bottom
+    with np.errstate(divide="ignore", invalid="ignore"):
         out = {
             "rms": rms,
             "peak": peak,
-            "peak_to_peak": np.ptp(x, axis=-1),
+            "peak_to_peak": top - bottom,
             "crest_factor": peak / rms,
-            "kurtosis": scipy.stats.kurtosis(x, axis=-1, fisher=False, bias=True),
-            "skewness": scipy.stats.skew(x, axis=-1, bias=True),
+            "kurtosis": np.where(shapeless, 0.0, m4 / m2**2.0),
+            "skewness": np.where(shapeless, 0.0, m3 / m2**1.5),
             "shape_factor": rms / mean_abs,
             "impulse_factor": peak / mean_abs,
             "clearance_factor": peak / np.mean(np.sqrt(a), axis=-1) ** 2,
         }
-    constant = np.ptp(x, axis=-1) == 0
     if constant.any():  # the convention of the docstring instead of 0/0
-        for name, value in (("kurtosis", 0.0), ("skewness", 0.0), ("crest_factor", 1.0),
-                            ("shape_factor", 1.0), ("impulse_factor", 1.0),
-                            ("clearance_factor", 1.0)):
-            out[name] = np.where(constant, value, out[name])
+        for name in ("crest_factor", "shape_factor", "impulse_factor", "clearance_factor"):
+            out[name] = np.where(constant, 1.0, out[name])
     return {name: value[()] for name, value in out.items()}
 
 
