@@ -5,6 +5,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import scipy.fft
 import scipy.signal
 
 import ballpass as bp
@@ -207,28 +208,45 @@ def test_kurtosis_of_signals_with_a_closed_form(tones, expected):
 CWRU = Path(__file__).resolve().parents[1] / ".." / "shared" / "data" / "cwru"
 
 
+def band_weights(n, fs, n_bands, j):
+    """Bins and weights of band j of a row of n_bands, from the definition: the band
+    (j + 1/2 +- 1/2) fs / (2 n_bands) gathers the bins within 3/4 of its width of its
+    centre (n_taps of them, the plan's FFT-friendly count); weight 1 within 1/4 width of
+    the centre, raised-cosine edges to 0 at 3/4 (-6 dB at the nominal edges), 1 beyond
+    the centre towards 0 Hz or fs/2 for the edge bands, 0 outside [0, fs/2]."""
+    df, width = fs / n, 0.5 * fs / n_bands
+    centre = (j + 0.5) * width
+    n_taps = scipy.fft.next_fast_len(math.ceil(1.5 * width / df) + 1)
+    k = round((centre - 0.75 * width) / df) + np.arange(n_taps)
+    u = np.abs(k * df - centre) / width
+    w = np.clip(0.5 + 0.5 * np.cos(2 * np.pi * (np.clip(u, 0.25, 0.75) - 0.25)), 0.0, 1.0)
+    if j == 0:
+        w[k * df < centre] = 1.0
+    if j == n_bands - 1:
+        w[k * df > centre] = 1.0
+    w[(k < 0) | (k > n // 2)] = 0.0
+    return k, w
+
+
 def reference_kurtogram(x, fs, nlevel):
     """The kurtogram band by band, as the definition reads, with none of the fast path's
-    machinery (numba loops, four-step FFTs, one buffer, grid by index): each band's bins
-    of numpy.fft.rfft(x - mean) times the plan's raised-cosine weights, numpy.fft.ifft at
-    the band's n_taps points, kurtosis E|c|^4 / (E|c|^2)^2 - 2 and power density
+    machinery (plan, numba loops, four-step FFTs, shared buffer and weights, grid by
+    index): each band's bins of numpy.fft.rfft(x - mean) times its weights, numpy.fft.ifft
+    at the band's n_taps points, kurtosis E|c|^4 / (E|c|^2)^2 - 2 and power density
     sum |bins|^2 / sum w^2 relative to the mean |X|^2, repeated over the band's columns."""
-    plan = _tree(x.size, fs, nlevel)
     spectrum = np.fft.rfft(x - x.mean())
     mean_power = np.mean(np.abs(spectrum) ** 2)
-    n_cols = math.lcm(*plan.n_bands.tolist())
-    kurt, dens = np.empty((2, plan.levels.size, n_cols))
-    for r, row in enumerate(plan.rows):
-        n_bands, n_taps = row.w.shape
+    rows = [1] + [b for k in range(1, nlevel + 1) for b in ([3 * 2 ** (k - 2)] * (k > 1) + [2**k])]
+    n_cols = math.lcm(*rows)
+    kurt, dens = np.empty((2, len(rows), n_cols))
+    for r, n_bands in enumerate(rows):
         span = n_cols // n_bands
         for j in range(n_bands):
-            k = row.starts[j] + np.arange(n_taps)
-            inside = (k >= 0) & (k < spectrum.size)
-            bins = np.zeros(n_taps, complex)
-            bins[inside] = spectrum[k[inside]] * row.w[j, inside]
+            k, w = band_weights(x.size, fs, n_bands, j)
+            bins = np.where(w > 0, spectrum[np.clip(k, 0, spectrum.size - 1)] * w, 0)
             p = np.abs(np.fft.ifft(bins)) ** 2
             kurt[r, j * span:(j + 1) * span] = np.mean(p**2) / np.mean(p) ** 2 - 2
-            density = np.sum(np.abs(bins) ** 2) / np.sum(row.w[j] ** 2) / mean_power
+            density = np.sum(np.abs(bins) ** 2) / np.sum(w**2) / mean_power
             dens[r, j * span:(j + 1) * span] = 10 * np.log10(density)
     return kurt, dens
 

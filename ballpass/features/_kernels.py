@@ -11,33 +11,45 @@ kurtogram of a process, not with :mod:`ballpass.features`: numba compiles them o
 
 from __future__ import annotations
 
+import numpy as np
 from numba import njit
 
 __all__ = ["gather_bands", "band_moments"]
 
 
 @njit(cache=True)
-def gather_bands(spectrum, starts, weights, out):
-    """``out[s, j, i] = spectrum[s, starts[j] + i] * weights[j, i]``, 0 outside the
-    spectrum.
+def gather_bands(spectrum, starts, weights, which, out):
+    """``out[s, j, i] = spectrum[s, starts[j] + i] * weights[which[j], i]``, 0 outside
+    the spectrum.
 
-    ``spectrum`` (n_signals, n_bins) complex; ``starts`` (n_bands,) int, first bin of
-    each band (may be < 0 or run past the last bin); ``weights`` (n_bands, n_taps);
-    ``out`` (n_signals, n_bands, n_taps) complex, overwritten.
+    ``spectrum`` (n_signals, n_bins) complex, C-contiguous; ``starts`` (n_bands,) int,
+    first bin of each band (may be < 0 or run past the last bin); ``weights``
+    (n_distinct, n_taps), ``which`` (n_bands,) int: the row of ``weights`` of each band;
+    ``out`` (n_signals, n_bands, n_taps) complex, C-contiguous, overwritten. Real and
+    imaginary parts are scaled apart (float64 views: real, imaginary, real, ...): the
+    loop vectorises, 3x faster than on complex numbers, and the products are those of a
+    complex times a real number.
     """
     n_signals, n_bins = spectrum.shape
-    n_bands, n_taps = weights.shape
+    n_taps = weights.shape[1]
+    spectrum = spectrum.view(np.float64)
+    out = out.view(np.float64)
     for s in range(n_signals):
-        for j in range(n_bands):
+        for j in range(starts.shape[0]):
             start = starts[j]
-            lo = min(max(0, -start), n_taps)
+            lo = min(max(0, -start), n_taps)  # bins [lo, hi) of the band lie in the spectrum
             hi = max(min(n_taps, n_bins - start), lo)
-            for i in range(lo):
-                out[s, j, i] = 0.0
-            for i in range(lo, hi):
-                out[s, j, i] = spectrum[s, start + i] * weights[j, i]
-            for i in range(hi, n_taps):
-                out[s, j, i] = 0.0
+            dst = out[s, j]
+            src = spectrum[s, 2 * (start + lo) : 2 * (start + hi)]
+            w = weights[which[j], lo:hi]
+            for i in range(2 * lo):
+                dst[i] = 0.0
+            band = dst[2 * lo : 2 * hi]
+            for i in range(hi - lo):
+                band[2 * i] = src[2 * i] * w[i]
+                band[2 * i + 1] = src[2 * i + 1] * w[i]
+            for i in range(2 * hi, 2 * n_taps):
+                dst[i] = 0.0
 
 
 @njit(cache=True)
