@@ -19,77 +19,74 @@ __all__ = ["gather_bands", "band_moments"]
 
 @njit(cache=True)
 def gather_bands(spectrum, starts, weights, which, out):
-    """``out[s, j, i] = spectrum[s, starts[j] + i] * weights[which[j], i]``, 0 outside
-    the spectrum.
+    """``out[j, i] = spectrum[starts[j] + i] * weights[which[j], i]``, 0 outside the
+    spectrum, for one signal.
 
-    ``spectrum`` (n_signals, n_bins) complex, C-contiguous; ``starts`` (n_bands,) int,
-    first bin of each band (may be < 0 or run past the last bin); ``weights``
-    (n_distinct, n_taps), ``which`` (n_bands,) int: the row of ``weights`` of each band;
-    ``out`` (n_signals, n_bands, n_taps) complex, C-contiguous, overwritten. Real and
-    imaginary parts are scaled apart (float64 views: real, imaginary, real, ...): the
-    loop vectorises, 3x faster than on complex numbers, and the products are those of a
-    complex times a real number.
+    ``spectrum`` (n_bins,) complex, contiguous; ``starts`` (n_bands,) int, first bin of
+    each band (may be < 0 or run past the last bin); ``weights`` (n_distinct, n_taps),
+    ``which`` (n_bands,) int: the row of ``weights`` of each band; ``out`` (n_bands,
+    n_taps) complex, C-contiguous, overwritten. Real and imaginary parts are scaled apart
+    (float64 views: real, imaginary, real, ...): the loop vectorises, 3x faster than on
+    complex numbers, and the products are those of a complex times a real number.
     """
-    n_signals, n_bins = spectrum.shape
+    n_bins = spectrum.shape[0]
     n_taps = weights.shape[1]
     spectrum = spectrum.view(np.float64)
     out = out.view(np.float64)
-    for s in range(n_signals):
-        for j in range(starts.shape[0]):
-            start = starts[j]
-            lo = min(max(0, -start), n_taps)  # bins [lo, hi) of the band lie in the spectrum
-            hi = max(min(n_taps, n_bins - start), lo)
-            dst = out[s, j]
-            src = spectrum[s, 2 * (start + lo) : 2 * (start + hi)]
-            w = weights[which[j], lo:hi]
-            for i in range(2 * lo):
-                dst[i] = 0.0
-            band = dst[2 * lo : 2 * hi]
-            for i in range(hi - lo):
-                band[2 * i] = src[2 * i] * w[i]
-                band[2 * i + 1] = src[2 * i + 1] * w[i]
-            for i in range(2 * hi, 2 * n_taps):
-                dst[i] = 0.0
+    for j in range(starts.shape[0]):
+        start = starts[j]
+        lo = min(max(0, -start), n_taps)  # bins [lo, hi) of the band lie in the spectrum
+        hi = max(min(n_taps, n_bins - start), lo)
+        dst = out[j]
+        src = spectrum[2 * (start + lo) : 2 * (start + hi)]
+        w = weights[which[j], lo:hi]
+        for i in range(2 * lo):
+            dst[i] = 0.0
+        band = dst[2 * lo : 2 * hi]
+        for i in range(hi - lo):
+            band[2 * i] = src[2 * i] * w[i]
+            band[2 * i + 1] = src[2 * i + 1] * w[i]
+        for i in range(2 * hi, 2 * n_taps):
+            dst[i] = 0.0
 
 
 @njit(cache=True)
-def band_moments(c, m2, m4, first):
-    """Means of ``|c|^2`` and ``|c|^4`` over the last axis of ``c`` (n_signals,
-    n_bands, n_taps) into ``m2[:, first:first + n_bands]`` and ``m4[...]`` (in order
-    within each band signal or not: the means do not depend on it).
+def band_moments(c, m2, m4):
+    """Means of ``|c|^2`` and ``|c|^4`` of each band signal of one signal: ``c``
+    (n_bands, n_taps) complex, its rows in any order of their samples (the means do
+    not depend on it); ``m2``, ``m4`` (n_bands,), overwritten.
 
     Four interleaved partial sums: independent additions (faster than one running sum,
     which waits on each addition) and a smaller rounding error.
     """
-    n_signals, n_bands, n_taps = c.shape
-    for s in range(n_signals):
-        for j in range(n_bands):
-            a0 = a1 = a2 = a3 = 0.0
-            b0 = b1 = b2 = b3 = 0.0
-            i = 0
-            while i + 4 <= n_taps:
-                v = c[s, j, i]
-                p = v.real * v.real + v.imag * v.imag
-                a0 += p
-                b0 += p * p
-                v = c[s, j, i + 1]
-                p = v.real * v.real + v.imag * v.imag
-                a1 += p
-                b1 += p * p
-                v = c[s, j, i + 2]
-                p = v.real * v.real + v.imag * v.imag
-                a2 += p
-                b2 += p * p
-                v = c[s, j, i + 3]
-                p = v.real * v.real + v.imag * v.imag
-                a3 += p
-                b3 += p * p
-                i += 4
-            while i < n_taps:
-                v = c[s, j, i]
-                p = v.real * v.real + v.imag * v.imag
-                a0 += p
-                b0 += p * p
-                i += 1
-            m2[s, first + j] = ((a0 + a1) + (a2 + a3)) / n_taps
-            m4[s, first + j] = ((b0 + b1) + (b2 + b3)) / n_taps
+    n_bands, n_taps = c.shape
+    for j in range(n_bands):
+        a0 = a1 = a2 = a3 = 0.0
+        b0 = b1 = b2 = b3 = 0.0
+        i = 0
+        while i + 4 <= n_taps:
+            v = c[j, i]
+            p = v.real * v.real + v.imag * v.imag
+            a0 += p
+            b0 += p * p
+            v = c[j, i + 1]
+            p = v.real * v.real + v.imag * v.imag
+            a1 += p
+            b1 += p * p
+            v = c[j, i + 2]
+            p = v.real * v.real + v.imag * v.imag
+            a2 += p
+            b2 += p * p
+            v = c[j, i + 3]
+            p = v.real * v.real + v.imag * v.imag
+            a3 += p
+            b3 += p * p
+            i += 4
+        while i < n_taps:
+            v = c[j, i]
+            p = v.real * v.real + v.imag * v.imag
+            a0 += p
+            b0 += p * p
+            i += 1
+        m2[j] = ((a0 + a1) + (a2 + a3)) / n_taps
+        m4[j] = ((b0 + b1) + (b2 + b3)) / n_taps

@@ -348,17 +348,20 @@ def _kurtogram(
     spec = spectrum.reshape(-1, spectrum.shape[-1])
     n_signals = spec.shape[0]
     mean_power = np.mean(spec.real**2 + spec.imag**2, axis=-1)[:, None]
-    # One work buffer for all rows: the weighted bins of the bands, transformed in place.
-    work = np.empty(n_signals * max(row.starts.size * row.w.shape[1] for row in rows),
-                    dtype=complex)
+    # Signal by signal (a batch row by row would stream every row's band signals of all
+    # signals through memory), with one work buffer for all rows: the weighted bins of
+    # the bands, transformed in place.
+    work = np.empty(max(row.starts.size * row.w.shape[1] for row in rows), dtype=complex)
     m2, m4 = np.empty((n_signals, taps.size)), np.empty((n_signals, taps.size))
-    first = 0
-    for row in rows:
-        n_taps = row.w.shape[1]
-        bands = work[: n_signals * row.starts.size * n_taps].reshape(n_signals, -1, n_taps)
-        gather_bands(spec, row.starts, row.w, row.which, bands)
-        band_moments(np.ascontiguousarray(_band_signals(bands, row.split)), m2, m4, first)
-        first += row.starts.size
+    for one, m2_one, m4_one in zip(spec, m2, m4, strict=True):
+        first = 0
+        for row in rows:
+            bands = work[: row.starts.size * row.w.shape[1]].reshape(row.starts.size, -1)
+            gather_bands(one, row.starts, row.w, row.which, bands)
+            last = first + row.starts.size
+            band_moments(np.ascontiguousarray(_band_signals(bands, row.split)),
+                         m2_one[first:last], m4_one[first:last])
+            first = last
     # Parseval: sum |bands|^2 = n_taps * sum |c|^2 = n_taps^2 * m2
     band_power = m2 * taps**2 / w2
     k = np.divide(m4, m2**2, out=np.full_like(m2, 2.0), where=m2 > 0) - 2.0
