@@ -50,6 +50,13 @@ def gather_bands(spectrum, starts, weights, which, out):
             dst[i] = 0.0
 
 
+@njit(cache=True, inline="always")
+def _add_moments(v, sum2, sum4):
+    """``sum2 + |v|^2, sum4 + |v|^4``."""
+    p = v.real * v.real + v.imag * v.imag
+    return sum2 + p, sum4 + p * p
+
+
 @njit(cache=True)
 def band_moments(c, m2, m4):
     """Means of ``|c|^2`` and ``|c|^4`` of each band signal of one signal: ``c``
@@ -65,28 +72,12 @@ def band_moments(c, m2, m4):
         b0 = b1 = b2 = b3 = 0.0
         i = 0
         while i + 4 <= n_taps:
-            v = c[j, i]
-            p = v.real * v.real + v.imag * v.imag
-            a0 += p
-            b0 += p * p
-            v = c[j, i + 1]
-            p = v.real * v.real + v.imag * v.imag
-            a1 += p
-            b1 += p * p
-            v = c[j, i + 2]
-            p = v.real * v.real + v.imag * v.imag
-            a2 += p
-            b2 += p * p
-            v = c[j, i + 3]
-            p = v.real * v.real + v.imag * v.imag
-            a3 += p
-            b3 += p * p
+            a0, b0 = _add_moments(c[j, i], a0, b0)
+            a1, b1 = _add_moments(c[j, i + 1], a1, b1)
+            a2, b2 = _add_moments(c[j, i + 2], a2, b2)
+            a3, b3 = _add_moments(c[j, i + 3], a3, b3)
             i += 4
-        while i < n_taps:
-            v = c[j, i]
-            p = v.real * v.real + v.imag * v.imag
-            a0 += p
-            b0 += p * p
-            i += 1
+        for k in range(i, n_taps):
+            a0, b0 = _add_moments(c[j, k], a0, b0)
         m2[j] = ((a0 + a1) + (a2 + a3)) / n_taps
         m4[j] = ((b0 + b1) + (b2 + b3)) / n_taps
