@@ -90,7 +90,10 @@ Assumptions (defaults in :class:`MultibodyParameters`, each with its source): pl
 motion (no axial load, no ball precession: seed 000's 3-D randomness of ball faults is
 absent), rigid bodies apart from the contacts, the cage centred on the housing, the
 normal force along the line of centres (the tilt of the force on a notch corner is
-neglected, as in the paper's profile model), no EHL film stiffness.
+neglected, as in the paper's profile model), no EHL film stiffness. Radial loads up to
+the one at which the most loaded contact reaches ISO 76's 4200 MPa
+(:data:`CONTACT_PRESSURE_LIMIT_PA`; 10.6 kN for a 6205): beyond it the contacts are not
+elastic and the model refuses the scene (see :func:`static_equilibrium`).
 """
 
 from __future__ import annotations
