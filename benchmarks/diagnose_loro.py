@@ -326,6 +326,10 @@ def markdown(table: pd.DataFrame, seconds: float) -> str:
         "sidebands resolved); a band with no signal above the fault lines (a noise-free "
         "healthy simulation: the varying-compliance line has no resonance carrier) is "
         "healthy.",
+        "- **No pre-processing by default**: cepstrum pre-whitening, linear prediction "
+        "and DRS, measured on the same records, each name fewer "
+        "([diagnosis_preprocessing.md](diagnosis_preprocessing.md), which also shows what "
+        "one-second segments can and cannot show).",
         "",
         "## Goals",
         "",

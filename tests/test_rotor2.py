@@ -206,3 +206,22 @@ def test_laminae_collapse_to_palmgren_when_aligned():
     lift = (base.truth.displacement[0, last].mean()
             - tilted.truth.displacement[0, last].mean())
     assert lift > 1e-8
+
+
+@pytest.mark.parametrize("kind, angle_deg", [("outer", 30.0), ("inner", 0.0), ("ball", 40.0)])
+def test_fault_crossings_match_sr5_kinematics(kind, angle_deg):
+    """rotor2's ground-truth crossings (a closed form in the shaft angle) equal sr5's
+    (found numerically by bracketing in the kernel) when sr5's cage does not slip, on a
+    speed ramp, edge for edge: catches an inner race whose entries and exits are
+    swapped (its offset falls), a ball face mislabelled, or a ramp inverted as if the
+    speed were constant. Tolerance 1e-12 s: both are exact up to the bracketing's
+    floating-point width (~1e-16 s here)."""
+    scene = bp.Scene(bearing="NJ305", rpm=(1500.0, 1800.0), radial_load_n=500.0,
+                     duration_s=0.05, fs=48_000.0, slip=0.0,
+                     fault=bp.Fault(kind, width_mm=1.0, depth_mm=0.1, angle_deg=angle_deg))
+    mine = bp.simulate(scene, model="rotor2").truth.fault_crossings
+    ref = bp.simulate(scene, model="sr5").truth.fault_crossings
+    assert len(mine) == len(ref) > 8
+    np.testing.assert_allclose(mine.time_s, ref.time_s, rtol=0, atol=1e-12)
+    np.testing.assert_array_equal(mine.edge, ref.edge)
+    np.testing.assert_array_equal(mine.element, ref.element)

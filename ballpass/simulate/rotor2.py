@@ -64,6 +64,9 @@ Assumptions (where seed 003 is silent or garbled):
   thrust-driven tilt needs an axial load the Scene does not have.
 * The run starts at the quasi-static equilibrium of the healthy bearing under
   F_r + m g (:meth:`ballpass.Bearing.load_distribution`), at rest.
+* Ground truth: the fault-edge crossings (``res.truth.fault_crossings``) follow from
+  the kinematics in closed form (rollers keep the kinematic cage speed, no slip); they
+  equal sr5's at ``slip=0`` (tests/test_rotor2.py).
 
 Solvers: ``newmark`` (default; average acceleration with Newton iterations on the
 contact forces, :func:`._integrators.newmark`) and ``dopri5`` (adaptive
@@ -324,6 +327,7 @@ class _Bound:
     omega: float
     mass: float
     t_impact: float
+    levels: np.ndarray
 
 
 def _static_load(scene: Scene, params: Rotor2Parameters) -> float:
@@ -381,7 +385,7 @@ def _bind(scene: Scene, params: Rotor2Parameters) -> _Bound:
     cage_ratio = 0.5 * (1.0 - r)
     z = b.n_elements
     psi0 = math.radians(params.cage_angle_deg) + 2.0 * math.pi * np.arange(z) / z
-    faults, _levels = _fault_table(scene, psi0)
+    faults, levels = _fault_table(scene, psi0)
     p = np.zeros(P_FAULTS + faults.size)
     p[_K.P_MS] = params.rotor_mass_kg
     p[_K.P_KH] = kh
@@ -415,7 +419,64 @@ def _bind(scene: Scene, params: Rotor2Parameters) -> _Bound:
     t_impact = min((2.0 * row[_K.F_HALF] * (row[_K.F_RAMP] or 1.0) / rate[int(row[_K.F_KIND])]
                     for row in faults if row[_K.F_DEPTH] > static), default=math.inf)
     return _Bound(p=p, x0=x0, x_scale=np.full(2, scale), omega=contact_omega(scene, params),
-                  mass=params.rotor_mass_kg, t_impact=t_impact)
+                  mass=params.rotor_mass_kg, t_impact=t_impact, levels=levels)
+
+
+def _crossings(scene: Scene, p: np.ndarray, levels: np.ndarray, t_end: float) -> FaultCrossings:
+    """Times in [0, t_end] at which rollers cross the fault edges and ramp ends, s.
+
+    rotor2's rollers keep the kinematic cage speed (no slip), so every path's offset
+    from a fault centre is linear in the shaft angle theta, as :func:`_defect_depth`
+    computes it: ``phi_j - centre`` for the outer race (roller angle ``phi_j = phi_0 +
+    2 pi j / Z + c theta``), ``phi_j - centre - theta`` for the inner race, ``centre +
+    s c theta - k pi`` for face ``k`` of a ball defect (``s`` the spin ratio). Each
+    level is crossed at ``theta = (level - offset_0 + 2 pi m) / rate`` for whole ``m``,
+    and the time follows from inverting the shaft angle of the speed profile (exact;
+    the solvers need no events, so these are ground truth only).
+    """
+    z = int(p[_K.P_Z])
+    cage, spin = p[_K.P_CAGE], p[_K.P_SPIN]
+    w0, w1 = p[_K.P_W0], p[_K.P_W1]
+    accel = 0.5 * (w1 - w0) / p[_K.P_T]  # theta = w0 t + accel t^2
+    theta_end = w0 * t_end + accel * t_end * t_end
+    names = np.array(["entry", "ramp_end", "ramp_start", "exit"])
+    times, faults, paths, edges = [], [], [], []
+    for i, (fault, lv) in enumerate(zip(scene.faults, levels, strict=True)):
+        r = P_FAULTS + i * _K.N_FCOLS
+        centre = p[r + _K.F_CENTRE]
+        if fault.kind == "ball":
+            offset0 = centre - np.pi * np.arange(2)  # face 0 meets the outer race
+            rate = spin * cage
+        else:
+            offset0 = p[P_PHI0] + 2.0 * np.pi * np.arange(z) / z - centre
+            rate = cage - 1.0 if fault.kind == "inner" else cage
+        # an inner-race offset falls: its levels are met from the top down
+        order = np.arange(4)[::-1] if rate < 0 else np.arange(4)
+        for path, o0 in enumerate(offset0):
+            for k in order:
+                if not np.isfinite(lv[k]):
+                    continue  # no ramp: no ramp ends
+                # turns m with theta in [0, theta_end], one spare at each end
+                first = (o0 - lv[k]) / (2.0 * np.pi)
+                last = first + rate * theta_end / (2.0 * np.pi)
+                m = np.arange(np.floor(min(first, last)) - 1, np.ceil(max(first, last)) + 2)
+                theta = (lv[k] - o0 + 2.0 * np.pi * m) / rate
+                theta = theta[(theta >= 0.0) & (theta <= theta_end)]
+                t = (theta / w0 if accel == 0.0
+                     else 2.0 * theta / (w0 + np.sqrt(w0 * w0 + 4.0 * accel * theta)))
+                times.append(t)
+                faults.append(np.full(t.size, i))
+                paths.append(np.full(t.size, path))
+                edges.append(np.full(t.size, names[k] if rate > 0 else names[3 - k]))
+    if not times:
+        empty = np.empty(0)
+        return FaultCrossings(time_s=empty, fault=empty.astype(int), element=empty.astype(int),
+                              edge=empty.astype(str))
+    t = np.concatenate(times)
+    order = np.argsort(t, kind="stable")
+    return FaultCrossings(time_s=t[order], fault=np.concatenate(faults)[order],
+                          element=np.concatenate(paths)[order],
+                          edge=np.concatenate(edges)[order])
 
 
 def _accepts(scene: Scene) -> str | None:
@@ -506,12 +567,9 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
         element_angles = (bound.p[P_PHI0] + 2.0 * math.pi * np.arange(z)[:, None] / z
                           + bound.p[_K.P_CAGE] * shaft_angle[None, :])
         displacement = xs[idx].T.copy()
-    empty = np.empty(0)
     truth = GroundTruth.of_scene(
         scene, t,
-        # rotor2 does not scan fault-edge crossings (its solvers need no events)
-        FaultCrossings(time_s=empty, fault=empty.astype(int), element=empty.astype(int),
-                       edge=empty.astype(str)),
+        _crossings(scene, bound.p, bound.levels, t[-1]),
         contact_forces=forces,
         element_angles=element_angles,
         displacement=displacement,

@@ -90,7 +90,10 @@ Assumptions (defaults in :class:`MultibodyParameters`, each with its source): pl
 motion (no axial load, no ball precession: seed 000's 3-D randomness of ball faults is
 absent), rigid bodies apart from the contacts, the cage centred on the housing, the
 normal force along the line of centres (the tilt of the force on a notch corner is
-neglected, as in the paper's profile model), no EHL film stiffness.
+neglected, as in the paper's profile model), no EHL film stiffness. Radial loads up to
+the one at which the most loaded contact reaches ISO 76's 4200 MPa
+(:data:`CONTACT_PRESSURE_LIMIT_PA`; 10.6 kN for a 6205): beyond it the contacts are not
+elastic and the model refuses the scene (see :func:`static_equilibrium`).
 """
 
 from __future__ import annotations
@@ -122,6 +125,13 @@ SOLVERS = {
 #: and lambda_max dt (the overdamped contact's fast root, RK4 stable to 2.79); see the
 #: module docstring and benchmarks/multibody_speed.py
 OMEGA_DT, LAMBDA_DT = 1.0, 1.8
+
+#: Hertz pressure at the centre of the most loaded contact up to which the model takes
+#: a scene, Pa: ISO 76's basic static load rating of radial ball bearings (4200 MPa,
+#: a permanent deformation of ball and race of 1e-4 of the ball diameter; Harris &
+#: Kotzalas ch. 8). Beyond it the contacts dent plastically and the elastic Hertz law
+#: of the model no longer holds.
+CONTACT_PRESSURE_LIMIT_PA = 4.2e9
 
 
 @dataclass(frozen=True)
@@ -398,6 +408,14 @@ def static_equilibrium(scene: Scene, params: MultibodyParameters | None = None, 
     weight (Harris & Kotzalas, ch. 7 with the centrifugal term of Fig. 12's
     comparison).
 
+    The model's range: radial loads up to the one at which the most loaded contact
+    reaches the Hertz pressure of ISO 76's basic static load rating,
+    :data:`CONTACT_PRESSURE_LIMIT_PA` (4200 MPa for radial ball bearings, where the
+    permanent deformation of ball and race together reaches 1e-4 of the ball
+    diameter): beyond it the contacts dent plastically (brinelling) and the elastic
+    Hertz law the model rests on no longer holds. That is about 10.6 kN for a 6205 or
+    an ER-16K, 6.5 kN for a 6203, 24 kN for a 6208 (zero clearance).
+
     Parameters
     ----------
     scene : Scene
@@ -415,6 +433,12 @@ def static_equilibrium(scene: Scene, params: MultibodyParameters | None = None, 
         ``radius`` (Z,) ball centre radii, m; ``q_inner``, ``q_outer`` (Z,) loads, N;
         ``angles`` (Z,) rad.
 
+    Raises
+    ------
+    ValueError
+        If the radial load takes a contact beyond :data:`CONTACT_PRESSURE_LIMIT_PA`;
+        the message gives the largest load the model takes for that bearing.
+
     Examples
     --------
     >>> import ballpass as bp
@@ -422,6 +446,9 @@ def static_equilibrium(scene: Scene, params: MultibodyParameters | None = None, 
     >>> eq = static_equilibrium(bp.Scene(bearing="ER-16K", rpm=2100, radial_load_n=110))
     >>> round(float(eq["inner"][0]) * 1e6, 2), round(float(eq["q_inner"][0]), 1)  # um, N
     (3.39, 58.4)
+    >>> eq = static_equilibrium(bp.Scene(bearing="6205", rpm=1797, radial_load_n=5000))
+    >>> round(float(eq["q_inner"][0]) * 9 / 5000, 2)      # Stribeck: Q_max Z / F_r ~ 4.4
+    4.4
     """
     prm = params or MultibodyParameters()
     b = scene.bearing
@@ -434,6 +461,15 @@ def static_equilibrium(scene: Scene, params: MultibodyParameters | None = None, 
     psi = cage_angle + 2.0 * math.pi * np.arange(z) / z
     e = np.stack((np.cos(psi), np.sin(psi)), axis=1)
     load = scene.radial_load_n + prm.shaft_mass * g
+    k_series = _series(ki, ko)
+    centrifugal = mb * om * om * (ri + rb)
+    # initial guess: Stribeck's distribution with the outer contacts' compression by the
+    # centrifugal force as extra clearance (a ball flung outwards leaves that gap at the
+    # inner race). Without it a fast, lightly loaded bearing starts where no ball
+    # touches the inner race and the residual is flat.
+    clearance = b.radial_clearance_m + (centrifugal / ko) ** (2.0 / 3.0)
+    guess = _elastic_distribution(scene, load - scene.radial_load_n, centrifugal, clearance,
+                                  k_series, cage_angle)
 
     def ball(j, d):
         def radial(r):
@@ -445,6 +481,8 @@ def static_equilibrium(scene: Scene, params: MultibodyParameters | None = None, 
             qo = ko * max(do, 0.0) ** 1.5
             force = qi * float(c @ e[j]) / dist - qo + mb * om * om * r + mb * g * e[j, 0]
             return force, qi, c / dist
+        # a bracket for any |d| < ri: at lo the ball is pressed into the inner race
+        # only, at hi into the outer race by at least 0.02 D
         span = 0.02 * b.element_diameter_m + abs(d).sum()
         lo, hi = ri + rb - span, ro - rb + span
         r = optimize.brentq(lambda rr: radial(rr)[0], lo, hi, xtol=1e-16, rtol=1e-15)
@@ -458,15 +496,17 @@ def static_equilibrium(scene: Scene, params: MultibodyParameters | None = None, 
             f -= qi * n
         return f / max(load, 1.0)
 
-    guess = b.load_distribution(load, clearance_m=b.radial_clearance_m,
-                                cage_angle_deg=math.degrees(cage_angle),
-                                stiffness=_series(ki, ko))
-    # bounded: an unbounded Newton step can leave the bearing (the balls' radii then
-    # have no bracket); the ring moves by at most the clearance plus 0.5 % of d
-    limit = abs(b.radial_clearance_m) + 5e-3 * b.element_diameter_m
+    # deflection scale: the clearance plus the approach at which one ball would carry
+    # the whole load (load_distribution's bracket). The force balance bounds the
+    # solution by it: the ball nearest the load line (|psi| <= pi / Z) carries at most
+    # F / cos(pi / Z), so |x| <= scale / cos(pi / Z)^(5/3) < 2 scale for Z >= 5. The
+    # bounds only keep trial steps inside the bearing (where ``ball`` has a bracket);
+    # the unknowns are scaled by it so that xtol is relative to the deflection.
+    scale = abs(clearance) + (load / k_series) ** (2.0 / 3.0)
+    limit = 4.0 * scale
     x0 = np.clip([guess.deflection_m, guess.lateral_deflection_m], -0.9 * limit, 0.9 * limit)
-    sol = optimize.least_squares(residual, x0, bounds=(-limit, limit), xtol=1e-15,
-                                 ftol=1e-15, gtol=1e-15)
+    sol = optimize.least_squares(residual, x0, bounds=(-limit, limit), x_scale=scale,
+                                 xtol=1e-15, ftol=1e-15, gtol=1e-15)
     d = sol.x
     if np.max(np.abs(residual(d))) > 1e-7:
         raise RuntimeError(f"multibody static equilibrium did not converge for {scene!r}: "
@@ -479,14 +519,60 @@ def static_equilibrium(scene: Scene, params: MultibodyParameters | None = None, 
             "orbit_rate": om}
 
 
-def _contact_length(b, q: float) -> float:
-    """Hertz contact length 2 b (rolling direction) of the inner contact at load q, m
-    (Harris & Kotzalas ch. 6: b = b* (3 Q / (2 sum_rho E'))^(1/3),
-    E' = E / (2 (1 - nu^2)) for like materials)."""
+def _contact_semi_axes(b, q: float, race: str) -> tuple[float, float]:
+    """Semi-axes (a across the track, b along it) of the Hertz contact ellipse of one
+    ball-race contact at load q, m (Harris & Kotzalas ch. 6:
+    a = a* (3 Q / (2 sum_rho E'))^(1/3), likewise b, E' = E / (2 (1 - nu^2)) for like
+    materials)."""
     from ...bearing import hertz_factors
-    s, f = b.contact_curvature("inner")
+    s, f = b.contact_curvature(race)
+    h = hertz_factors(f)
     e_prime = b.youngs_modulus_pa / (2.0 * (1.0 - b.poisson_ratio ** 2))
-    return 2.0 * hertz_factors(f).b_star * (3.0 * q / (2.0 * s * e_prime)) ** (1.0 / 3.0)
+    c = (3.0 * q / (2.0 * s * e_prime)) ** (1.0 / 3.0)
+    return h.a_star * c, h.b_star * c
+
+
+def _contact_length(b, q: float) -> float:
+    """Hertz contact length 2 b (rolling direction) of the inner contact at load q, m."""
+    return 2.0 * _contact_semi_axes(b, q, "inner")[1]
+
+
+def _peak_pressure(b, q: float, race: str) -> float:
+    """Hertz pressure at the centre of the contact ellipse, 3 Q / (2 pi a b), Pa."""
+    a, bb = _contact_semi_axes(b, q, race)
+    return 1.5 * q / (math.pi * a * bb) if q > 0.0 else 0.0
+
+
+def _elastic_distribution(scene: Scene, weight: float, centrifugal: float,
+                          clearance: float, k_series: float, cage_angle: float):
+    """Stribeck's load distribution of the scene's radial load plus ``weight`` (N) with
+    ``clearance`` (m) and ball 0 at ``cage_angle`` (rad), refused with a ValueError if
+    the most loaded contact exceeds :data:`CONTACT_PRESSURE_LIMIT_PA` as the balls pass
+    the load line (cage angle 0): at the inner race, or at the outer with the
+    ``centrifugal`` force (N) added. The message gives the largest radial load the
+    model takes for the bearing."""
+    b = scene.bearing
+
+    def distribution(f_r, angle):
+        return b.load_distribution(f_r + weight, clearance_m=clearance,
+                                   cage_angle_deg=math.degrees(angle), stiffness=k_series)
+
+    def excess(f_r):
+        q = distribution(f_r, 0.0).q_max_n
+        return max(_peak_pressure(b, q, "inner"), _peak_pressure(b, q + centrifugal, "outer")) \
+            - CONTACT_PRESSURE_LIMIT_PA
+
+    if excess(scene.radial_load_n) <= 0.0:
+        return distribution(scene.radial_load_n, cage_angle)
+    largest = (optimize.brentq(excess, 0.0, scene.radial_load_n, rtol=1e-6)
+               if excess(0.0) < 0.0 else 0.0)
+    raise ValueError(
+        f"radial_load_n={scene.radial_load_n:g} N loads the most loaded ball of the "
+        f"{b.name} with {distribution(scene.radial_load_n, 0.0).q_max_n:.0f} N, a Hertz "
+        f"contact pressure above the {CONTACT_PRESSURE_LIMIT_PA / 1e6:.0f} MPa of ISO 76's "
+        "static load rating (permanent deformation 1e-4 of the ball diameter), where the "
+        "elastic contacts of the multibody model no longer hold; it takes radial loads up "
+        f"to {math.floor(largest):.0f} N for this bearing")
 
 
 def _series(ki: float, ko: float) -> float:
