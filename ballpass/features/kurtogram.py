@@ -252,7 +252,7 @@ def fast_kurtogram(
     support (1.5 times its bandwidth), like the decimated outputs of Antoni's FIR tree,
     at a cost of one FFT-length of work per row (1 s at 48 kHz, 7 levels: about 4 ms on
     one core, ``benchmarks/features_speed.py``; the first call of a process loads two
-    small compiled loops, which numba compiles once per install in about 2 s).
+    small compiled loops, 0.7 s, which numba compiles once per install, 2 s).
 
     The band returned as ``best_band`` maximises the kurtosis among *admissible*
     bands, those where the signal has content:
