@@ -350,15 +350,26 @@ def markdown(table: pd.DataFrame, seconds: float) -> str:
     ])
 
 
-def main(argv=None) -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def records_parser(doc: str) -> argparse.ArgumentParser:
+    """Command line with ``--data`` (the shared recordings) and ``--out`` (the docs)."""
+    parser = argparse.ArgumentParser(description=doc.splitlines()[0])
     root = Path(__file__).resolve().parents[1]
     parser.add_argument("--data", type=Path, default=root.parent / "shared" / "data")
     parser.add_argument("--out", type=Path, default=root / "docs")
+    return parser
+
+
+def real_records(data: Path) -> list[Record]:
+    """Every CWRU and MFPT record under ``data``."""
+    return cwru_records(data / "cwru") + mfpt_records(data / "mfpt")
+
+
+def main(argv=None) -> None:
+    parser = records_parser(__doc__)
     parser.add_argument("--no-sim", action="store_true", help="skip the simulated records")
     args = parser.parse_args(argv)
     t0 = time.perf_counter()
-    records = cwru_records(args.data / "cwru") + mfpt_records(args.data / "mfpt")
+    records = real_records(args.data)
     if not args.no_sim:
         records += simulated_records()
     table = evaluate(records)

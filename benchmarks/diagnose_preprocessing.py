@@ -23,13 +23,12 @@ Writes ``docs/diagnosis_preprocessing.md`` and ``docs/diagnosis_preprocessing.cs
 
 from __future__ import annotations
 
-import argparse
 import time
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
-from diagnose_loro import _md, cwru_records, mfpt_records, segments
+from diagnose_loro import _md, real_records, records_parser, segments
 
 from ballpass.diagnose import EnvelopeDiagnoser, envelope_evidence
 from ballpass.signalio import atomic_write
@@ -219,13 +218,9 @@ def markdown(table, ceiling, seconds) -> str:
 
 
 def main(argv=None) -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    root = Path(__file__).resolve().parents[1]
-    parser.add_argument("--data", type=Path, default=root.parent / "shared" / "data")
-    parser.add_argument("--out", type=Path, default=root / "docs")
-    args = parser.parse_args(argv)
+    args = records_parser(__doc__).parse_args(argv)
     t0 = time.perf_counter()
-    records = cwru_records(args.data / "cwru") + mfpt_records(args.data / "mfpt")
+    records = real_records(args.data)
     table = pd.DataFrame([row for v in VARIANTS for row in run(records, v)])
     ceiling = one_second(records)
     seconds = time.perf_counter() - t0
