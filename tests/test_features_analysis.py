@@ -144,6 +144,8 @@ def test_bad_input_is_refused_before_work():
         F.envelope_analysis(x, 0.0)
     with pytest.raises(ValueError, match="NaN or inf"):
         F.envelope_analysis(np.full(1000, np.nan), FS)
+    with pytest.raises(ValueError, match="no signals"):
+        F.envelope_analysis(np.zeros((0, 1000)), FS)
 
 
 def test_plot_draws_ses_and_kurtogram():

@@ -147,6 +147,7 @@ def test_short_signals_fall_back_to_the_full_band():
         ((np.array([]), FS), {}, "x"),
         ((np.ones(1), FS), {}, "x"),
         ((np.r_[np.ones(50), np.inf], FS), {}, "x"),
+        ((np.ones((0, 100)), FS), {}, "x"),  # a batch of no signals
         ((np.ones(100), 0.0), {}, "fs"),
         ((np.ones(100), FS), {"nlevel": 6}, "nlevel"),
         ((np.ones(100), FS), {"nlevel": -1}, "nlevel"),

@@ -22,11 +22,12 @@ def check_fs(fs) -> float:
     return fs
 
 
-def check_signal(x, axis: int = -1, *, name: str = "x", min_samples: int = 2) -> np.ndarray:
+def check_signal(x, axis: int = -1, *, name: str = "x", min_samples: int = 2,
+                 nonempty: bool = False) -> np.ndarray:
     """Return ``x`` as a float64 array with the sample axis moved last.
 
     Raises ``TypeError`` for non-real input and ``ValueError`` for signals shorter
-    than ``min_samples`` or containing NaN/inf.
+    than ``min_samples``, containing NaN/inf, or (``nonempty``) a batch of no signals.
     """
     arr = np.asarray(x)
     if arr.dtype == object or not (
@@ -43,6 +44,8 @@ def check_signal(x, axis: int = -1, *, name: str = "x", min_samples: int = 2) ->
             f"{name} must have at least {min_samples} samples along axis {axis}, "
             f"got {arr.shape[-1]}"
         )
+    if nonempty and arr.size == 0:
+        raise ValueError(f"{name} holds no signals (shape {np.shape(x)}): pass at least one")
     if arr.size and not np.isfinite(arr).all():
         raise ValueError(f"{name} contains NaN or inf; clean or interpolate the signal first")
     return arr

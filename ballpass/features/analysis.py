@@ -249,7 +249,7 @@ def envelope_analysis(x, fs: float, *, rpm=None, bearing=None, axis: int = -1):
     True
     """
     fs = check_fs(fs)
-    xv = check_signal(x, axis)
+    xv = check_signal(x, axis, nonempty=True)
     if (rpm is None) != (bearing is None):
         raise ValueError(
             f"rpm and bearing go together (the fault lines need both): got rpm={rpm!r}, "

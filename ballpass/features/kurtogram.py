@@ -321,7 +321,7 @@ def fast_kurtogram(
     (True, (12, 192))
     """
     fs = check_fs(fs)
-    x = check_signal(x, axis)
+    x = check_signal(x, axis, nonempty=True)
     n = x.shape[-1]
     if nlevel is None:
         nlevel = _default_nlevel(n)
