@@ -46,6 +46,7 @@ GROUPS = {
     "DE": "CWRU drive end (6205, DE sensor)",
     "FE": "CWRU fan end (6203, FE sensor)",
     "FE>DE": "CWRU fan-end faults heard at the drive end (6203 lines, DE sensor)",
+    "DE>FE": "CWRU drive-end faults heard at the fan end (6205 lines, FE sensor)",
     "MFPT": "MFPT (NICE bearing, other rig)",
     "SIM": "simulation (6205, sr5, 12 kHz)",
 }
@@ -67,15 +68,13 @@ def cwru_records(folder: Path) -> list[Record]:
     out = []
     for path in sorted(folder.glob("*.mat")):
         stem = path.stem
-        if stem.startswith("12k_DE"):
-            rec = load_cwru_mat(path, channel="DE")
-            out.append(Record(f"{stem} DE", "DE", rec.label, "6205", rec.fs, rec.rpm,
-                              rec.accel))
-        elif stem.startswith("12k_FE"):  # the faulty 6203 at its own and the far sensor
-            for channel, group in (("FE", "FE"), ("DE", "FE>DE")):
+        if stem[:6] in ("12k_DE", "12k_FE"):  # the faulty bearing at its own, the far sensor
+            end = stem[4:6]
+            far = "FE" if end == "DE" else "DE"
+            for channel, group in ((end, end), (far, f"{end}>{far}")):
                 rec = load_cwru_mat(path, channel=channel)
                 out.append(Record(f"{stem} {channel}", group, rec.label,
-                                  CWRU_BEARINGS["FE"], rec.fs, rec.rpm, rec.accel))
+                                  CWRU_BEARINGS[end], rec.fs, rec.rpm, rec.accel))
         else:  # the healthy baseline: both bearings, each at its own sensor
             for channel in ("DE", "FE"):
                 rec = load_cwru_mat(path, channel=channel)
@@ -233,6 +232,8 @@ def goals(table: pd.DataFrame) -> list[str]:
         f"(goal >= 90 %); all faulty records: {rate((g == 'DE') & faulty):.0%} (goal >= 75 %).",
         f"- CWRU fan end (FE sensor), inner and outer race named: {rate((g == 'FE') & race):.0%}"
         f" (goal >= 75 %); heard at the drive end: {rate((g == 'FE>DE') & race):.0%}.",
+        f"- CWRU drive-end faults heard at the fan end, inner and outer race named: "
+        f"{rate((g == 'DE>FE') & race):.0%}; all faulty: {rate((g == 'DE>FE') & faulty):.0%}.",
         f"- Healthy one-second segments flagged (both sensors): {flagged} of {n_seg} (goal 0).",
         f"- MFPT files named: {int((table.loc[g == 'MFPT', 'prediction'] == t[g == 'MFPT']).sum())}"
         f" of {int((g == 'MFPT').sum())} (goal all).",

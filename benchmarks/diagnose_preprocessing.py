@@ -88,6 +88,7 @@ def totals(table: pd.DataFrame) -> pd.DataFrame:
             "DE all faulty": f"{right[(g == 'DE') & ~healthy].mean():.0%}",
             "FE inner+outer": f"{right[(g == 'FE') & race].mean():.0%}",
             "FE>DE inner+outer": f"{right[(g == 'FE>DE') & race].mean():.0%}",
+            "DE>FE inner+outer": f"{right[(g == 'DE>FE') & race].mean():.0%}",
             "healthy segments flagged": f"{v.loc[healthy, 'segments_flagged'].sum()}"
                                         f"/{v.loc[healthy, 'segments'].sum()}",
             "MFPT": f"{int(right[g == 'MFPT'].sum())}/{int((g == 'MFPT').sum())}",
@@ -111,7 +112,7 @@ def one_second(records) -> pd.DataFrame:
 
     rows = []
     for rec in records:
-        if rec.group not in ("DE", "FE", "FE>DE"):
+        if rec.group == "MFPT":
             continue
         diag = EnvelopeDiagnoser(bearing=rec.bearing, fs=rec.fs, rpm=rec.rpm)
         (whole,) = diag.explain(rec.x[None])
@@ -121,7 +122,7 @@ def one_second(records) -> pd.DataFrame:
 
         seg_ev = (ev[rec.label] if rec.label != "healthy"
                   else np.max([ev[f] for f in FAMILIES], axis=0))
-        reference = healthy_max["DE" if rec.group == "FE>DE" else rec.group]
+        reference = healthy_max[rec.group.split(">")[-1]]  # the sensor's healthy channel
         rows.append({
             "group": rec.group, "record": rec.name, "truth": rec.label,
             "whole (dB)": round(whole.evidence_db[family(rec.label, whole.evidence_db)], 1),
@@ -187,8 +188,9 @@ def markdown(table, ceiling, seconds) -> str:
         "family; default settings) from the whole record and from each one-second "
         "segment, against the largest evidence *any* family reaches in a one-second "
         "segment of the healthy recording at the same sensor (`FE>DE` records against "
-        "the healthy drive-end channel). A segment whose evidence lies below that level "
-        "cannot be named by any threshold that keeps every healthy segment healthy.",
+        "the healthy drive-end channel, `DE>FE` against the fan-end one). A segment "
+        "whose evidence lies below that level cannot be named by any threshold that "
+        "keeps every healthy segment healthy.",
         "",
         _md(ceiling),
         "",
