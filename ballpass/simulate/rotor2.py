@@ -440,7 +440,7 @@ def _crossings(scene: Scene, p: np.ndarray, levels: np.ndarray, t_end: float) ->
     accel = 0.5 * (w1 - w0) / p[_K.P_T]  # theta = w0 t + accel t^2
     theta_end = w0 * t_end + accel * t_end * t_end
     names = np.array(["entry", "ramp_end", "ramp_start", "exit"])
-    times, faults, paths, edges = [], [], [], []
+    times, faults, paths, edges = [np.empty(0)], [np.empty(0, int)], [np.empty(0, int)], [names[:0]]
     for i, (fault, lv) in enumerate(zip(scene.faults, levels, strict=True)):
         r = P_FAULTS + i * _K.N_FCOLS
         centre = p[r + _K.F_CENTRE]
@@ -450,10 +450,8 @@ def _crossings(scene: Scene, p: np.ndarray, levels: np.ndarray, t_end: float) ->
         else:
             offset0 = p[P_PHI0] + 2.0 * np.pi * np.arange(z) / z - centre
             rate = cage - 1.0 if fault.kind == "inner" else cage
-        # an inner-race offset falls: its levels are met from the top down
-        order = np.arange(4)[::-1] if rate < 0 else np.arange(4)
         for path, o0 in enumerate(offset0):
-            for k in order:
+            for k in range(4):
                 if not np.isfinite(lv[k]):
                     continue  # no ramp: no ramp ends
                 # turns m with theta in [0, theta_end], one spare at each end
@@ -467,11 +465,8 @@ def _crossings(scene: Scene, p: np.ndarray, levels: np.ndarray, t_end: float) ->
                 times.append(t)
                 faults.append(np.full(t.size, i))
                 paths.append(np.full(t.size, path))
+                # an inner-race offset falls: it meets its levels from the top down
                 edges.append(np.full(t.size, names[k] if rate > 0 else names[3 - k]))
-    if not times:
-        empty = np.empty(0)
-        return FaultCrossings(time_s=empty, fault=empty.astype(int), element=empty.astype(int),
-                              edge=empty.astype(str))
     t = np.concatenate(times)
     order = np.argsort(t, kind="stable")
     return FaultCrossings(time_s=t[order], fault=np.concatenate(faults)[order],
