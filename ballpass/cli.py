@@ -19,6 +19,7 @@ SUBCOMMANDS = {
     "bearings": "bearings",
     "features": "features",
     "plot": "plot",
+    "diagnose": "diagnose",
     "generate": "generate",
     "info": "info",
     "benchmark": "benchmark",
