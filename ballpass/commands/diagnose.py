@@ -60,15 +60,16 @@ def verdict_rows(signals, band=None, progress: bool = True):
     from ..diagnose import EnvelopeDiagnoser
     from .features import _known
 
-    out = []
-    for sig in tqdm(signals, desc="diagnose", unit="signal", disable=not progress,
-                    leave=False, file=sys.stderr):
+    for sig in signals:  # every signal checked before any is diagnosed
         missing = [f"{what} ({opt})" for what, opt, value in (
             ("bearing", "--bearing", sig.bearing), ("shaft speed", "--rpm", sig.rpm))
             if not _known(value)]
         if missing:
             raise ValueError(f"{sig.name}: the input does not give the {' or '.join(missing)};"
                              " pass it on the command line (the fault lines need both)")
+    out = []
+    for sig in tqdm(signals, desc="diagnose", unit="signal", disable=not progress,
+                    leave=False, file=sys.stderr):
         diag = EnvelopeDiagnoser(bearing=sig.bearing, fs=sig.fs, rpm=float(sig.rpm), band=band)
         why = diag.explain(np.asarray(sig.x, dtype=np.float64)[None])[0]
         lo, hi = why.band_hz.get(why.label, (np.nan, np.nan))
