@@ -147,8 +147,9 @@ def fit_baseline_threshold(levels: list[dict], labels: list[str]) -> float:
 
 
 # ---------------------------------------------------------------------- evaluation
-def segments(x: np.ndarray, fs: float) -> np.ndarray:
-    n = round(SEGMENT_S * fs)
+def segments(x: np.ndarray, fs: float, seconds: float = SEGMENT_S) -> np.ndarray:
+    """``x`` cut into consecutive segments of ``seconds``, shape (k, n); the rest dropped."""
+    n = round(seconds * fs)
     k = len(x) // n
     return x[: k * n].reshape(k, n)
 
@@ -319,7 +320,9 @@ def markdown(table: pd.DataFrame, seconds: float) -> str:
         "6 dB of its carriers (then the line may belong to a ball fault's FTF comb).",
         "- **Speed from the signal.** On records of 2 s or more the shaft-harmonic comb "
         "(median of 10 harmonics) is searched within +-4 % of the stated speed; a "
-        "correction is reported in `explain()`. Segments use their record's speed.",
+        "correction is used where it strengthens the fault evidence (a fault's own "
+        "harmonics can pass for a shaft comb: the 6203's BPFO / 3 is 1.8 % above its "
+        "shaft speed) and reported in `explain()`. Segments use their record's speed.",
         "- **Band by fault evidence.** Every band of the 1/3-binary tree wide enough for "
         "the lines and above them, with signal in it, is demodulated; each family keeps "
         "the band where it reads highest (the IESFOgram idea).",

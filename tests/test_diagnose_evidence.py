@@ -128,6 +128,25 @@ def test_wrong_stated_speed_is_corrected_and_said():
     assert diag.set_params(speed_tolerance=0.0).predict(x[None])[0] != "outer"
 
 
+def test_a_fault_comb_does_not_overrule_a_right_stated_speed():
+    # A 6203's BPFO is 3.053 x fr: its raw-spectrum harmonics sit on the 3rd, 6th, 9th
+    # harmonics of BPFO / 3 = 1.018 x fr, and on a 2 s record (0.5 Hz bins) the 1st and
+    # 2nd of that false speed read the true shaft lines' main lobes: the comb search
+    # prefers ~1817 rpm (two-second segments of the CWRU fan-end outer-race records were
+    # "corrected" to 1829 rpm that way, losing an 18 dB outer-race fault). A correction
+    # is only used where it strengthens the fault evidence; here the stated speed stays.
+    bpfo = 0.995 * 3.053 * RPM / 60
+    t = np.arange(round(2.0 * FS)) / FS
+    low = sum(0.3 * np.cos(2 * np.pi * h * bpfo * t + h) for h in range(1, 7))
+    shaft = sum(0.3 * np.cos(2 * np.pi * k * RPM / 60 * t + 2 * k) for k in (1, 2, 3))
+    x = impacts(bpfo, 2.0, noise=0.3) + low + shaft
+    found, _, _ = bp.diagnose.speed.estimate_shaft_speed(x[None], FS, np.array([RPM]))
+    assert found[0] > 1.005 * RPM  # the trap is armed: the comb alone points elsewhere
+    (exp,) = EnvelopeDiagnoser(bearing="6203", fs=FS, rpm=RPM).explain(x[None])
+    assert exp.rpm == RPM and not exp.notes
+    assert exp.label == "outer"
+
+
 def test_noise_free_healthy_simulation_is_healthy():
     # The quick dataset's healthy rows (sr5, no noise, 0.25 s): the varying-compliance
     # line at BPFO has no high-frequency carrier, so no demodulation band holds it.
