@@ -2,13 +2,14 @@
 
 import json
 import math
+import tomllib
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 from ballpass.datasets import Grid, read_grid
-from ballpass.datasets.grid import run_seed
+from ballpass.datasets.grid import count_points, run_seed
 
 BASE = {
     "dataset": {"duration_s": 0.05, "fs": 12000, "repeats": 2, "seed": 7},
@@ -153,6 +154,8 @@ def test_fault_engagement_multiplies_ball_points_only():
         (w, e) for w in (0.2, 0.5) for e in (0.3, 0.6, 1.0)]
     # the value reaches the run's Fault
     assert [r.build_scene().fault.engagement for r in g.runs[10::2]] == [0.3, 0.6, 1.0] * 2
+    # the size check counts the points (without building them) the same way
+    assert count_points(g.axes) == g.n_runs // 2
 
 
 def test_fault_engagement_range_and_sizes():
@@ -189,3 +192,13 @@ def test_fault_engagement_needs_a_ball_fault():
         read_grid(with_("grid", fault_engagement=[0.5]))       # healthy, outer, inner
     with pytest.raises(ValueError, match=r"grid.fault_engagement\[0\] must be a number"):
         read_grid(with_("grid", fault=["ball"], fault_engagement=["often"]))
+
+
+def test_sim2real_example_engagement_line_counts_as_its_comment_says():
+    path = Path(__file__).parent.parent / "examples" / "sim2real_cwru.toml"
+    text = path.read_text()
+    assert read_grid(tomllib.loads(text)).n_runs == 156
+    g = read_grid(tomllib.loads(text.replace("# fault_engagement =", "fault_engagement =")))
+    assert g.n_runs == 252
+    assert {r.build_scene().fault.engagement for r in g.runs
+            if r.scene.get("fault", {}).get("kind") == "ball"} == {0.3, 0.5, 0.7}
