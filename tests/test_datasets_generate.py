@@ -6,6 +6,7 @@ function of its stored scene and seed, so regenerating it, resuming a killed run
 running the shards on another executor must reproduce it bit for bit.
 """
 
+import importlib
 import json
 import os
 import signal
@@ -202,6 +203,12 @@ def test_kill_and_resume(tmp_path):
     (GRID_TOML.replace("[grid]", "[grid"), "not a valid TOML grid file"),
     (GRID_TOML.replace("seed = 3", 'seed = 3\nsolver = "euler"'), "dataset.solver must be"),
     (GRID_TOML.replace("seed = 3", 'seed = 3\nmodel = "sr9"'), "model 'sr9'"),
+    (GRID_TOML.replace("rpm =", "fault_engagement = [0.5, 2]\nrpm ="),
+     "grid.fault_engagement[1] = 2 is outside (0, 1]"),
+    # the impulse model would ignore the engagement: rows labelled 0.5 striking every time
+    (GRID_TOML.replace("seed = 3", 'seed = 3\nmodel = "impulse"')
+     .replace("rpm =", "fault_engagement = [0.5]\nrpm =").replace("[inf, 10]", "[inf]"),
+     "model 'impulse' (run 20, ball) does not represent intermittent_faults"),
 ])
 def test_bad_grid_refused_before_any_work(tmp_path, capsys, text, key):
     grid = tmp_path / "bad.toml"
@@ -293,3 +300,36 @@ def test_feature_table(tmp_path):
     for name, value in feature_columns(X, 12000.0, meta.bearing, meta.rpm).items():
         assert np.array_equal(table[name].to_numpy(), value, equal_nan=True), name
     assert info(out)["features"]
+
+
+def test_dataset_written_before_the_engagement_column_resumes_and_loads(tmp_path,
+                                                                         monkeypatch):
+    """A dataset half-written by a ballpass without the ``fault_engagement`` column (its
+    grid has no such axis) resumes under this one: the same grid, run ids and seeds; the
+    new shards carry the column, and ``load`` gives the old rows the engagement they were
+    simulated with (1: the grid could not set another), whichever shard comes first."""
+    # the module, not the function the package exports under the same name
+    generate_module = importlib.import_module("ballpass.datasets.generate")
+
+    grid = {"dataset": {"duration_s": 0.05, "fs": 12000, "shard_size": 1, "model": "impulse"},
+            "grid": {"bearing": ["6205"], "fault": ["healthy", "outer", "ball"], "rpm": [1797],
+                     "resonance_hz": [3000]}}
+    out = tmp_path / "ds"
+    old_columns = tuple(c for c in generate_module.COLUMNS if c != "fault_engagement")
+    with monkeypatch.context() as m:
+        m.setattr(generate_module, "COLUMNS", old_columns)
+        generate(grid, out, progress=False)
+    assert "fault_engagement" not in pq.read_schema(out / "part-00000.parquet").names
+    X_old, meta_old = load(out)
+    assert meta_old.fault_engagement.tolist()[1:] == [1.0, 1.0]
+    assert np.isnan(meta_old.fault_engagement[0])                      # healthy
+    # shards lost (a kill, a damaged file) and made again: read after old shards (whose
+    # schema then decides), then first (the old shards read the column as null)
+    for lost in ("part-00002.parquet", "part-00000.parquet"):
+        (out / lost).unlink()
+        with pytest.warns(UserWarning, match="is missing; generating it again"):
+            assert generate(grid, out, progress=False).shards_written == 1
+        assert "fault_engagement" in pq.read_schema(out / lost).names
+        X, meta = load(out)
+        assert np.array_equal(X, X_old)
+        pd.testing.assert_frame_equal(meta, meta_old)

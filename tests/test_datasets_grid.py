@@ -2,12 +2,14 @@
 
 import json
 import math
+import tomllib
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 from ballpass.datasets import Grid, read_grid
-from ballpass.datasets.grid import run_seed
+from ballpass.datasets.grid import count_points, run_seed
 
 BASE = {
     "dataset": {"duration_s": 0.05, "fs": 12000, "repeats": 2, "seed": 7},
@@ -133,3 +135,70 @@ def test_noise_floor_and_resonance_damping_axes():
     # an absolute noise floor and an SNR on the same point contradict each other
     with pytest.raises(ValueError, match="snr_db or noise_rms"):
         read_grid(with_("grid", noise_rms=[0.6], snr_db=[20]))
+
+
+# ------------------------------------------------------------- fault_engagement axis
+def test_fault_engagement_multiplies_ball_points_only():
+    g = read_grid(with_("grid", fault=["healthy", "outer", "inner", "ball"],
+                        fault_engagement=[0.3, 0.6, 1.0]))
+    # per repeat: 1 healthy + 2 widths x (outer + inner) + 2 widths x 3 engagements (ball)
+    assert g.n_runs == (1 + 2 * 2 + 2 * 3) * 2
+    faults = [r.scene.get("fault") for r in g.runs[::2]]
+    kinds = [f and f["kind"] for f in faults]
+    assert kinds == [None] + ["outer"] * 2 + ["inner"] * 2 + ["ball"] * 6
+    # race faults keep Fault's default (a race defect is on its track on every pass):
+    # their scenes do not even carry the key, exactly as without the axis
+    assert all("engagement" not in f for f in faults[1:5])
+    # ball points: engagement varies fastest, inside each width
+    assert [(f["width_mm"], f["engagement"]) for f in faults[5:]] == [
+        (w, e) for w in (0.2, 0.5) for e in (0.3, 0.6, 1.0)]
+    # the value reaches the run's Fault
+    assert [r.build_scene().fault.engagement for r in g.runs[10::2]] == [0.3, 0.6, 1.0] * 2
+    # the size check counts the points (without building them) the same way
+    assert count_points(g.axes) == g.n_runs // 2
+
+
+def test_fault_engagement_range_and_sizes():
+    g = read_grid(with_("grid", fault=["healthy", "ball"],
+                        fault_engagement={"start": 0.2, "stop": 0.7, "step": 0.1}))
+    assert g.axes["fault_engagement"] == [0.2, 0.3, 0.4, 0.5, 0.6, 0.7]
+    # (1 healthy + 2 widths x 6 engagements) x 2 repeats, one row per sensor
+    assert g.n_runs == (1 + 2 * 6) * 2 and g.n_rows == g.n_runs * 2
+    assert read_grid(g.as_dict()).runs == g.runs
+
+
+def test_grids_without_the_axis_keep_their_runs():
+    # golden: the runs of a grid as read by ballpass before the axis existed (provenance
+    # in tests/data/README.md). Run ids, seeds and the stored grid decide whether a
+    # dataset of that grid resumes; they must not move.
+    golden = json.loads((Path(__file__).parent / "data" / "grid_runs_d875a80.json").read_text())
+    g = read_grid(golden["grid"])
+    assert g.as_dict() == golden["as_dict"]
+    assert [[r.run_id, r.repeat, r.seed, r.scene.get("fault"), r.scene["rpm"]]
+            for r in g.runs] == golden["runs"]
+
+
+@pytest.mark.parametrize("value, shown", [(0.0, "0"), (1.5, "1.5"), (-0.2, "-0.2"),
+                                          (math.nan, "nan")])
+def test_bad_fault_engagement_is_refused_with_its_range(value, shown):
+    bad = with_("grid", fault=["ball"], fault_engagement=[0.5, value])
+    with pytest.raises(ValueError, match=rf"grid.fault_engagement\[1\] = {shown} is outside "
+                                         r"\(0, 1\]"):
+        read_grid(bad)
+
+
+def test_fault_engagement_needs_a_ball_fault():
+    with pytest.raises(ValueError, match=r"grid.fault_engagement applies to ball faults only"):
+        read_grid(with_("grid", fault_engagement=[0.5]))       # healthy, outer, inner
+    with pytest.raises(ValueError, match=r"grid.fault_engagement\[0\] must be a number"):
+        read_grid(with_("grid", fault=["ball"], fault_engagement=["often"]))
+
+
+def test_sim2real_example_engagement_line_counts_as_its_comment_says():
+    path = Path(__file__).parent.parent / "examples" / "sim2real_cwru.toml"
+    text = path.read_text()
+    assert read_grid(tomllib.loads(text)).n_runs == 156
+    g = read_grid(tomllib.loads(text.replace("# fault_engagement =", "fault_engagement =")))
+    assert g.n_runs == 252
+    assert {r.build_scene().fault.engagement for r in g.runs
+            if r.scene.get("fault", {}).get("kind") == "ball"} == {0.3, 0.5, 0.7}

@@ -58,9 +58,9 @@ __all__ = ["generate", "dry_run", "regenerate", "run_shard", "GenerateSummary", 
 # ----------------------------------------------------------------------------- one run
 #: metadata columns of a dataset, in stored order (the signal column comes first)
 COLUMNS = (
-    "label", "bearing", "fault_width_mm", "fault_depth_mm", "fault_angle_deg", "rpm",
-    "rpm_start", "rpm_end", "radial_load_n", "slip", "snr_db", "noise_rms", "resonance_hz",
-    "resonance_damping", "sensor",
+    "label", "bearing", "fault_width_mm", "fault_depth_mm", "fault_angle_deg",
+    "fault_engagement", "rpm", "rpm_start", "rpm_end", "radial_load_n", "slip", "snr_db",
+    "noise_rms", "resonance_hz", "resonance_damping", "sensor",
     "segment", "start_s", "duration_s", "fs", "run_id", "group", "repeat", "seed", "model",
     "solver", "scene",
 )
@@ -90,6 +90,7 @@ def _simulate_run(run: Run, solver: str, signal_length: int, n_segments: int):
         "fault_width_mm": fault.width_mm if fault else math.nan,
         "fault_depth_mm": fault.depth_mm if fault else math.nan,
         "fault_angle_deg": fault.angle_deg if fault else math.nan,
+        "fault_engagement": fault.engagement if fault else math.nan,
         "rpm_start": speed.rpm_start,
         "rpm_end": speed.rpm_end,
         "radial_load_n": scene.radial_load_n,
@@ -386,9 +387,11 @@ def _dispatch(specs: list[ShardSpec], n_workers: int, executor):
 
 # ----------------------------------------------------------------------------- planning
 def _resolved_models(grid: Grid) -> list[tuple[str, Run]]:
-    """(resolved model, first run) per grid point, in order; unknown models and solvers
-    raise here."""
-    from ..simulate import SOLVERS, resolve_model
+    """(resolved model, first run) per grid point, in order; unknown models and solvers,
+    and a model that would ignore what a scene's fields ask for (``fault_engagement < 1``
+    needs ``intermittent_faults``), raise here: its rows' parameter columns would lie."""
+    from ..phenomena import DEFAULT_NEEDS
+    from ..simulate import MODELS, SOLVERS, resolve_model, scene_needs
 
     if grid.dataset["solver"] not in ("auto", *SOLVERS):
         raise ValueError(f"dataset.solver must be 'auto' or one of {sorted(SOLVERS)}, "
@@ -397,10 +400,21 @@ def _resolved_models(grid: Grid) -> list[tuple[str, Run]]:
     repeats = grid.dataset["repeats"]
     out = []
     for run in grid.runs[::repeats]:
+        scene = run.build_scene()
         try:
-            out.append((resolve_model(run.build_scene(), run.model), run))
+            model = resolve_model(scene, run.model)
         except (TypeError, ValueError) as exc:
             raise ValueError(f"model {run.model!r} (run {run.run_id}): {exc}") from None
+        from_fields = scene_needs(scene) - set(scene.needs or DEFAULT_NEEDS)
+        ignored = from_fields - MODELS[model].represents
+        if ignored:
+            able = [m.name for m in MODELS.values() if ignored <= m.represents]
+            raise ValueError(
+                f"model {model!r} (run {run.run_id}, {scene.label}) does not represent "
+                f"{', '.join(sorted(ignored))}, which the grid point asks for; its rows would "
+                "be labelled with parameters their signals do not have. Use model = "
+                f'"auto" or one of {able}.')
+        out.append((model, run))
     return out
 
 

@@ -4,9 +4,11 @@ A grid has two tables. ``[dataset]`` holds the settings shared by every run
 (duration, sampling rate, repeats, root seed, model, segmenting, shard size);
 ``[grid]`` holds the axes: every key is a list of values and the runs are the
 Cartesian product of the axes, times ``repeats``. Healthy runs do not multiply
-over the fault axes (width, depth, angle). ``sensor`` is not an axis of the
-product: its values are the channels of one run (one simulation, one row per
-sensor, same ``run_id``).
+over the fault axes (width, depth, angle, engagement), and race-fault runs do not
+multiply over ``fault_engagement``, which only ball faults have (a race defect lies
+on the track on every pass; :class:`~ballpass.Fault` refuses ``engagement < 1`` for
+it). ``sensor`` is not an axis of the product: its values are the channels of one
+run (one simulation, one row per sensor, same ``run_id``).
 
 Everything is validated by :func:`read_grid` before any simulation work: unknown
 keys, empty lists, reversed or non-positive ranges, wrong types and values a
@@ -23,6 +25,13 @@ Examples
 ... })
 >>> g.n_runs, g.n_rows                 # (1 healthy + 2 outer) x 2 rpm x 2 repeats; x 2 sensors
 (12, 24)
+>>> g = read_grid({"grid": {"bearing": ["6205"], "fault": ["healthy", "outer", "ball"],
+...                         "fault_engagement": [0.3, 1.0], "rpm": [1797]}})
+>>> g.n_runs                          # 1 healthy + 1 outer + 1 ball x 2 engagements
+4
+>>> [r.scene.get("fault") for r in g.runs]        # doctest: +NORMALIZE_WHITESPACE
+[None, {'kind': 'outer'}, {'kind': 'ball', 'engagement': 0.3},
+ {'kind': 'ball', 'engagement': 1.0}]
 """
 
 from __future__ import annotations
@@ -61,19 +70,21 @@ DATASET_DEFAULTS: dict[str, object] = {
     "needs": None,
 }
 
-#: [grid] axes; runs follow this order, with the fault-size axes varying fastest
+#: [grid] axes; runs follow this order, with the fault axes (size, angle, engagement)
+#: varying fastest
 AXES = (
-    "bearing", "fault", "fault_width_mm", "fault_depth_mm", "fault_angle_deg", "rpm",
-    "radial_load_n", "slip", "snr_db", "noise_rms", "resonance_hz", "resonance_damping",
-    "model", "sensor",
+    "bearing", "fault", "fault_width_mm", "fault_depth_mm", "fault_angle_deg",
+    "fault_engagement", "rpm", "radial_load_n", "slip", "snr_db", "noise_rms", "resonance_hz",
+    "resonance_damping", "model", "sensor",
 )
 REQUIRED_AXES = ("bearing", "fault", "rpm")
 _FAULT_AXES = {"fault_width_mm": "width_mm", "fault_depth_mm": "depth_mm",
-               "fault_angle_deg": "angle_deg"}
+               "fault_angle_deg": "angle_deg", "fault_engagement": "engagement"}
+#: fault axes of ball faults only: race-fault points do not multiply over them
+_BALL_AXES = ("fault_engagement",)
 _SCENE_AXES = ("radial_load_n", "slip", "snr_db", "noise_rms", "resonance_hz",
                "resonance_damping")
-_NUMERIC_AXES = ("fault_width_mm", "fault_depth_mm", "fault_angle_deg", "rpm",
-                 *_SCENE_AXES)
+_NUMERIC_AXES = (*_FAULT_AXES, "rpm", *_SCENE_AXES)
 _SENSOR_KEYS = {f.name for f in fields(Sensor)}
 
 #: target size of one shard, bytes of float32 signal (shard_size default)
@@ -459,12 +470,29 @@ def read_grid(source) -> Grid:
 
     ``bearing`` (catalogue names), ``fault`` ("healthy", "outer", "inner", "ball"),
     ``fault_width_mm``, ``fault_depth_mm``, ``fault_angle_deg`` (fault rows only),
+    ``fault_engagement`` (ball rows only: ``Fault(engagement=...)``, the share of the
+    ball's spin revolutions, in (0, 1], on which its defect strikes; see below),
     ``rpm`` (a value or a ``[start, end]`` ramp), ``radial_load_n`` (N), ``slip``,
     ``snr_db`` (dB; ``inf`` = noise-free) or ``noise_rms`` (absolute sensor noise,
     m/s^2), ``resonance_hz`` (Hz), ``resonance_damping`` (ratio), ``model``, and
     ``sensor`` ("loaded", "unloaded" or a table of :class:`~ballpass.Sensor` fields),
     the channels of each run. Axes left out take the :class:`~ballpass.Scene`
     defaults; ``bearing``, ``fault`` and ``rpm`` are required.
+
+    ``fault_engagement`` multiplies the ball points only: healthy, outer- and
+    inner-race points appear once per combination of the other axes, with the
+    :class:`~ballpass.Fault` default engagement 1 (a race defect is on the track on
+    every pass), so ``fault = ["healthy", "outer", "inner", "ball"]`` with two widths
+    and ``fault_engagement = [0.3, 0.6]`` gives 1 + 2 + 2 + 2 x 2 = 9 points per
+    combination of the other axes. A grid without the axis keeps its run ids, seeds
+    and scenes (its ball faults strike on every revolution, as before). The axis is
+    refused without a ``"ball"`` fault (it would change nothing). Scenes with
+    ``engagement < 1`` need a model that represents ``intermittent_faults`` (sr5,
+    sr4, gearbox; ``model = "auto"`` picks one); :func:`~ballpass.datasets.generate`
+    refuses, before any work, a model that would ignore it. The grid has no per-run
+    random draws: list the engagements to cover, or give a range table, e.g.
+    ``{start = 0.2, stop = 0.7, step = 0.1}`` (docs/sim2real.md recommends 0.2-0.7 for
+    training sets meant for real machines).
 
     Examples
     --------
@@ -478,6 +506,11 @@ def read_grid(source) -> Grid:
     Traceback (most recent call last):
         ...
     ValueError: grid.fault[0] must be one of ('healthy', 'outer', 'inner', 'ball'), got 'cracked'
+    >>> read_grid({"grid": {"bearing": ["6205"], "fault": ["ball"], "rpm": [1797],
+    ...                     "fault_engagement": [0.5, 1.5]}})   # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+        ...
+    ValueError: grid.fault_engagement[1] = 1.5 is outside (0, 1]: ...
     """
     if isinstance(source, Grid):
         return source
@@ -502,6 +535,7 @@ def read_grid(source) -> Grid:
                              "axis")
         del dataset["model"]
     axes = {k: _axis_values(k, grid_raw[k]) for k in AXES if k in grid_raw}
+    _check_ball_axes(axes)
 
     _check_count(dataset, axes)
     points = _expand(dataset, axes)
@@ -514,14 +548,36 @@ def read_grid(source) -> Grid:
     return Grid(dataset=dataset, axes=axes, _points=points)
 
 
+def _check_ball_axes(axes: dict) -> None:
+    """Refuse engagements outside (0, 1] and an engagement axis without ball faults."""
+    for i, v in enumerate(axes.get("fault_engagement", ())):
+        if not 0.0 < v <= 1.0:
+            raise ValueError(
+                f"grid.fault_engagement[{i}] = {v:g} is outside (0, 1]: it is the share of "
+                "a ball's spin revolutions on which its defect strikes (Fault(engagement=...); "
+                "1 = every revolution)")
+    if "fault_engagement" in axes and "ball" not in axes["fault"]:
+        raise ValueError(
+            f"grid.fault_engagement applies to ball faults only (a race defect lies on the "
+            f"track on every pass), and grid.fault = {axes['fault']} has no \"ball\": add "
+            "\"ball\" or drop the axis")
+
+
+def _fault_axes_of(kind: str, axes) -> list[str]:
+    """The fault axes (of ``axes``, in order) that a point of fault ``kind`` multiplies over:
+    none for healthy points, no ball-only axis for race faults."""
+    if kind == "healthy":
+        return []
+    return [k for k in axes if k in _FAULT_AXES and (kind == "ball" or k not in _BALL_AXES)]
+
+
 def count_points(axes: dict) -> int:
     """Grid points of validated axes, counted without building them: healthy points do
-    not multiply over the fault axes."""
+    not multiply over the fault axes, race-fault points not over the ball-only ones."""
     other = math.prod(len(v) for k, v in axes.items()
                       if k not in _FAULT_AXES and k not in ("sensor", "fault"))
-    n_faulty = sum(v != "healthy" for v in axes["fault"])
-    per_fault = math.prod(len(v) for k, v in axes.items() if k in _FAULT_AXES)
-    return other * (len(axes["fault"]) - n_faulty + n_faulty * per_fault)
+    return other * sum(math.prod(len(axes[k]) for k in _fault_axes_of(kind, axes))
+                       for kind in axes["fault"])
 
 
 def _check_count(dataset: dict, axes: dict) -> None:
@@ -558,16 +614,14 @@ def grid_differences(stored: dict, new: dict, prefix: str = "") -> list[str]:
 def _expand(dataset: dict, axes: dict) -> tuple:
     """Grid points as (model, scene kwargs) in product order; each validated as a Scene."""
     product_axes = [k for k in AXES if k in axes and k != "sensor"]
-    fault_axes = [k for k in product_axes if k in _FAULT_AXES]
     other_axes = [k for k in product_axes if k not in _FAULT_AXES]
     sensors = axes.get("sensor", ["loaded"])
     points = []
     for combo in itertools.product(*(axes[k] for k in other_axes)):
         values = dict(zip(other_axes, combo, strict=True))
-        fault_combos = ([()] if values["fault"] == "healthy"
-                        else itertools.product(*(axes[k] for k in fault_axes)))
-        for fcombo in fault_combos:
-            values_f = {**values, **dict(zip(fault_axes, fcombo, strict=False))}
+        fault_axes = _fault_axes_of(values["fault"], product_axes)
+        for fcombo in itertools.product(*(axes[k] for k in fault_axes)):
+            values_f = {**values, **dict(zip(fault_axes, fcombo, strict=True))}
             scene = _point_scene(dataset, sensors, values_f)
             try:
                 scene_from_dict({**scene, "seed": 0})
