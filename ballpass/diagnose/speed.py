@@ -1,17 +1,17 @@
 """Shaft speed from the signal: the comb of shaft harmonics in the spectrum.
 
-A stored speed can be wrong by a few percent (the CWRU file 12k_FE_OR014@3_0 is named
-0 hp, 1797 rpm, but holds the 1 hp test at 1774 rpm, which its shaft comb confirms) or
-missing (the loaders then fill a nominal speed). The fault lines of a bearing are fixed multiples of the shaft speed, so
-a 1.3 % error moves 3xBPFI of a 6205 by 6 Hz, outside any slip search. A rotating
-machine's spectrum carries the shaft harmonics ``k x fr`` (unbalance, misalignment,
-looseness: Randall, *Vibration-based Condition Monitoring*, 2011, ch. 1); the
-speed whose harmonic comb stands highest above the spectrum's background, within a
-few percent of the stated speed, is the shaft speed (a harmonic-comb search, the
-discrete analogue of reading the first order of an order spectrum). A fault's own
-harmonics can form a comb too (the 6203's BPFO / 3 lies 1.8 % above its shaft speed):
-the diagnoser uses a corrected speed only where it strengthens the fault evidence
-(:func:`ballpass.diagnose.envelope_evidence`).
+A stored speed can be wrong by a few percent (the CWRU file 12k_FE_OR014@3_0 is named 0
+hp, 1797 rpm, but holds the 1 hp test at 1774 rpm, which its shaft comb confirms) or
+missing (the loaders then fill a nominal speed). The fault lines of a bearing are fixed
+multiples of the shaft speed, so a 1.3 % error moves 3xBPFI of a 6205 by 6 Hz, outside
+any slip search. A rotating machine's spectrum carries the shaft harmonics ``k x fr``
+(unbalance, misalignment, looseness: Randall, *Vibration-based Condition Monitoring*,
+2011, ch. 1); the speed whose harmonic comb stands highest above the spectrum's
+background, within a few percent of the stated speed, is the shaft speed (a harmonic-
+comb search, the discrete analogue of reading the first order of an order spectrum). A
+fault's own harmonics can form a comb too (the 6203's BPFO / 3 lies 1.8 % above its
+shaft speed): the diagnoser uses a corrected speed only where it strengthens the fault
+evidence (:func:`ballpass.diagnose.envelope_evidence`).
 """
 
 from __future__ import annotations
