@@ -169,6 +169,16 @@ def test_fs_and_rpm_are_required():
         EnvelopeDiagnoser(fs=FS).predict(x)
 
 
+def test_one_signal_must_be_a_row():
+    # sklearn's own message for a 1-D X prints the whole array; ours names the shape.
+    diag = EnvelopeDiagnoser(fs=FS, rpm=RPM)
+    with pytest.raises(ValueError, match=r"got shape \(12000,\): pass x\[None\]") as err:
+        diag.explain(np.zeros(12_000))
+    assert "0. 0." not in str(err.value)
+    with pytest.raises(ValueError, match=r"got shape \(1, 2, 12000\)"):
+        diag.predict(np.zeros((1, 2, 12_000)))
+
+
 def test_short_records_are_refused():
     # Two cage periods of a 6205 at 1797 rpm: 2 / (0.39828 x 29.95 Hz) = 0.168 s.
     with pytest.raises(ValueError, match=r"at least 2 cage periods \(0\.168 s"):

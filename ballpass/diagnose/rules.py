@@ -286,6 +286,11 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
             raise ValueError("fs must be given (sampling frequency of the signals, Hz > 0): "
                              "EnvelopeDiagnoser(bearing=..., fs=..., rpm=...)")
         fs = check_fs(self.fs)
+        shape = np.shape(X)
+        if len(shape) != 2:
+            one = (f": pass x[None] (shape (1, {shape[0]})) for one signal"
+                   if len(shape) == 1 else "")
+            raise ValueError(f"X must be 2-D, (n_signals, n_samples); got shape {shape}{one}")
         X = check_array(X, dtype=[np.float64, np.float32], ensure_min_features=2)
         speed = self.rpm if rpm is None else rpm
         if speed is None:
