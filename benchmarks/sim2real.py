@@ -42,7 +42,8 @@ an error.
     python benchmarks/sim2real.py --real /path/to/cwru      # ~15 min on 2 cores
 
 Writes ``docs/sim2real.csv`` (every variant, test set, model, record),
-``docs/sim2real_summary.csv`` and ``docs/sim2real.png``.
+``docs/sim2real_summary.csv`` and ``docs/sim2real.png``; with ``--segment-s 5`` (real
+segments and simulated runs of 5 s) ``docs/sim2real_5s*``.
 """
 
 from __future__ import annotations
@@ -198,12 +199,13 @@ def simulate_run(scene: dict, options: tuple, support: str):
 
 
 def simulated(bearing: str, options: tuple, support: str, n_jobs: int, seed: int,
-              silent: str = "keep"):
-    """The grid's runs for ``bearing``: (X, meta); silent faults (see the module notes)
-    handled as ``silent`` says."""
+              silent: str = "keep", seconds: float = 1.0):
+    """The grid's runs for ``bearing``, each ``seconds`` long: (X, meta); silent faults
+    (see the module notes) handled as ``silent`` says."""
     with GRID.open("rb") as fh:
         spec = tomllib.load(fh)
     spec["dataset"]["seed"] = seed
+    spec["dataset"]["duration_s"] = seconds
     spec["grid"]["bearing"] = [bearing]
     grid = read_grid(spec)
     fs = grid.dataset["fs"]
@@ -225,14 +227,15 @@ def simulated(bearing: str, options: tuple, support: str, n_jobs: int, seed: int
     return X, meta
 
 
-def real_sets(folder, fs: float) -> dict:
+def real_sets(folder, fs: float, seconds: float = 1.0) -> dict:
     """``real DE`` (6205: drive-end files, DE channel) and ``real FE`` (6203: fan-end
-    files, FE channel), each with the healthy recording's segments of that channel."""
+    files, FE channel), each with the healthy recording's segments of that channel, in
+    segments of ``seconds``."""
     folder = Path(folder)
     out = {}
     for channel, bearing in (("DE", "6205"), ("FE", "6203")):
         files = sorted(folder.glob(f"12k_{channel}_*.mat")) + sorted(folder.glob("Normal_*.mat"))
-        X, meta = load_cwru(files, fs=fs, segment_s=1.0, channel=channel)
+        X, meta = load_cwru(files, fs=fs, segment_s=seconds, channel=channel)
         meta = meta.assign(bearing=bearing)
         out[f"real {channel}"] = (X, meta.reset_index(drop=True))
     return out
@@ -250,11 +253,13 @@ def score(pred: pd.DataFrame) -> dict:
 
 
 def evaluate(name, options, support, real, n_jobs, seed, silent="keep"):
-    """Per-record predictions of every model on both real test sets for one variant."""
+    """Per-record predictions of every model on both real test sets for one variant,
+    trained on simulated runs as long as the real segments."""
     rows = []
     for test, (Xr, mr) in real.items():
         bearing = str(mr.bearing.iloc[0])
-        X, meta = simulated(bearing, options, support, n_jobs, seed, silent)
+        seconds = Xr.shape[1] / float(mr.fs.iloc[0])
+        X, meta = simulated(bearing, options, support, n_jobs, seed, silent, seconds)
         res = run_benchmark(X, meta, real=(Xr, mr), splits=["sim2real"], models=MODELS)
         pred = res.predictions.assign(test=test, variant=name, seed=seed)
         pred["record"] = mr.loc[pred.row.to_numpy(), "group"].to_numpy()
@@ -330,6 +335,10 @@ def main(argv=None) -> int:
     parser.add_argument("--silent", choices=SILENT_CHOICES, default="keep",
                         help="training runs whose fault no loaded ball strikes: keep their "
                         "label (default), drop them, or label them healthy")
+    parser.add_argument("--segment-s", type=float, default=1.0,
+                        help="length of the real test segments and of the simulated "
+                        "training runs, s (default 1; the records are 10 s, the healthy "
+                        "one 5 s)")
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--out", default=str(ROOT / "docs"), help="output folder")
     args = parser.parse_args(argv)
@@ -339,7 +348,9 @@ def main(argv=None) -> int:
     if unknown:
         parser.error(f"unknown variants {unknown}; allowed: {list(table)}")
     fs = read_grid(GRID).dataset["fs"]
-    real = real_sets(args.real, fs)
+    if not 0.5 <= args.segment_s <= 5.0:
+        parser.error(f"--segment-s must be in [0.5, 5] s, got {args.segment_s:g}")
+    real = real_sets(args.real, fs, args.segment_s)
     preds = []
     for name in chosen:
         options, support = table[name]
@@ -355,13 +366,14 @@ def main(argv=None) -> int:
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     summary = summarise(pred)
-    pred.drop(columns=["fold"], errors="ignore").to_csv(out / "sim2real.csv", index=False)
-    summary.round(4).to_csv(out / "sim2real_summary.csv", index=False)
-    figure(summary, out / "sim2real.png")
+    stem = "sim2real" if args.segment_s == 1.0 else f"sim2real_{args.segment_s:g}s"
+    pred.drop(columns=["fold"], errors="ignore").to_csv(out / f"{stem}.csv", index=False)
+    summary.round(4).to_csv(out / f"{stem}_summary.csv", index=False)
+    figure(summary, out / f"{stem}.png")
     both = summary[summary.test == "both"].pivot_table(index="variant", columns="model",
                                                        values="accuracy_nio", sort=False)
     print(both.round(3).to_string())
-    print(f"wrote {out / 'sim2real.csv'}, sim2real_summary.csv and sim2real.png")
+    print(f"wrote {out / stem}.csv, {stem}_summary.csv and {stem}.png")
     return 0
 
 
