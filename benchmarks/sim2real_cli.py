@@ -1,0 +1,176 @@
+"""The shipped sim-to-real grid as a user runs it: ``ballpass generate
+examples/sim2real_cwru.toml`` and ``ballpass benchmark --real``, on both CWRU bearings
+and several training seeds.
+
+``benchmarks/sim2real.py`` studies the simulator's realism options on a scene set of
+its own (loads, resonances, fault positions drawn per run). This script measures the
+plain grid that ships, unchanged except for its root seed and, for the fan end, its
+bearing (``bearing = "6203"``): the drive-end 6205 grid tested on the drive-end channel
+of the drive-end files, the fan-end 6203 grid on the fan-end channel of the fan-end
+files, the healthy recording in both, all in segments as long as the simulated runs
+(1 s). Scores as in docs/sim2real.md: accuracy over the normal, inner- and outer-race
+segments, the recall of each, the ball recall apart. Each training seed is a new
+simulated dataset; nothing is chosen on the records.
+
+Run::
+
+    PYTHONPATH=. python benchmarks/sim2real_cli.py --real ../shared/data/cwru   # ~2 min
+
+Writes ``docs/sim2real_cli.md``, ``docs/sim2real_cli.csv`` (every prediction) and
+``docs/sim2real_cli.png``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import tempfile
+import time
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+from diagnose_loro import _md
+from sim2real import GRID, MODELS, ROOT, score
+
+from ballpass.datasets import generate, load
+from ballpass.datasets.real import load_real
+from ballpass.diagnose import run_benchmark
+from ballpass.signalio import atomic_write
+
+#: CWRU end -> its bearing
+ENDS = {"DE": "6205", "FE": "6203"}
+
+
+def predictions(real: Path, seed: int, end: str, jobs: int, repeats=None) -> pd.DataFrame:
+    """Train on the shipped grid for ``end``'s bearing (root seed ``seed``; ``repeats``
+    if given), test on that end's records and the healthy recording at that sensor."""
+    with GRID.open("rb") as fh:
+        spec = tomllib.load(fh)
+    spec["dataset"]["seed"] = seed
+    if repeats is not None:
+        spec["dataset"]["repeats"] = repeats
+    spec["grid"]["bearing"] = [ENDS[end]]
+    with tempfile.TemporaryDirectory() as tmp:
+        generate(spec, Path(tmp) / "ds", n_jobs=jobs, progress=False)
+        X, meta = load(Path(tmp) / "ds")
+    fs = float(meta["fs"].iloc[0])
+    files = sorted(real.glob(f"12k_{end}_*.mat")) + sorted(real.glob("Normal_*.mat"))
+    Xr, mr = load_real(files, fs=fs, segment_s=X.shape[1] / fs, channel=end)
+    res = run_benchmark(X, meta, real=(Xr, mr), splits=["sim2real"], models=MODELS)
+    pred = res.predictions.drop(columns=["fold", "split"], errors="ignore")
+    return pred.assign(end=end, seed=seed)
+
+
+def summary(pred: pd.DataFrame) -> pd.DataFrame:
+    """Goal scores per training seed and model, both ends pooled."""
+    rows = [{"seed": seed, "model": model, **score(part)}
+            for (seed, model), part in pred.groupby(["seed", "model"], sort=False)]
+    return pd.DataFrame(rows)
+
+
+def figure(table: pd.DataFrame, path: Path) -> None:
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(9, 4), layout="constrained")
+    ax = fig.subplots()
+    models = list(dict.fromkeys(table.model))
+    seeds = list(dict.fromkeys(table.seed))
+    width = 0.8 / len(seeds)
+    for k, seed in enumerate(seeds):
+        part = table[table.seed == seed].set_index("model").reindex(models)
+        ax.bar(np.arange(len(models)) + (k - (len(seeds) - 1) / 2) * width,
+               part.accuracy_nio, width, label=f"training seed {seed}")
+    ax.axhline(0.85, color="0.3", lw=0.8, ls=":")
+    ax.set_xticks(np.arange(len(models)), models, rotation=20, fontsize=8)
+    ax.set_ylabel("accuracy, normal + inner + outer segments")
+    ax.set_ylim(0, 1)
+    ax.legend(fontsize=8, loc="lower left")
+    ax.set_title("Shipped grid -> CWRU records (both bearings, 1 s segments)", fontsize=10)
+    fig.savefig(path, dpi=100)
+
+
+def _met(row) -> bool:
+    return row.accuracy_nio >= 0.85 and min(row.recall_healthy, row.recall_inner,
+                                            row.recall_outer) >= 0.8
+
+
+def by_model(table: pd.DataFrame) -> pd.DataFrame:
+    """Per model over the training seeds: median (range) of the goal accuracy, median
+    recalls, and on how many seeds the goal is met."""
+    rows = []
+    for model, part in table.groupby("model", sort=False):
+        acc = part.accuracy_nio
+        rows.append({
+            "model": model,
+            "accuracy, median (range)": f"{acc.median():.2f} ({acc.min():.2f}-{acc.max():.2f})",
+            "recall healthy / inner / outer, median": " / ".join(
+                f"{part[c].median():.2f}" for c in
+                ("recall_healthy", "recall_inner", "recall_outer")),
+            "goal met": f"{sum(_met(r) for r in part.itertuples())} of {len(part)} seeds",
+            "ball recall, median": f"{part.recall_ball.median():.2f}",
+        })
+    return pd.DataFrame(rows)
+
+
+def markdown(table: pd.DataFrame, seconds: float) -> str:
+    per_seed = table.pivot(index="model", columns="seed", values="accuracy_nio")
+    per_seed = per_seed.reindex(list(dict.fromkeys(table.model)))
+    per_seed = per_seed.map("{:.2f}".format).reset_index()
+    per_seed.columns = ["model", *[f"seed {c}" for c in per_seed.columns[1:]]]
+    return "\n".join([
+        "# The shipped sim-to-real grid, as a user runs it",
+        "",
+        f"Produced by `PYTHONPATH=. python benchmarks/sim2real_cli.py --real ...` "
+        f"({seconds / 60:.0f} min); do not edit by hand.",
+        "",
+        "`examples/sim2real_cwru.toml` unchanged but for its root seed (and `bearing = "
+        "\"6203\"` for the fan end), generated and benchmarked as `ballpass generate` and "
+        "`ballpass benchmark --real` do; tested on the CWRU drive-end channel of the "
+        "drive-end files and the fan-end channel of the fan-end files, with the healthy "
+        "recording at each (140 normal, inner- and outer-race segments of 1 s, both ends "
+        "pooled). Each seed is a new simulated training set. Goal of issue 9: accuracy at "
+        "least 0.85 with every recall at least 0.8.",
+        "",
+        "![accuracy per model and training seed](sim2real_cli.png)",
+        "",
+        _md(by_model(table)),
+        "",
+        "Accuracy per training seed:",
+        "",
+        _md(per_seed),
+        "",
+    ])
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--real", required=True, type=Path,
+                        help="folder of the CWRU .mat files")
+    parser.add_argument("--seeds", default="2015,1,2,3,4,5,6,7,8,9",
+                        help="root seeds of the grid (default ten)")
+    parser.add_argument("--repeats", type=int, default=None,
+                        help="repeats of the grid (default: the grid's own, 3)")
+    parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--out", type=Path, default=ROOT / "docs")
+    args = parser.parse_args(argv)
+    t0 = time.perf_counter()
+    parts = []
+    for seed in map(int, args.seeds.split(",")):
+        for end in ENDS:
+            parts.append(predictions(args.real, seed, end, args.jobs, args.repeats))
+            print(f"seed {seed} {end}: {time.perf_counter() - t0:.0f} s", flush=True)
+    pred = pd.concat(parts, ignore_index=True)
+    table = summary(pred)
+    args.out.mkdir(parents=True, exist_ok=True)
+    atomic_write(args.out / "sim2real_cli.csv", lambda tmp: pred.to_csv(tmp, index=False))
+    figure(table, args.out / "sim2real_cli.png")
+    text = markdown(table, time.perf_counter() - t0)
+    atomic_write(args.out / "sim2real_cli.md",
+                 lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
+    print(table.round(3).to_string(index=False))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
