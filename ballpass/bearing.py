@@ -407,6 +407,52 @@ class Bearing:
         total = 4.0 - groove + rolling
         return total / d, (groove + rolling) / total
 
+    def contact_ellipse(self, race: str, load_n: float) -> tuple[float, float]:
+        """Semi-axes of the Hertz contact ellipse of one ball-raceway contact, m.
+
+        Harris & Kotzalas [1] ch. 6: ``a = a* (3 Q / (2 sum_rho E'))^(1/3)`` across the
+        track and likewise ``b`` with ``b*`` along it, ``E' = E / (2 (1 - nu^2))`` for
+        like materials, ``a*, b*`` from :func:`hertz_factors` of the curvature
+        difference (:meth:`contact_curvature`).
+
+        Parameters
+        ----------
+        race : {"inner", "outer"}
+            Which contact.
+        load_n : float
+            Contact load Q, N (>= 0).
+
+        Returns
+        -------
+        a_m, b_m : float
+            Semi-axis across the track and along it (rolling direction), m.
+
+        Raises
+        ------
+        ValueError
+            For a roller bearing, an unknown ``race`` or a negative load.
+
+        Examples
+        --------
+        The most loaded inner contact of a 6205 under 1 kN radial load (Stribeck:
+        Q = 4.37 F_r / Z = 486 N) and its peak pressure 3 Q / (2 pi a b):
+
+        >>> import math
+        >>> import ballpass as bp
+        >>> a, b = bp.Bearing.catalog("6205").contact_ellipse("inner", 486.0)
+        >>> round(a * 1e3, 3), round(b * 1e3, 3)              # mm
+        (1.159, 0.105)
+        >>> round(1.5 * 486.0 / (math.pi * a * b) * 1e-6)     # MPa
+        1909
+        """
+        if not load_n >= 0.0:
+            raise ValueError(f"load_n must be >= 0 N, got {load_n!r}")
+        total, diff = self.contact_curvature(race)
+        factors = hertz_factors(diff)
+        e_prime = self.youngs_modulus_pa / (2.0 * (1.0 - self.poisson_ratio**2))
+        scale = (3.0 * load_n / (2.0 * total * e_prime)) ** (1.0 / 3.0)
+        return factors.a_star * scale, factors.b_star * scale
+
     def contact_stiffnesses(self) -> tuple[float, float]:
         """Load-deflection constants of the inner and the outer contact, N/m^n.
 

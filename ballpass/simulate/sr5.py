@@ -237,18 +237,11 @@ class BearingModel:
 
 def _ellipse_half_width_m(bearing, race: str, load_n: float) -> float:
     """Semi-axis a (m) of the Hertz contact ellipse across the track of one contact
-    under ``load_n``: a = a* (3 Q (1 - nu^2) / (E sum_rho))^(1/3) for like materials
-    (Harris & Kotzalas ch. 6; a* from :func:`ballpass.bearing.hertz_factors`). For a
-    roller, half its length (a line contact spans the roller)."""
-    from ..bearing import hertz_factors
-
+    under ``load_n`` (:meth:`ballpass.Bearing.contact_ellipse`); for a roller, half its
+    length (a line contact spans the roller)."""
     if bearing.element == "roller":
         return 0.5 * bearing.roller_length_mm * 1e-3
-    total, diff = bearing.contact_curvature(race)
-    a_star = hertz_factors(diff).a_star
-    nu = bearing.poisson_ratio
-    return a_star * (3.0 * load_n * (1.0 - nu * nu) / (bearing.youngs_modulus_pa * total)) ** (
-        1.0 / 3.0)
+    return bearing.contact_ellipse(race, load_n)[0]
 
 
 #: Stribeck's load of the most loaded element, Q_max = 4.37 F_r / Z (zero clearance,

@@ -519,28 +519,17 @@ def static_equilibrium(scene: Scene, params: MultibodyParameters | None = None, 
             "orbit_rate": om}
 
 
-def _contact_semi_axes(b, q: float, race: str) -> tuple[float, float]:
-    """Semi-axes (a across the track, b along it) of the Hertz contact ellipse of one
-    ball-race contact at load q, m (Harris & Kotzalas ch. 6:
-    a = a* (3 Q / (2 sum_rho E'))^(1/3), likewise b, E' = E / (2 (1 - nu^2)) for like
-    materials)."""
-    from ...bearing import hertz_factors
-    s, f = b.contact_curvature(race)
-    h = hertz_factors(f)
-    e_prime = b.youngs_modulus_pa / (2.0 * (1.0 - b.poisson_ratio ** 2))
-    c = (3.0 * q / (2.0 * s * e_prime)) ** (1.0 / 3.0)
-    return h.a_star * c, h.b_star * c
-
-
 def _contact_length(b, q: float) -> float:
     """Hertz contact length 2 b (rolling direction) of the inner contact at load q, m."""
-    return 2.0 * _contact_semi_axes(b, q, "inner")[1]
+    return 2.0 * b.contact_ellipse("inner", q)[1]
 
 
 def _peak_pressure(b, q: float, race: str) -> float:
     """Hertz pressure at the centre of the contact ellipse, 3 Q / (2 pi a b), Pa."""
-    a, bb = _contact_semi_axes(b, q, race)
-    return 1.5 * q / (math.pi * a * bb) if q > 0.0 else 0.0
+    if q <= 0.0:
+        return 0.0
+    a, bb = b.contact_ellipse(race, q)
+    return 1.5 * q / (math.pi * a * bb)
 
 
 def _elastic_distribution(scene: Scene, weight: float, centrifugal: float,
