@@ -320,9 +320,10 @@ def markdown(table: pd.DataFrame, seconds: float) -> str:
         "6 dB of its carriers (then the line may belong to a ball fault's FTF comb).",
         "- **Speed from the signal.** On records of 2 s or more the shaft-harmonic comb "
         "(median of 10 harmonics) is searched within +-4 % of the stated speed; a "
-        "correction is used where it strengthens the fault evidence (a fault's own "
+        "correction is used unless it loses 3 dB of fault evidence (a fault's own "
         "harmonics can pass for a shaft comb: the 6203's BPFO / 3 is 1.8 % above its "
-        "shaft speed) and reported in `explain()`. Segments use their record's speed.",
+        "shaft speed); either is reported in `explain()`. Segments use their record's "
+        "speed.",
         "- **Band by fault evidence.** Every band of the 1/3-binary tree wide enough for "
         "the lines and above them, with signal in it, is demodulated; each family keeps "
         "the band where it reads highest (the IESFOgram idea).",

@@ -143,8 +143,25 @@ def test_a_fault_comb_does_not_overrule_a_right_stated_speed():
     found, _, _ = bp.diagnose.speed.estimate_shaft_speed(x[None], FS, np.array([RPM]))
     assert found[0] > 1.005 * RPM  # the trap is armed: the comb alone points elsewhere
     (exp,) = EnvelopeDiagnoser(bearing="6203", fs=FS, rpm=RPM).explain(x[None])
-    assert exp.rpm == RPM and not exp.notes
+    assert exp.rpm == RPM
     assert exp.label == "outer"
+    # The disagreement is said, not hidden.
+    assert len(exp.notes) == 1
+    assert exp.notes[0].startswith(f"the shaft-harmonic comb points to {found[0]:.0f} rpm; "
+                                   "the stated 1797 rpm was kept")
+
+
+def test_healthy_record_takes_the_comb_speed():
+    # No fault to lose: the comb's speed is used whichever speed reads the (noise)
+    # evidence a little higher.
+    t = np.arange(round(4.0 * FS)) / FS
+    x = sum(0.3 / k * np.cos(2 * np.pi * k * RPM / 60 * t + k) for k in range(1, 11))
+    for seed in range(3):
+        noisy = x + 0.3 * np.random.default_rng(seed).standard_normal(t.size)
+        (exp,) = EnvelopeDiagnoser(fs=FS, rpm=1774.0).explain(noisy[None])
+        assert exp.label == "healthy"
+        assert exp.rpm == pytest.approx(RPM, rel=0.002)
+        assert exp.notes[0].startswith("speed corrected from 1774")
 
 
 def test_noise_free_healthy_simulation_is_healthy():

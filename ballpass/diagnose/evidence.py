@@ -105,6 +105,14 @@ SHAFT_GUARD_RELATIVE = 0.0025
 #: at the best of the candidate speeds; the whole CWRU records read 22-37 dB, the
 #: MFPT records 15 dB.
 MIN_COMB_DB = 10.0
+#: A speed proposed by the shaft-harmonic comb is used unless the strongest family's
+#: evidence falls by at least this much there (dB, a factor 2 in SES power): a
+#: correction that loses a fault is a fault's own comb taken for the shaft's (see
+#: :mod:`ballpass.diagnose.speed`). Without a fault the strongest evidence of two
+#: speeds differs by noise alone: 0.3 dB standard deviation, at most 1.2 dB, over 60
+#: noise records of 2 and 10 s; the false combs of the CWRU fan-end outer-race segments
+#: lose 4.7-13.8 dB, the right corrections (MFPT) at most 0.1 dB.
+SPEED_KEEP_DB = 3.0
 #: Shortest record whose speed is checked, s: at coarser than 0.5 Hz resolution a
 #: fault's own raw-spectrum harmonics pass for a shaft comb (the 6203's BPFO is 1.8 %
 #: from 3x: one-second segments of the CWRU fan-end outer-race records lock onto
@@ -191,6 +199,9 @@ class EnvelopeEvidence:
         Speed given by the caller, rev/min.
     speed_corrected : ndarray of bool, shape (n_signals,)
         True where the speed was corrected from the signal's shaft-harmonic comb.
+    rpm_comb : ndarray, shape (n_signals,)
+        Speed the shaft-harmonic comb proposed instead of the stated one, rev/min
+        (used where ``speed_corrected``); NaN where it proposed none.
     duration_s : float
         Record length, s.
 
@@ -224,6 +235,7 @@ class EnvelopeEvidence:
     rpm: np.ndarray
     rpm_stated: np.ndarray
     speed_corrected: np.ndarray
+    rpm_comb: np.ndarray
     duration_s: float
 
 
@@ -436,12 +448,12 @@ def envelope_evidence(
     where the signal carries a shaft-harmonic comb (median level of its ten harmonics at
     least :data:`MIN_COMB_DB` above the background) that stands at least 3 dB higher
     at another speed within ``+-speed_tolerance`` (and more than 0.2 % away) than at
-    the stated one, that speed is used if some family's evidence is stronger at it than
-    at the stated speed: a fault's own raw-spectrum harmonics can make a comb of their
-    own (the 6203's BPFO / 3 is 1.8 % above the shaft speed, and on a 2 s record the
-    true shaft lines' main lobes lift its first harmonics), and a correction that loses
-    the fault is no correction. Records shorter than :data:`SPEED_CHECK_S` keep the
-    stated speed.
+    the stated one, that speed is used unless the strongest family's evidence is at
+    least :data:`SPEED_KEEP_DB` weaker at it than at the stated speed: a fault's own
+    raw-spectrum harmonics can make a comb of their own (the 6203's BPFO / 3 is 1.8 %
+    above the shaft speed, and on a 2 s record the true shaft lines' main lobes lift its
+    first harmonics), and a correction that loses the fault is no correction. Records
+    shorter than :data:`SPEED_CHECK_S` keep the stated speed.
 
     Parameters
     ----------
@@ -513,14 +525,16 @@ def envelope_evidence(
     best, n_bands = _best_bands(xv, stated / 60.0, **settings)
     used = stated.copy()
     corrected = np.zeros(len(xv), bool)
+    rpm_comb = np.full(len(xv), np.nan)
     if speed_tolerance > 0 and xv.shape[-1] / fs >= SPEED_CHECK_S:
         comb_rpm, comb, at_stated = estimate_shaft_speed(xv, fs, stated,
                                                          tolerance=speed_tolerance)
         proposed = np.flatnonzero((comb >= MIN_COMB_DB) & (comb >= at_stated + 3.0)
                                   & (np.abs(comb_rpm / stated - 1) > 0.002))
+        rpm_comb[proposed] = comb_rpm[proposed]
         if proposed.size:
             alt, alt_bands = _best_bands(xv[proposed], comb_rpm[proposed] / 60.0, **settings)
-            take = _strongest(alt) > _strongest(best)[proposed]
+            take = _strongest(best)[proposed] - _strongest(alt) < SPEED_KEEP_DB
             rows = proposed[take]
             for fault, rec in best.items():
                 for key, value in rec.items():
@@ -550,6 +564,7 @@ def envelope_evidence(
         rpm=used,
         rpm_stated=stated,
         speed_corrected=corrected,
+        rpm_comb=rpm_comb,
         duration_s=xv.shape[-1] / fs,
     )
 

@@ -33,6 +33,7 @@ from ._names import LABELS
 from .evidence import (
     FAULT_FAMILIES,
     FTF_RESOLVED_CAGE_PERIODS,
+    SPEED_KEEP_DB,
     EnvelopeEvidence,
     envelope_evidence,
     family_lines,
@@ -500,6 +501,12 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
                 notes.append(
                     f"speed corrected from {ev.rpm_stated[i]:g} to {ev.rpm[i]:.0f} rpm: the "
                     "shaft-harmonic comb of the signal stands higher there")
+            elif np.isfinite(ev.rpm_comb[i]):
+                notes.append(
+                    f"the shaft-harmonic comb points to {ev.rpm_comb[i]:.0f} rpm; the stated "
+                    f"{ev.rpm_stated[i]:g} rpm was kept: the fault evidence is at least "
+                    f"{SPEED_KEEP_DB:g} dB weaker there (a fault's own harmonics can pass "
+                    "for a shaft comb)")
             if too_short[i]:
                 notes.append(
                     f"ball not judged: the record ({ev.duration_s:.3g} s) is shorter than "
