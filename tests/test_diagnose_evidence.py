@@ -134,7 +134,7 @@ def test_a_fault_comb_does_not_overrule_a_right_stated_speed():
     # 2nd of that false speed read the true shaft lines' main lobes: the comb search
     # prefers ~1817 rpm (two-second segments of the CWRU fan-end outer-race records were
     # "corrected" to 1829 rpm that way, losing an 18 dB outer-race fault). A correction
-    # is only used where it strengthens the fault evidence; here the stated speed stays.
+    # that loses 3 dB of fault evidence is not used; here the stated speed stays.
     bpfo = 0.995 * 3.053 * RPM / 60
     t = np.arange(round(2.0 * FS)) / FS
     low = sum(0.3 * np.cos(2 * np.pi * h * bpfo * t + h) for h in range(1, 7))

@@ -10,8 +10,8 @@ any slip search. A rotating machine's spectrum carries the shaft harmonics ``k x
 background, within a few percent of the stated speed, is the shaft speed (a harmonic-
 comb search, the discrete analogue of reading the first order of an order spectrum). A
 fault's own harmonics can form a comb too (the 6203's BPFO / 3 lies 1.8 % above its
-shaft speed): the diagnoser uses a corrected speed only where it strengthens the fault
-evidence (:func:`ballpass.diagnose.envelope_evidence`).
+shaft speed): the diagnoser does not use a correction that loses 3 dB of fault evidence
+(:func:`ballpass.diagnose.envelope_evidence`).
 """
 
 from __future__ import annotations
