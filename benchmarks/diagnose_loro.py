@@ -23,6 +23,7 @@ Writes ``docs/diagnosis.md`` (tables), ``docs/diagnosis.csv`` (one row per recor
 from __future__ import annotations
 
 import argparse
+import itertools
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -108,6 +109,33 @@ def simulated_records() -> list[Record]:
         out.append(Record(f"sim {kind} {rpm:g} rpm {tag}", "SIM", kind, "6205", 12_000.0,
                           rpm, bp.simulate(scene).accel))
     return out
+
+
+#: Healthy-simulation sweep: bearings, speeds (rpm), SNRs (dB), seeds per condition.
+SWEEP = (("6205", "6203"), (600.0, 1797.0, 3000.0), (10.0, 20.0, 30.0, 40.0), 4)
+
+
+def healthy_sweep() -> pd.DataFrame:
+    """False alarms on healthy sr5 bearings (1 s at 12 kHz, 500 N, resonance 3 kHz):
+    per bearing and SNR, the one-second records called faulty, over speeds and seeds."""
+    bearings, speeds, snrs, seeds = SWEEP
+    rows = []
+    for bearing, snr in itertools.product(bearings, snrs):
+        calls, strongest = [], []
+        for rpm, seed in itertools.product(speeds, range(seeds)):
+            scene = bp.Scene(bearing=bearing, rpm=rpm, radial_load_n=500.0, duration_s=1.0,
+                             fs=12_000.0, seed=seed, resonance_hz=3000.0,
+                             resonance_damping=0.02, snr_db=snr)
+            (exp,) = EnvelopeDiagnoser(bearing=bearing, fs=12_000.0, rpm=rpm).explain(
+                bp.simulate(scene).accel[None])
+            calls.append(exp.label)
+            strongest.append(max(exp.evidence_db.values()))
+        wrong = [c for c in calls if c != "healthy"]
+        rows.append({"bearing": bearing, "SNR dB": f"{snr:g}",
+                     "called faulty": f"{len(wrong)} of {len(calls)}",
+                     "as": ", ".join(sorted(set(wrong))) or "-",
+                     "largest evidence dB": f"{max(strongest):.1f}"})
+    return pd.DataFrame(rows)
 
 
 # ---------------------------------------------------------------------- baseline
@@ -282,7 +310,7 @@ def _md(frame: pd.DataFrame) -> str:
     return "\n".join([head, rule] + ["| " + " | ".join(r) + " |" for r in cells])
 
 
-def markdown(table: pd.DataFrame, seconds: float) -> str:
+def markdown(table: pd.DataFrame, seconds: float, sweep: pd.DataFrame | None = None) -> str:
     s = summary(table)
     cols = ["group", "record", "truth", "prediction", "grade", "evidence", "band_hz",
             "rpm_used", "segment_labels", "baseline", "notes"]
@@ -344,6 +372,19 @@ def markdown(table: pd.DataFrame, seconds: float) -> str:
         "",
         _md(s),
         "",
+        *([] if sweep is None else [
+            "## Healthy simulations called faulty",
+            "",
+            f"Healthy `sr5` bearings, 1 s at 12 kHz, 500 N, resonance 3 kHz, speeds "
+            f"{', '.join(f'{r:g}' for r in SWEEP[1])} rpm, {SWEEP[3]} seeds each. At high SNR "
+            "the varying-compliance comb (k x BPFO) rings the resonance above a faint noise "
+            "floor and its beats at BPFO can pass for an outer-race fault; a real machine's "
+            "own background usually hides it. `fit` on healthy data of the machine raises the "
+            "thresholds where it does not.",
+            "",
+            _md(sweep),
+            "",
+        ]),
         "## Per record",
         "",
         "Grades in the spirit of Smith & Randall (MSSP 64-65, 2015): Y clearly diagnosed, "
@@ -378,15 +419,18 @@ def main(argv=None) -> None:
     if not args.no_sim:
         records += simulated_records()
     table = evaluate(records)
+    sweep = None if args.no_sim else healthy_sweep()
     seconds = time.perf_counter() - t0
     args.out.mkdir(parents=True, exist_ok=True)
     atomic_write(args.out / "diagnosis.csv", lambda tmp: table.to_csv(tmp, index=False))
     figure(table, args.out / "diagnosis.png")
-    text = markdown(table, seconds)
+    text = markdown(table, seconds, sweep)
     atomic_write(args.out / "diagnosis.md",
                  lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
     print("\n".join(goals(table)))
     print(summary(table).to_string(index=False))
+    if sweep is not None:
+        print(sweep.to_string(index=False))
 
 
 if __name__ == "__main__":
