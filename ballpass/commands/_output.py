@@ -14,6 +14,20 @@ __all__ = ["FIGURE_SUFFIXES", "check_output_path", "figure_writer", "show_progre
            "compile_notice", "format_records"]
 
 
+#: Suffixes of the tables the commands write.
+TABLE_SUFFIXES = (".csv", ".parquet")
+
+
+def write_table(frame, out: Path) -> None:
+    """Write ``frame`` to ``out`` atomically: CSV for ``.csv``, else Parquet."""
+    from ..signalio import atomic_write
+
+    if out.suffix.lower() == ".csv":
+        atomic_write(out, lambda tmp: frame.to_csv(tmp, index=False))
+    else:
+        atomic_write(out, lambda tmp: frame.to_parquet(tmp, index=False))
+
+
 def figure_writer(fig, path, dpi: int = 120):
     """``write(tmp)`` that saves ``fig`` in the format of ``path``'s extension.
 

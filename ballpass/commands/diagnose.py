@@ -58,12 +58,12 @@ def verdict_rows(signals, band=None, progress: bool = True):
     from tqdm import tqdm
 
     from ..diagnose import EnvelopeDiagnoser
-    from .features import _known
+    from .features import is_known
 
     for sig in signals:  # every signal checked before any is diagnosed
         missing = [f"{what} ({opt})" for what, opt, value in (
             ("bearing", "--bearing", sig.bearing), ("shaft speed", "--rpm", sig.rpm))
-            if not _known(value)]
+            if not is_known(value)]
         if missing:
             raise ValueError(f"{sig.name}: the input does not give the {' or '.join(missing)};"
                              " pass it on the command line (the fault lines need both)")
@@ -87,8 +87,8 @@ def run(args) -> int:
     """Diagnose the inputs; print the verdicts (and write the table); returns the exit code."""
     import pandas as pd
 
-    from ._output import check_output_path, show_progress
-    from .features import TABLE_SUFFIXES, _write_table, load_inputs
+    from ._output import TABLE_SUFFIXES, check_output_path, show_progress, write_table
+    from .features import load_inputs
 
     out = None if args.out is None else check_output_path(
         args.out, option="--out", suffixes=TABLE_SUFFIXES)
@@ -101,6 +101,6 @@ def run(args) -> int:
         print(f"{row['source']}{known}: {why}")
     if out is not None:
         frame = pd.DataFrame([row for _, row in results])
-        _write_table(frame, Path(out))
+        write_table(frame, Path(out))
         print(f"{len(frame)} verdict(s) -> {out}")
     return 0

@@ -133,7 +133,8 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     return p
 
 
-def _known(value) -> bool:
+def is_known(value) -> bool:
+    """True unless ``value`` is missing: None or NaN (a bearing or speed an input lacks)."""
     return value is not None and not (isinstance(value, float) and math.isnan(value))
 
 
@@ -280,7 +281,7 @@ def feature_rows(signals: list[Signal], band=None, progress: bool = True) -> lis
     for sig in tqdm(signals, desc="features", unit="signal", disable=not progress,
                     leave=False, file=sys.stderr):
         x = np.asarray(sig.x, dtype=np.float64)
-        known = _known(sig.bearing) and _known(sig.rpm)
+        known = is_known(sig.bearing) and is_known(sig.rpm)
         analysis = None
         if band is None:  # kurtogram, band, SES and indicators in one pass
             analysis = F.envelope_analysis(x, sig.fs, rpm=float(sig.rpm) if known else None,
@@ -312,22 +313,10 @@ def feature_rows(signals: list[Signal], band=None, progress: bool = True) -> lis
     return rows
 
 
-TABLE_SUFFIXES = (".csv", ".parquet")
-
-
 def add_quiet_argument(p: argparse.ArgumentParser) -> None:
     """``--quiet``: no progress bar (it is shown on stderr only when that is a terminal)."""
     p.add_argument("--quiet", "-q", "--no-progress", dest="quiet", action="store_true",
                    help="hide the progress bar (shown on stderr when it is a terminal)")
-
-
-def _write_table(frame, out: Path) -> None:
-    from ..signalio import atomic_write
-
-    if out.suffix.lower() == ".csv":
-        atomic_write(out, lambda tmp: frame.to_csv(tmp, index=False))
-    else:
-        atomic_write(out, lambda tmp: frame.to_parquet(tmp, index=False))
 
 
 def plot_signals(signals: list[Signal], folder: Path, band=None, names=None) -> list[Path]:
@@ -342,7 +331,7 @@ def plot_signals(signals: list[Signal], folder: Path, band=None, names=None) -> 
 
     paths = []
     for sig, stem in zip(signals, names or [s.name for s in signals], strict=True):
-        known = _known(sig.bearing) and _known(sig.rpm)
+        known = is_known(sig.bearing) and is_known(sig.rpm)
         bearing = as_bearing(sig.bearing) if known else None
         shaft_hz = float(sig.rpm) / 60.0 if known else None
         label = sig.columns.get("label")
@@ -365,7 +354,7 @@ def run(args) -> int:
 
     import pandas as pd
 
-    from ._output import check_output_path, show_progress
+    from ._output import TABLE_SUFFIXES, check_output_path, show_progress, write_table
 
     out = None if args.out is None else check_output_path(
         args.out, option="--out", suffixes=TABLE_SUFFIXES)
@@ -380,6 +369,6 @@ def run(args) -> int:
     if out is None:
         frame.to_csv(sys.stdout, index=False)
     else:
-        _write_table(frame, out)
+        write_table(frame, out)
         print(f"{len(frame)} signal(s) x {frame.shape[1]} columns -> {out}")
     return 0
