@@ -66,3 +66,12 @@ def test_plot_writes_one_figure_per_signal(tmp_path, capsys):
     assert all(p.read_bytes()[:4] == b"\x89PNG" for p in figs.iterdir())
     assert main(["diagnose", str(path), "--plot", str(path)]) != 0
     assert "--plot must be a folder" in capsys.readouterr().err
+
+
+def test_too_short_segments_are_refused_naming_the_option(tmp_path, capsys):
+    # A 6205's cage turns at 0.398 x 29.95 Hz: two cage periods last 0.168 s.
+    path = write_signal(tmp_path / "x.npz", impacts(100.0)[None], FS, channels=["a"],
+                        meta={"bearing": "6205", "rpm": RPM})
+    assert main(["diagnose", str(path), "--segment", "0.1"]) != 0
+    err = capsys.readouterr().err
+    assert "--segment" in err and "0.168 s" in err and "X rows" not in err

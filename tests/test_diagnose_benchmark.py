@@ -161,6 +161,19 @@ def test_sim2real_trains_on_simulation_and_tests_on_real(dataset):
         run_benchmark(X, meta, real=(X_real, meta_real), splits=["sim2real"])
 
 
+def test_knn_on_a_training_set_smaller_than_its_neighbourhood(dataset):
+    # The quick example grid trains some folds on four rows: kNN (k = 5) then uses all
+    # of them rather than failing, and still predicts a label for every test row.
+    _, X, meta = dataset
+    few = meta.index[meta.label.isin(["healthy", "outer"])][:4].to_numpy()
+    X_real = X[few]
+    meta_real = meta.iloc[few].reset_index(drop=True)
+    result = run_benchmark(X[few], meta.iloc[few].reset_index(drop=True),
+                           real=(X_real, meta_real), splits=["sim2real"], models=["knn"])
+    assert len(result.predictions) == 4
+    assert set(result.predictions.y_pred) <= {"healthy", "outer"}
+
+
 def test_cli(dataset, tmp_path, capsys):
     path, _, _ = dataset
     out = tmp_path / "report"

@@ -36,7 +36,7 @@ def test_marks_the_carriers_where_the_diagnoser_found_them():
         carriers.level_db)].nominal_hz.tolist())
     assert _solid_lines(ax) == pytest.approx(expected)
     lo, hi = why.band_hz["outer"]
-    assert f"band {lo:g}-{hi:g} Hz" in ax.get_title()
+    assert f"band {lo:.0f}-{hi:.0f} Hz" in ax.get_title()
     assert ax.get_title().startswith("outer (grade Y)")
     # the SES drawn is the one of that band, to rounding (another band's differs)
     f_ref, ses_ref = bp.features.envelope_spectrum(x, FS, (lo, hi))

@@ -66,6 +66,8 @@ def verdict_rows(signals, band=None, progress: bool = True):
     from tqdm import tqdm
 
     from ..diagnose import EnvelopeDiagnoser
+    from ..diagnose.rules import MIN_CAGE_PERIODS
+    from ..features.bands import as_bearing
     from .features import is_known
 
     for sig in signals:  # every signal checked before any is diagnosed
@@ -75,6 +77,14 @@ def verdict_rows(signals, band=None, progress: bool = True):
         if missing:
             raise ValueError(f"{sig.name}: the input does not give the {' or '.join(missing)};"
                              " pass it on the command line (the fault lines need both)")
+        shortest = MIN_CAGE_PERIODS / as_bearing(sig.bearing).frequencies(
+            float(sig.rpm) / 60.0).ftf
+        seconds = len(sig.x) / sig.fs
+        if seconds < shortest:
+            raise ValueError(
+                f"{sig.name} lasts {seconds:.3g} s, shorter than {MIN_CAGE_PERIODS:g} cage "
+                f"periods ({shortest:.3g} s at {float(sig.rpm):g} rpm): give a --segment of "
+                "at least that, or the whole record")
     out = []
     for sig in tqdm(signals, desc="diagnose", unit="signal", disable=not progress,
                     leave=False, file=sys.stderr):

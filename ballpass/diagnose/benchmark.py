@@ -375,6 +375,9 @@ def run_benchmark(
                 est.fit(x_tr, y_tr, rpm=m_tr["rpm"].to_numpy(float))
             return est.predict(x_te, rpm=m_te["rpm"].to_numpy(float))
         est = clone(make_pipeline(model, features=features, random_state=random_state)[1:])
+        classifier = est.steps[-1][1]
+        if hasattr(classifier, "n_neighbors"):  # kNN: no more neighbours than training rows
+            classifier.set_params(n_neighbors=min(classifier.n_neighbors, len(train)))
         return est.fit(feats["sim"][train], y_tr).predict(feats[test_set][test])
 
     rows, confusion, predictions, skipped = [], {}, [], {}

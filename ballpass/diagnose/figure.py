@@ -106,7 +106,7 @@ def plot_explanation(x, fs: float, explanation: Explanation, *, family: str | No
             ax.text(where, 0.98, text, transform=ax.get_xaxis_transform(), ha="center",
                     va="top", fontsize="x-small", color=colour if counted else "0.4")
     ev, thr = explanation.evidence_db[shown], explanation.threshold_db[shown]
-    where_band = (f"band {band[0]:g}-{band[1]:g} Hz" if judged
+    where_band = (f"band {band[0]:.0f}-{band[1]:.0f} Hz" if judged
                   else "not judged (SES of the kurtogram's band)")
     ax.set_title(f"{explanation.label} (grade {explanation.grade}) at "
                  f"{explanation.rpm:.0f} rpm\n{shown}: evidence {ev:.1f} dB, threshold "

@@ -147,7 +147,7 @@ class Explanation:
         if self.label != "healthy":
             lo, hi = self.band_hz[self.label]
             decisive = self.lines[self.lines["decisive"] & ~self.lines["shared"]]
-            parts.append(f"  band {lo:g}-{hi:g} Hz: " + "; ".join(
+            parts.append(f"  band {lo:.0f}-{hi:.0f} Hz: " + "; ".join(
                 f"{r.line} {r.found_hz:.1f} Hz {r.level_db:+.1f} dB"
                 + (" (against)" if r.role == "refuting sideband" else "")
                 for r in decisive.itertuples()
