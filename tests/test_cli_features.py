@@ -133,6 +133,9 @@ def test_plots(tmp_path, outer_file, capsys):
     assert (tmp_path / "one.png").stat().st_size > 10_000
     assert main(["plot", str(outer_file), "--out", str(tmp_path / "x.png")]) == 2
     assert "give a folder" in capsys.readouterr().err
+    # another figure format is written in that format, not made a folder of that name
+    assert main(["plot", str(one), "--out", str(tmp_path / "one.pdf")]) == 0
+    assert (tmp_path / "one.pdf").read_bytes()[:5] == b"%PDF-"
 
 
 def test_dataset_folder(tmp_path, monkeypatch, capsys):

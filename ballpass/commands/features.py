@@ -319,10 +319,12 @@ def add_quiet_argument(p: argparse.ArgumentParser) -> None:
                    help="hide the progress bar (shown on stderr when it is a terminal)")
 
 
-def plot_signals(signals: list[Signal], folder: Path, band=None, names=None) -> list[Path]:
-    """One overview PNG per signal in ``folder`` (each written atomically); the paths.
+def plot_signals(signals: list[Signal], folder: Path, band=None, names=None,
+                 suffix: str = ".png") -> list[Path]:
+    """One overview figure per signal in ``folder`` (each written atomically); the paths.
 
-    ``names`` are the file stems (default: the signals' names).
+    ``names`` are the file stems (default: the signals' names); ``suffix`` the figure
+    format (one of ``FIGURE_SUFFIXES``).
     """
     from ..features.bands import as_bearing
     from ..plot import signal_overview
@@ -338,7 +340,7 @@ def plot_signals(signals: list[Signal], folder: Path, band=None, names=None) -> 
         title = " · ".join(
             str(p) for p in (sig.name, label, f"{sig.rpm:g} rpm" if known else None) if p
         )
-        path = folder / f"{stem}.png"
+        path = folder / f"{stem}{suffix}"
         fig = signal_overview(
             sig.x, sig.fs, bearing=bearing, shaft_hz=shaft_hz, band=band, title=title
         )

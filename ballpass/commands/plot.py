@@ -34,8 +34,8 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
         "-o",
         default=".",
         metavar="PATH",
-        help="folder for the figures (default: current folder), or a .png file "
-        "when there is one signal",
+        help="folder for the figures (default: current folder), or a .png (.pdf, .svg, "
+        ".jpg) file when there is one signal",
     )
     p.add_argument(
         "--max-figures",
@@ -52,14 +52,19 @@ def run(args) -> int:
     """Draw the figures; returns the exit code."""
     from pathlib import Path
 
-    from ._output import check_output_path
+    from ..signalio import SUFFIXES
+    from ._output import FIGURE_SUFFIXES, check_output_path
     from .features import load_inputs, plot_signals
 
     if args.max_figures < 1:
         raise ValueError(f"--max-figures must be >= 1, got {args.max_figures}")
     out = Path(args.out)
-    single = out.suffix.lower() == ".png"
-    check_output_path(out, option="--out", suffixes=(".png",), folder=not single)
+    suffix = out.suffix.lower()
+    single = suffix in FIGURE_SUFFIXES
+    if suffix in SUFFIXES + (".mat",):  # a data file's name, not a folder's
+        raise ValueError(f"--out must be a folder or a figure file "
+                         f"({', '.join(FIGURE_SUFFIXES)}), got {str(out)!r}")
+    check_output_path(out, option="--out", suffixes=FIGURE_SUFFIXES, folder=not single)
     signals = load_inputs(args)
     band = tuple(args.band) if args.band is not None else None
     if single:
@@ -68,7 +73,7 @@ def run(args) -> int:
                 f"--out {out.name} names one figure but the inputs hold "
                 f"{len(signals)} signals; give a folder"
             )
-        plot_signals(signals, out.parent, band, names=[out.stem])
+        plot_signals(signals, out.parent, band, names=[out.stem], suffix=suffix)
         print(f"figure -> {out}")
         return 0
     shown = signals[: args.max_figures]
