@@ -87,6 +87,8 @@ def poincare_section(res, strobe: str = "shaft", discard_s: float | None = None)
 
     Raises
     ------
+    TypeError
+        ``res`` is not a simulation result (e.g. an array of samples).
     ValueError
         No displacement in ``res``, an unknown ``strobe``, a ``discard_s`` outside the
         record.
@@ -103,6 +105,9 @@ def poincare_section(res, strobe: str = "shaft", discard_s: float | None = None)
     """
     from scipy.interpolate import make_interp_spline
 
+    if not hasattr(res, "truth"):
+        raise TypeError(f"res must be the SimulationResult of bp.simulate, got "
+                        f"{type(res).__name__}")
     disp = getattr(res.truth, "displacement", None)
     if disp is None:
         raise ValueError("res has no displacement: simulate with return_forces=True "

@@ -70,6 +70,8 @@ def test_poincare_refuses_bad_input():
                               truth=GroundTruth(**{**res.truth.__dict__, "displacement": None}))
     with pytest.raises(ValueError, match="return_forces=True"):
         bp.dynamics.poincare_section(nodisp)
+    with pytest.raises(TypeError, match="res must be the SimulationResult.*ndarray"):
+        bp.dynamics.poincare_section(res.accel)  # the samples, not the result
 
 
 def _rotor_scene(**kw):
