@@ -2,6 +2,7 @@
 
 import io
 import json
+import sys
 
 import numpy as np
 import pandas as pd
@@ -193,3 +194,12 @@ def test_help_has_examples_and_pitfalls(capsys):
         main(["features", "--help"])
     text = capsys.readouterr().out
     assert "48 kHz" in text and "9.80665" in text
+
+
+def test_plot_shows_progress_on_a_terminal_only(tmp_path, capsys, monkeypatch):
+    one = write_signal(tmp_path / "one.npz", impacts(100.0), FS)
+    monkeypatch.setattr(sys.stderr, "isatty", lambda: True)  # captured stderr as a terminal
+    assert main(["plot", str(one), "--out", str(tmp_path / "a")]) == 0
+    assert "plot:" in capsys.readouterr().err  # the bar, "plot: 100%|..."
+    assert main(["plot", str(one), "--out", str(tmp_path / "b"), "--quiet"]) == 0
+    assert "plot:" not in capsys.readouterr().err

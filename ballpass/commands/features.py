@@ -320,19 +320,25 @@ def add_quiet_argument(p: argparse.ArgumentParser) -> None:
 
 
 def plot_signals(signals: list[Signal], folder: Path, band=None, names=None,
-                 suffix: str = ".png") -> list[Path]:
+                 suffix: str = ".png", progress: bool = False) -> list[Path]:
     """One overview figure per signal in ``folder`` (each written atomically); the paths.
 
     ``names`` are the file stems (default: the signals' names); ``suffix`` the figure
-    format (one of ``FIGURE_SUFFIXES``).
+    format (one of ``FIGURE_SUFFIXES``); ``progress`` shows a bar on stderr.
     """
+    import sys
+
+    from tqdm import tqdm
+
     from ..features.bands import as_bearing
     from ..plot import signal_overview
     from ..signalio import atomic_write
     from ._output import figure_writer
 
     paths = []
-    for sig, stem in zip(signals, names or [s.name for s in signals], strict=True):
+    stems = names or [s.name for s in signals]
+    for sig, stem in tqdm(list(zip(signals, stems, strict=True)), desc="plot", unit="figure",
+                          disable=not progress, leave=False, file=sys.stderr):
         known = is_known(sig.bearing) and is_known(sig.rpm)
         bearing = as_bearing(sig.bearing) if known else None
         shaft_hz = float(sig.rpm) / 60.0 if known else None
@@ -366,7 +372,7 @@ def run(args) -> int:
     band = tuple(args.band) if args.band is not None else None
     frame = pd.DataFrame(feature_rows(signals, band, progress=show_progress(args)))
     if plots is not None:  # figures first: the table appears only once they all exist
-        paths = plot_signals(signals, plots, band)
+        paths = plot_signals(signals, plots, band, progress=show_progress(args))
         print(f"{len(paths)} figure(s) -> {plots}", file=sys.stderr if out is None else None)
     if out is None:
         frame.to_csv(sys.stdout, index=False)

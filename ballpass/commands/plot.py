@@ -17,7 +17,7 @@ pitfalls: values in g, the normal baseline sampled at 48 kHz)."""
 
 def add_parser(subparsers) -> argparse.ArgumentParser:
     """Register ``plot`` on the ``ballpass`` command."""
-    from .features import add_input_arguments
+    from .features import add_input_arguments, add_quiet_argument
 
     p = subparsers.add_parser(
         "plot",
@@ -44,6 +44,7 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
         metavar="N",
         help="draw at most N figures (default 50)",
     )
+    add_quiet_argument(p)
     p.set_defaults(func=run)
     return p
 
@@ -53,7 +54,7 @@ def run(args) -> int:
     from pathlib import Path
 
     from ..signalio import SUFFIXES
-    from ._output import FIGURE_SUFFIXES, check_output_path
+    from ._output import FIGURE_SUFFIXES, check_output_path, show_progress
     from .features import load_inputs, plot_signals
 
     if args.max_figures < 1:
@@ -77,7 +78,7 @@ def run(args) -> int:
         print(f"figure -> {out}")
         return 0
     shown = signals[: args.max_figures]
-    paths = plot_signals(shown, out, band)
+    paths = plot_signals(shown, out, band, progress=show_progress(args))
     skipped = len(signals) - len(shown)
     print(
         f"{len(paths)} figure(s) -> {out}"
