@@ -45,6 +45,8 @@ def workdir(tmp_path, monkeypatch, dataset):
     scipy.io.savemat(tmp_path / "other.mat", {"signal": np.zeros(100), "fs": 1000.0})
     (tmp_path / "afile").write_text("in the way")
     (tmp_path / "empty").mkdir()
+    (tmp_path / "sigs").mkdir()
+    shutil.copy(tmp_path / "sig.npz", tmp_path / "sigs")
     (tmp_path / "a.npz").mkdir()  # a folder named like a file
     (tmp_path / "broken").mkdir()
     shutil.copy(tmp_path / "truncated.mat", tmp_path / "broken")
@@ -73,6 +75,7 @@ CASES = [
     (["features", "truncated.mat"], "not a readable MATLAB"),
     (["features", "missing.npz"], "no such"),
     (["features", "empty"], "neither a dataset nor a folder of recordings"),
+    (["features", "sigs"], "give its signal files as inputs (sigs/*.npz)"),
     (["features", "broken"], "none of its .mat files could be read"),
     (["features", "other.mat"], "other.mat is neither a CWRU recording"),
     (["features", "sig.npz", "--out", "afile/f.csv"], "afile is a file"),

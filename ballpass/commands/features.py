@@ -187,8 +187,13 @@ def _from_mat_folder(folder: Path, args) -> list[Signal]:
     from ..datasets.real import read_all
 
     if not any(folder.glob("*.mat")):
+        from ..signalio import SUFFIXES
+
+        files = sorted(p.name for p in folder.iterdir() if p.suffix.lower() in SUFFIXES)
+        hint = (f"; give its signal files as inputs ({folder / '*'}{Path(files[0]).suffix})"
+                if files else "")
         raise ValueError(f"{folder} is a folder without manifest.json or .mat files: "
-                         "neither a dataset nor a folder of recordings")
+                         f"neither a dataset nor a folder of recordings{hint}")
     found = read_all(folder, lambda p: _from_mat(p, args))
     if not found:
         raise ValueError(f"{folder}: none of its .mat files could be read")
