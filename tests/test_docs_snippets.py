@@ -1,10 +1,11 @@
-"""The Python snippets of the README and of the docs pages name the API as it is.
+"""The snippets of the README and of the docs pages name the API and the CLI as they are.
 
 The snippets are not run (several simulate for seconds, others read recordings a fresh
 clone does not have); instead every call reached from ``ballpass`` (``bp.plot.x(...)``,
 a name imported from ``ballpass.datasets``) must resolve to an existing object and
 pass only keywords its signature accepts. A renamed function or argument leaves a
 snippet that fails for the reader (a tutorial once passed ``max_hz=`` for ``fmax=``).
+Likewise every ``ballpass ...`` command of a shell block must be accepted by the parser.
 """
 
 from __future__ import annotations
@@ -13,11 +14,13 @@ import ast
 import importlib
 import inspect
 import re
+import shlex
 from pathlib import Path
 
 import pytest
 
 import ballpass
+from ballpass.cli import build_parser
 
 ROOT = Path(__file__).resolve().parents[1]
 PAGES = [ROOT / "README.md",
@@ -87,3 +90,28 @@ def test_the_check_finds_a_stale_keyword_and_a_missing_function():
                      "bp.features.no_such_thing(x)") == [
         "bp.plot.envelope_spectrum() takes no max_hz=",
         "bp.features.no_such_thing does not exist"]
+
+
+def _shell_commands(page: Path) -> list[list[str]]:
+    """Arguments of each ``ballpass`` (or ``.venv/bin/ballpass``) command in shell blocks."""
+    commands = []
+    for block in re.findall(r"```(?:bash|sh|shell|console)\n(.*?)```", page.read_text(), re.S):
+        for line in block.replace("\\\n", " ").splitlines():
+            for part in re.split(r"&&|;|\|", line):
+                words = shlex.split(part, comments=True)
+                at = next((i for i, w in enumerate(words) if w.split("/")[-1] == "ballpass"
+                           and (i == 0 or words[i - 1] != "install")), None)
+                if at is not None:
+                    args = words[at + 1:]
+                    commands.append(args[: args.index(">")] if ">" in args else args)
+    return commands
+
+
+@pytest.mark.parametrize("page", PAGES, ids=[str(p.relative_to(ROOT)) for p in PAGES])
+def test_shell_snippets_parse(page, capsys):
+    parser = build_parser()
+    for args in _shell_commands(page):
+        try:
+            parser.parse_args(args)
+        except SystemExit:
+            pytest.fail(f"ballpass {' '.join(args)}: {capsys.readouterr().err.strip()}")
