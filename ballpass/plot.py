@@ -33,7 +33,7 @@ import numpy as np
 __all__ = ["waveform", "envelope_spectrum", "kurtogram", "signal_overview"]
 
 #: Marker style per fault line: (label, colour).
-_LINE_STYLE = {
+LINE_STYLE = {
     "shaft": ("shaft", "0.55"),
     "ftf": ("FTF", "tab:purple"),
     "bpfo": ("BPFO", "tab:red"),
@@ -222,7 +222,7 @@ def envelope_spectrum(
     transform = ax.get_xaxis_transform()
     placed: list[float] = []  # harmonic numbers closer than 2 % of the axis are skipped
     for i, (name, f0) in enumerate(marks.items()):
-        text, colour = _LINE_STYLE.get(name, (name, f"C{i % 10}"))
+        text, colour = LINE_STYLE.get(name, (name, f"C{i % 10}"))
         minor = name in ("shaft", "ftf")
         for h in range(1, harmonics + 1):
             if h * f0 > fmax:

@@ -138,6 +138,38 @@ def healthy_sweep() -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
+#: Fault sweep: bearings, speeds (rpm), SNRs (dB), record lengths (s), seeds.
+FAULT_SWEEP = (("6205", "6203"), (600.0, 1200.0, 1797.0, 3000.0), (0.0, 10.0, 30.0),
+               (1.0, 2.0), 2)
+
+
+def fault_sweep() -> pd.DataFrame:
+    """Faults of 0.53 mm on sr5 bearings (12 kHz, 500 N, resonance 3 kHz): per bearing,
+    fault and record length, the records named right at each speed (over SNRs and
+    seeds), and what the others were called."""
+    bearings, speeds, snrs, lengths, seeds = FAULT_SWEEP
+    rows = []
+    for bearing, kind, seconds in itertools.product(bearings, ("outer", "inner", "ball"),
+                                                    lengths):
+        row = {"bearing": bearing, "fault": kind, "record s": f"{seconds:g}"}
+        wrong = []
+        for rpm in speeds:
+            calls = []
+            for snr, seed in itertools.product(snrs, range(seeds)):
+                scene = bp.Scene(bearing=bearing, rpm=rpm, radial_load_n=500.0,
+                                 fault=bp.Fault(kind, width_mm=0.53, depth_mm=0.28),
+                                 duration_s=seconds, fs=12_000.0, seed=100 + seed,
+                                 resonance_hz=3000.0, resonance_damping=0.02, snr_db=snr)
+                label = EnvelopeDiagnoser(bearing=bearing, fs=12_000.0, rpm=rpm).predict(
+                    bp.simulate(scene).accel[None])[0]
+                calls.append(label)
+            row[f"{rpm:g} rpm"] = f"{calls.count(kind)} of {len(calls)}"
+            wrong += [f"{c} at {rpm:g} rpm" for c in sorted(set(calls) - {kind})]
+        row["others called"] = ", ".join(wrong) or "-"
+        rows.append(row)
+    return pd.DataFrame(rows)
+
+
 # ---------------------------------------------------------------------- baseline
 def baseline_levels(x: np.ndarray, fs: float, bearing, rpm: float) -> dict:
     """Fixed-band peak picker: SES in 2-5 kHz; per family the largest bin within +-2 %
@@ -310,7 +342,8 @@ def _md(frame: pd.DataFrame) -> str:
     return "\n".join([head, rule] + ["| " + " | ".join(r) + " |" for r in cells])
 
 
-def markdown(table: pd.DataFrame, seconds: float, sweep: pd.DataFrame | None = None) -> str:
+def markdown(table: pd.DataFrame, seconds: float, sweep: pd.DataFrame | None = None,
+             faults: pd.DataFrame | None = None) -> str:
     s = summary(table)
     cols = ["group", "record", "truth", "prediction", "grade", "evidence", "band_hz",
             "rpm_used", "segment_labels", "baseline", "notes"]
@@ -358,7 +391,9 @@ def markdown(table: pd.DataFrame, seconds: float, sweep: pd.DataFrame | None = N
         "- **Knows what it cannot see.** Ball faults need four cage periods (the +-FTF "
         "sidebands resolved); a band with no signal above the fault lines (a noise-free "
         "healthy simulation: the varying-compliance line has no resonance carrier) is "
-        "healthy.",
+        "healthy; where a family's carriers fell on shaft harmonics, `explain()` says "
+        "which, and how long a record tells them apart (the 6203's 2xBSF at 1797 rpm: "
+        "8.4 s).",
         "- **No pre-processing by default**: cepstrum pre-whitening, linear prediction "
         "and DRS, measured on the same records, each name fewer "
         "([diagnosis_preprocessing.md](diagnosis_preprocessing.md), which also shows what "
@@ -385,6 +420,26 @@ def markdown(table: pd.DataFrame, seconds: float, sweep: pd.DataFrame | None = N
             "does not.",
             "",
             _md(sweep),
+            "",
+        ]),
+        *([] if faults is None else [
+            "## Simulated faults",
+            "",
+            "Faults 0.53 mm wide, 0.28 mm deep on `sr5` bearings, 12 kHz, 500 N, resonance "
+            f"3 kHz; at each speed {len(FAULT_SWEEP[2]) * FAULT_SWEEP[4]} records (SNR "
+            f"{', '.join(f'{r:g}' for r in FAULT_SWEEP[2])} dB, {FAULT_SWEEP[4]} seeds). "
+            "What the misses are, as measured: *ball at 600 rpm on 1 s*: fewer than four "
+            "cage periods, the ball is not judged (2 s resolves it). *The 6203's ball "
+            "on 1 s*: its 2xBSF lies 0.3 % below 4x shaft, closer than three 1 Hz bins; the "
+            "fault's own line makes the 4x bin stand out and its carriers read as background "
+            "(`explain()` says so; at 1797 rpm 8.4 s separate them, so 2 s records do not "
+            "either). *The 6203's inner race at 600 rpm on 1 s, called outer*: BPFO = "
+            "Z fr - BPFI, so an inner-race fault's shaft-sideband comb reaches BPFO at its "
+            "8th order; in these runs that comb is flat (the lines at BPFO +- fr stand as "
+            "high as BPFO itself, 13 dB) and the two families tie; on 2 s records, where "
+            "the shaft harmonics are resolved and set aside, all are named.",
+            "",
+            _md(faults),
             "",
         ]),
         "## Per record",
@@ -422,17 +477,19 @@ def main(argv=None) -> None:
         records += simulated_records()
     table = evaluate(records)
     sweep = None if args.no_sim else healthy_sweep()
+    faults = None if args.no_sim else fault_sweep()
     seconds = time.perf_counter() - t0
     args.out.mkdir(parents=True, exist_ok=True)
     atomic_write(args.out / "diagnosis.csv", lambda tmp: table.to_csv(tmp, index=False))
     figure(table, args.out / "diagnosis.png")
-    text = markdown(table, seconds, sweep)
+    text = markdown(table, seconds, sweep, faults)
     atomic_write(args.out / "diagnosis.md",
                  lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
     print("\n".join(goals(table)))
     print(summary(table).to_string(index=False))
     if sweep is not None:
         print(sweep.to_string(index=False))
+        print(faults.to_string(index=False))
 
 
 if __name__ == "__main__":

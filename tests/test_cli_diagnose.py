@@ -50,3 +50,19 @@ def test_unknown_speed_is_refused_naming_the_option(tmp_path, capsys):
     assert "shaft speed (--rpm)" in capsys.readouterr().err
     # given on the command line, it runs
     assert main(["diagnose", str(path), "--rpm", str(RPM), "--quiet"]) == 0
+
+
+def test_plot_writes_one_figure_per_signal(tmp_path, capsys):
+    """--plot DIR: one PNG per signal, named after it; a file given as DIR is refused
+    before any work."""
+    f = bp.Bearing.catalog("6205").frequencies(RPM / 60)
+    noise = np.random.default_rng(3).standard_normal(24_000)
+    path = write_signal(tmp_path / "two.npz", np.stack([impacts(f.bpfo), noise]), FS,
+                        channels=["faulty", "healthy"],
+                        meta={"bearing": "6205", "rpm": RPM})
+    figs = tmp_path / "figs"
+    assert main(["diagnose", str(path), "--plot", str(figs), "--quiet"]) == 0
+    assert sorted(p.name for p in figs.iterdir()) == ["two_faulty.png", "two_healthy.png"]
+    assert all(p.read_bytes()[:4] == b"\x89PNG" for p in figs.iterdir())
+    assert main(["diagnose", str(path), "--plot", str(path)]) != 0
+    assert "--plot must be a folder" in capsys.readouterr().err

@@ -110,6 +110,32 @@ def test_shaft_harmonics_of_a_healthy_6203_are_not_faults():
         assert exp.label == "healthy", (seconds, exp.evidence_db)
 
 
+def test_lines_on_shaft_harmonics_say_how_long_a_record_tells_them_apart():
+    # The 6203's 2xBSF, computed here from its geometry (d = 6.746 mm, D = 28.5 mm,
+    # contact angle 0): D/d (1 - (d/D)^2) = 3.988 orders, 0.36 Hz below 4x at 1797 rpm.
+    # A healthy channel with a 4x line: on one-second records (1 Hz bins) the ball's
+    # first carrier reads as that shaft line, and explain() says a record of
+    # 3 bins / 0.36 Hz = 8.4 s tells them apart; on ten-second records it does.
+    fr = RPM / 60
+    ball = 28.5 / 6.746 * (1 - (6.746 / 28.5) ** 2) * fr
+    need = 3.0 / abs(ball - 4 * fr)  # the shaft guard is 3 SES bins of 1/T Hz
+    rng = np.random.default_rng(5)
+    for seconds in (1.0, 10.0):
+        t = np.arange(round(seconds * FS)) / FS
+        carrier = bp.features.bandpass(rng.standard_normal(t.size), FS, (2500, 3500))
+        x = carrier * (1 + 0.5 * np.cos(2 * np.pi * 4 * fr * t))
+        (exp,) = EnvelopeDiagnoser(bearing="6203", fs=FS, rpm=RPM).explain(x[None])
+        lines = exp.lines.set_index(["fault", "line"])
+        note = [n for n in exp.notes if n.startswith("ball:")]
+        if seconds == 1.0:
+            assert lines.loc[("ball", "1x2xBSF"), "on_shaft"]
+            assert note and f"at least {need:.1f} s" in note[0], exp.notes
+        else:
+            assert not lines.loc[("ball", "1x2xBSF"), "on_shaft"]
+            assert not note, exp.notes
+        assert exp.label == "healthy"
+
+
 def test_wrong_stated_speed_is_corrected_and_said():
     # 12k_FE_OR014@3_0 states 1774 rpm; a 1.3 % error moves 3xBPFO by 4 Hz, outside
     # the slip search above the kinematic lines. The signal's shaft comb (harmonics

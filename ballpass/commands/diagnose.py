@@ -12,6 +12,7 @@ examples:
   ballpass diagnose 12k_FE_OR007@12_0.mat --channel FE  # the fan-end 6203 at its sensor
   ballpass diagnose cwru/ --out verdicts.csv            # every .mat file of a folder
   ballpass diagnose OuterRaceFault_vload_1.mat --segment 1
+  ballpass diagnose 12k_DE_OR007@6_0.mat --plot figures/   # the SES behind each verdict
 
 Inputs are those of `ballpass features` (see `ballpass features --help` for the CWRU
 pitfalls: values in g, the normal baseline sampled at 48 kHz). Each signal gets a
@@ -42,6 +43,13 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
         default=None,
         metavar="TABLE",
         help="also write one row per signal to TABLE.csv or TABLE.parquet",
+    )
+    p.add_argument(
+        "--plot",
+        default=None,
+        metavar="DIR",
+        help="also draw each verdict's squared envelope spectrum with the lines the "
+        "diagnoser read, one DIR/<signal>.png per signal",
     )
     add_quiet_argument(p)
     p.set_defaults(func=run)
@@ -92,6 +100,7 @@ def run(args) -> int:
 
     out = None if args.out is None else check_output_path(
         args.out, option="--out", suffixes=TABLE_SUFFIXES)
+    plots = None if args.plot is None else check_plot_dir(args.plot)
     signals = load_inputs(args)
     band = tuple(args.band) if args.band is not None else None
     results = verdict_rows(signals, band, progress=show_progress(args))
@@ -103,4 +112,39 @@ def run(args) -> int:
         frame = pd.DataFrame([row for _, row in results])
         write_table(frame, Path(out))
         print(f"{len(frame)} verdict(s) -> {out}")
+    if plots is not None:
+        written = write_plots(signals, [why for why, _ in results], plots)
+        print(f"{len(written)} figure(s) -> {plots}")
     return 0
+
+
+def check_plot_dir(path) -> Path:
+    """``--plot DIR``: a folder (created if missing), not an existing file."""
+    folder = Path(path)
+    if folder.exists() and not folder.is_dir():
+        raise ValueError(f"--plot must be a folder, got the file {str(folder)!r}")
+    folder.mkdir(parents=True, exist_ok=True)
+    return folder
+
+
+def write_plots(signals, explanations, folder: Path) -> list[Path]:
+    """One PNG per signal in ``folder``: its SES with the lines the diagnoser read."""
+    import re
+
+    import numpy as np
+
+    from ..diagnose import plot_explanation
+    from ..signalio import atomic_write
+    from ._output import figure_writer
+
+    written = []
+    for sig, why in zip(signals, explanations, strict=True):
+        stem = re.sub(r"[^A-Za-z0-9_.@-]+", "_", str(sig.name)).strip("_") or "signal"
+        path = folder / f"{stem}.png"
+        k = 2
+        while path in written:
+            path, k = folder / f"{stem}_{k}.png", k + 1
+        ax = plot_explanation(np.asarray(sig.x, dtype=np.float64), sig.fs, why)
+        atomic_write(path, figure_writer(ax.figure, path))
+        written.append(path)
+    return written

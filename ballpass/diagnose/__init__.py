@@ -5,6 +5,7 @@ Physics-based (no training)
 EnvelopeDiagnoser     scikit-learn classifier from the squared-envelope-spectrum evidence
 envelope_evidence     evidence of each fault family (BPFO, BPFI +- fr, 2xBSF +- FTF), dB
 Explanation           which lines carried a decision, and how far above the background
+plot_explanation      the squared envelope spectrum behind a decision, its lines marked
 
 Learned
 -------
@@ -47,6 +48,7 @@ _NAMES = {
     "split_indices": "benchmark",
     "write_report": "report",
     "plot_confusion": "report",
+    "plot_explanation": "figure",
 }
 
 __all__ = sorted(_NAMES)

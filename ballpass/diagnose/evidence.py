@@ -75,6 +75,7 @@ __all__ = [
     "candidate_bands",
     "envelope_evidence",
     "family_lines",
+    "shaft_resolving_length",
 ]
 
 #: fault -> (carrier line, sideband spacing, do sidebands support (+1) the fault or
@@ -185,6 +186,9 @@ class EnvelopeEvidence:
         at the speed used, Hz.
     shared : dict of str to ndarray of bool, shape (n_lines,)
         Lines left out because another family's carrier explains them.
+    on_shaft : dict of str to ndarray of bool, shape (n_signals, n_lines)
+        Lines that fell on a shaft harmonic standing out of the SES and read as
+        background (rule 2 of the module notes).
     scale : dict of str to ndarray, shape (n_signals,)
         Best-fitting ratio of measured to kinematic frequencies (1 - slip .. 1 + slip/4).
     line_names : dict of str to list of str
@@ -228,6 +232,7 @@ class EnvelopeEvidence:
     found_hz: dict
     nominal_hz: dict
     shared: dict
+    on_shaft: dict
     scale: dict
     line_names: dict
     band_hz: dict
@@ -306,7 +311,7 @@ def _family_scores(ses, notch, df, shaft_hz, orders, fault, harmonics, slip, bac
 
     ``notch`` (n, n_bins) marks the bins on shaft harmonics, ``resolved`` (n,) the rows
     long enough to resolve +-FTF sidebands. Returns (evidence (n,),
-    level (n, L), found (n, L), scale (n,)).
+    level (n, L), found (n, L), scale (n,), on_shaft (n, L)).
     """
     carrier, modulation, support = FAULT_FAMILIES[fault]
     lines = family_lines(fault, harmonics)
@@ -365,7 +370,8 @@ def _family_scores(ses, notch, df, shaft_hz, orders, fault, harmonics, slip, bac
     fit = np.where(judged & np.isfinite(fit), fit, -np.inf)
     j = fit.argmax(axis=1)
     i = np.arange(n)
-    return score[i, j], level[i, j], (c[i, j] + best[i, j]) * df, scales[j]
+    on_shaft = usable & notch[rows, c]
+    return score[i, j], level[i, j], (c[i, j] + best[i, j]) * df, scales[j], on_shaft[i, j]
 
 
 def _shaft_notch(freqs: np.ndarray, ses: np.ndarray, shaft_hz: np.ndarray,
@@ -397,6 +403,46 @@ def _shaft_notch(freqs: np.ndarray, ses: np.ndarray, shaft_hz: np.ndarray,
     close = np.abs(freqs[None, :] - m * shaft_hz[:, None]) < guard
     idx = np.clip(m.astype(np.int64) - 1, 0, k.size - 1)
     return close & np.take_along_axis(present, idx, axis=1) & fine[:, None]
+
+
+def shaft_resolving_length(freq_hz, shaft_hz: float):
+    """Shortest record whose SES tells a line at ``freq_hz`` from the nearest shaft
+    harmonic, s (``inf``: closer than :data:`SHAFT_GUARD_RELATIVE`, never).
+
+    A line reads as its shaft harmonic ``k fr`` when it lies within the shaft guard,
+    :data:`SHAFT_GUARD_BINS` SES bins of ``1 / T`` Hz (or the relative guard); it is
+    told apart on records of ``T > SHAFT_GUARD_BINS / |f - k fr|``.
+
+    Parameters
+    ----------
+    freq_hz : float or array_like
+        Line frequency, Hz.
+    shaft_hz : float
+        Shaft speed, Hz.
+
+    Returns
+    -------
+    ndarray
+        Record length, s, shaped like ``freq_hz``.
+
+    Examples
+    --------
+    The 6203's ball-defect line at 1797 rpm is 0.36 Hz from 4x the shaft speed (3 bins
+    of 1 / 8.4 s):
+
+    >>> import ballpass as bp
+    >>> from ballpass.diagnose.evidence import shaft_resolving_length
+    >>> fr = 1797 / 60
+    >>> f = bp.Bearing.catalog("6203").frequencies(fr).ball_defect
+    >>> round(float(shaft_resolving_length(f, fr)), 1)
+    8.4
+    """
+    f = np.asarray(freq_hz, dtype=float)
+    k = np.maximum(np.rint(f / shaft_hz), 1.0)
+    gap = np.abs(f - k * shaft_hz)
+    with np.errstate(divide="ignore"):
+        length = SHAFT_GUARD_BINS / gap
+    return np.where(gap > SHAFT_GUARD_RELATIVE * k * shaft_hz, length, np.inf)
 
 
 class _quiet:
@@ -557,6 +603,7 @@ def envelope_evidence(
         found_hz={f: best[f]["found"] for f in FAULT_FAMILIES},
         nominal_hz=nominal,
         shared={f: np.repeat(shared[f], 3) for f in FAULT_FAMILIES},
+        on_shaft={f: best[f]["on_shaft"] for f in FAULT_FAMILIES},
         scale={f: best[f]["scale"] for f in FAULT_FAMILIES},
         line_names=names,
         band_hz={f: best[f]["band"] for f in FAULT_FAMILIES},
@@ -577,7 +624,8 @@ def _strongest(best: dict) -> np.ndarray:
 def _best_bands(xv, shaft_hz, *, fs, orders, harmonics, slip, background_hz, prewhiten,
                 bands):
     """Each family's evidence in its best band at the shaft speeds ``shaft_hz`` (Hz, one
-    per row): ``({fault: {evidence, level, found, scale, band}}, bands with signal)``."""
+    per row): ``({fault: {evidence, level, found, on_shaft, scale, band}}, bands with
+    signal)``."""
     shared = _shared_carriers(orders, harmonics, slip)
     top = float(np.max(shaft_hz)) * (harmonics * max(orders[c] for c, _, _ in
                                                      FAULT_FAMILIES.values()) + 1.0)
@@ -593,6 +641,7 @@ def _best_bands(xv, shaft_hz, *, fs, orders, harmonics, slip, background_hz, pre
             evidence=np.full(n, -np.inf),
             level=np.full((n, n_lines), np.nan),
             found=np.full((n, n_lines), np.nan),
+            on_shaft=np.zeros((n, n_lines), bool),
             scale=np.ones(n),
             band=np.full((n, 2), np.nan),
         )
@@ -605,7 +654,7 @@ def _best_bands(xv, shaft_hz, *, fs, orders, harmonics, slip, background_hz, pre
         df = freqs[1]
         notch = _shaft_notch(freqs, ses, shaft_hz, background_hz)
         for fault in FAULT_FAMILIES:
-            ev, level, found, scale = _family_scores(
+            ev, level, found, scale, on_shaft = _family_scores(
                 ses, notch, df, shaft_hz, orders, fault, harmonics, slip, background_hz,
                 shared[fault], resolved)
             better = has_signal[:, k] & (ev > best[fault]["evidence"])
@@ -613,6 +662,7 @@ def _best_bands(xv, shaft_hz, *, fs, orders, harmonics, slip, background_hz, pre
             rec["evidence"] = np.where(better, ev, rec["evidence"])
             rec["level"] = np.where(better[:, None], level, rec["level"])
             rec["found"] = np.where(better[:, None], found, rec["found"])
+            rec["on_shaft"] = np.where(better[:, None], on_shaft, rec["on_shaft"])
             rec["scale"] = np.where(better, scale, rec["scale"])
             rec["band"] = np.where(better[:, None], b, rec["band"])
     return best, has_signal.sum(axis=1)

@@ -37,6 +37,7 @@ from .evidence import (
     EnvelopeEvidence,
     envelope_evidence,
     family_lines,
+    shaft_resolving_length,
 )
 
 __all__ = [
@@ -99,8 +100,9 @@ class Explanation:
         ``harmonic``, ``role`` (``"carrier"``, ``"sideband"``, or ``"refuting
         sideband"`` for the +-FTF neighbours of BPFO, which count against an outer-race
         fault only when they rival its carriers), ``shared`` (left out: another family
-        explains it), ``nominal_hz``, ``found_hz``, ``level_db`` (above background)
-        and ``decisive`` (True for the lines of the predicted family).
+        explains it), ``on_shaft`` (fell on a shaft harmonic standing out of the SES and
+        read as background), ``nominal_hz``, ``found_hz``, ``level_db`` (above
+        background) and ``decisive`` (True for the lines of the predicted family).
 
     Examples
     --------
@@ -151,6 +153,26 @@ class Explanation:
                 for r in decisive.itertuples()
             ))
         return "\n".join(parts)
+
+
+def _shaft_note(ev: EnvelopeEvidence, fault: str, i: int) -> list[str]:
+    """Note on the carriers of ``fault`` in row ``i`` that read as background on shaft
+    harmonics, with the record length that tells them apart (empty if none)."""
+    names = np.asarray(ev.line_names[fault], dtype=object)
+    carrier = np.arange(names.size) % 3 == 0  # family_lines: carrier, -side, +side
+    hidden = carrier & ev.on_shaft[fault][i]
+    if not hidden.any():
+        return []
+    length = float(np.max(shaft_resolving_length(ev.nominal_hz[fault][i][hidden],
+                                                 ev.rpm[i] / 60.0)))
+    if ev.duration_s < length:
+        need = (f"records of at least {length:.1f} s tell them apart at the kinematic "
+                "frequencies")
+    else:
+        need = (f"the slip found (scale {ev.scale[fault][i]:.3f}) puts them on the "
+                "harmonics, where no record length tells them apart")
+    return [f"{fault}: {', '.join(names[hidden])} fell on shaft harmonics and read as "
+            f"background ({1 / ev.duration_s:.2g} Hz bins); {need}"]
 
 
 def _role(fault: str, side: int) -> str:
@@ -520,6 +542,8 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
                 if not (silent or np.isfinite(evidence[f]) or (f == "ball" and too_short[i])):
                     notes.append(f"{f} not judged: fewer than two of its carriers are free "
                                  "of another family's lines")
+                if f != label and not silent:
+                    notes.extend(_shaft_note(ev, f, i))
             if silent:
                 grade = "Y"
             elif not any(np.isfinite(v) for v in evidence.values()):
@@ -538,6 +562,7 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
                     "harmonic": [h for _, h, _ in layout[fault]],
                     "role": [_role(fault, side) for _, _, side in layout[fault]],
                     "shared": ev.shared[fault],
+                    "on_shaft": ev.on_shaft[fault][i],
                     "nominal_hz": ev.nominal_hz[fault][i],
                     "found_hz": ev.found_hz[fault][i],
                     "level_db": ev.levels_db[fault][i],
