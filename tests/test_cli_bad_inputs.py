@@ -88,7 +88,9 @@ CASES = [
     (["plot", "sig.npz", "--out", "afile"], "is a file, not a folder"),
     (["plot", "text.npz", "--out", "figs"], "not a NumPy .npz archive"),
     (["plot", "sig.npz", "--max-figures", "0"], "--max-figures"),
-    (["plot", "sig.npz", "--out", "fig.npz"], "--out must be a folder or a figure file"),
+    (["plot", "sig.npz", "--out", "fig.npz"], "--out must be a folder, got 'fig.npz'"),
+    (["features", "sig.npz", "--plot", "fig.png"], "--plot must be a folder, got 'fig.png'"),
+    (["benchmark", "ds", "--out", "report.md"], "--out must be a folder, got 'report.md'"),
     # benchmark
     (["benchmark", "ds", "--out", "afile/rep"], "afile is a file"),
     (["benchmark", "ds", "--out", "rep", "--folds", "1"], "n_splits (--folds) must be"),
@@ -184,7 +186,7 @@ def test_a_bug_keeps_its_traceback(monkeypatch):
 
 
 OUTPUT_MESSAGES = ("afile is a file", "cannot write", "must end in", "is a folder",
-                   "is a file, not a folder")
+                   "is a file, not a folder", "must be a folder")
 OUTPUT_CASES = [c for c in CASES if any(m in c[1] for m in OUTPUT_MESSAGES)]
 
 

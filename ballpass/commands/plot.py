@@ -53,7 +53,6 @@ def run(args) -> int:
     """Draw the figures; returns the exit code."""
     from pathlib import Path
 
-    from ..signalio import SUFFIXES
     from ._output import FIGURE_SUFFIXES, check_output_path, show_progress
     from .features import load_inputs, plot_signals
 
@@ -62,9 +61,6 @@ def run(args) -> int:
     out = Path(args.out)
     suffix = out.suffix.lower()
     single = suffix in FIGURE_SUFFIXES
-    if suffix in SUFFIXES + (".mat",):  # a data file's name, not a folder's
-        raise ValueError(f"--out must be a folder or a figure file "
-                         f"({', '.join(FIGURE_SUFFIXES)}), got {str(out)!r}")
     check_output_path(out, option="--out", suffixes=FIGURE_SUFFIXES, folder=not single)
     signals = load_inputs(args)
     band = tuple(args.band) if args.band is not None else None
