@@ -203,3 +203,10 @@ def test_plot_shows_progress_on_a_terminal_only(tmp_path, capsys, monkeypatch):
     assert "plot:" in capsys.readouterr().err  # the bar, "plot: 100%|..."
     assert main(["plot", str(one), "--out", str(tmp_path / "b"), "--quiet"]) == 0
     assert "plot:" not in capsys.readouterr().err
+
+
+def test_fs_for_a_signal_file_is_not_silently_dropped(outer_file, capsys):
+    """A signal file carries its rate; --fs (for .mat files) is ignored with a warning."""
+    with pytest.warns(UserWarning, match=r"outer.npz states its own rate, 12000 Hz: --fs 1000"):
+        assert main(["features", str(outer_file), "--fs", "1000"]) == 0
+    assert set(pd.read_csv(io.StringIO(capsys.readouterr().out)).fs) == {FS}

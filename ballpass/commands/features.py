@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -142,6 +143,9 @@ def _from_signal_file(path: Path, args) -> list[Signal]:
     from ..signalio import read_signal
 
     sig = read_signal(path)
+    if args.fs is not None and args.fs != sig.fs:
+        warnings.warn(f"{path.name} states its own rate, {sig.fs:g} Hz: --fs {args.fs:g} "
+                      "applies to .mat files only and is ignored for it", stacklevel=2)
     bearing = args.bearing or sig.meta.get("bearing")
     rpm = args.rpm if args.rpm is not None else sig.meta.get("rpm")
     label = sig.meta.get("label")
