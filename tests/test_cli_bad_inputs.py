@@ -107,6 +107,7 @@ CASES = [
     (["work-precision", "--no-scipy", "--repeats", "0"], "--repeats"),
     (["work-precision", "--scipy", "RK45", "rk45"], "--scipy takes RK45, DOP853"),
     (["work-precision", "--scipy-time-limit", "0"], "--scipy-time-limit must be > 0"),
+    (["work-precision", "--no-scipy", "--snr", "10"], "--snr 10: work-precision compares"),
     # bifurcation: outputs and the swept parameter before any simulation
     (["bifurcation", "--parameter", "rpm", "--values", "1000", "--out", "afile/b.csv"],
      "afile is a file"),

@@ -88,7 +88,10 @@ def run(args) -> int:
         raise ValueError(f"--scipy takes {', '.join(SCIPY_METHODS)}, got {', '.join(unknown)}")
     if not args.scipy_time_limit > 0:
         raise ValueError(f"--scipy-time-limit must be > 0 s, got {args.scipy_time_limit}")
-    scene = scene_from_args(args).replace(snr_db=None)
+    if args.snr is not None:
+        raise ValueError(f"--snr {args.snr:g}: work-precision compares noise-free signals "
+                         "(noise would be the error); leave it out")
+    scene = scene_from_args(args)
     compile_notice()
     methods = () if args.no_scipy else tuple(args.scipy or SCIPY_METHODS)
     table = work_precision(scene, model=args.model, scipy_methods=methods, repeats=args.repeats,
