@@ -16,6 +16,9 @@ Run::
 
     PYTHONPATH=. python benchmarks/sim2real_cli.py --real ../shared/data/cwru   # ~2 min
 
+``--engagement 0.3,0.5,0.7`` adds the grid's ``fault_engagement`` axis (intermittent
+ball defects; measured in docs/sim2real.md), ``--repeats`` changes its repeats.
+
 Writes ``docs/sim2real_cli.md``, ``docs/sim2real_cli.csv`` (every prediction) and
 ``docs/sim2real_cli.png``.
 """
@@ -42,15 +45,19 @@ from ballpass.signalio import atomic_write
 ENDS = {"DE": "6205", "FE": "6203"}
 
 
-def predictions(real: Path, seed: int, end: str, jobs: int, repeats=None) -> pd.DataFrame:
+def predictions(real: Path, seed: int, end: str, jobs: int, repeats=None,
+                engagement=None) -> pd.DataFrame:
     """Train on the shipped grid for ``end``'s bearing (root seed ``seed``; ``repeats``
-    if given), test on that end's records and the healthy recording at that sensor."""
+    and the ``fault_engagement`` axis if given), test on that end's records and the
+    healthy recording at that sensor."""
     with GRID.open("rb") as fh:
         spec = tomllib.load(fh)
     spec["dataset"]["seed"] = seed
     if repeats is not None:
         spec["dataset"]["repeats"] = repeats
     spec["grid"]["bearing"] = [ENDS[end]]
+    if engagement is not None:
+        spec["grid"]["fault_engagement"] = list(engagement)
     with tempfile.TemporaryDirectory() as tmp:
         generate(spec, Path(tmp) / "ds", n_jobs=jobs, progress=False)
         X, meta = load(Path(tmp) / "ds")
@@ -172,14 +179,20 @@ def main(argv=None) -> int:
                         help="root seeds of the grid (default ten)")
     parser.add_argument("--repeats", type=int, default=None,
                         help="repeats of the grid (default: the grid's own, 3)")
+    parser.add_argument("--engagement", default=None,
+                        help="fault_engagement axis of the grid, e.g. 0.3,0.5,0.7 "
+                        "(default: the grid's own)")
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--out", type=Path, default=ROOT / "docs")
     args = parser.parse_args(argv)
     t0 = time.perf_counter()
     parts = []
+    engagement = (None if args.engagement is None
+                  else [float(v) for v in args.engagement.split(",")])
     for seed in map(int, args.seeds.split(",")):
         for end in ENDS:
-            parts.append(predictions(args.real, seed, end, args.jobs, args.repeats))
+            parts.append(predictions(args.real, seed, end, args.jobs, args.repeats,
+                                     engagement))
             print(f"seed {seed} {end}: {time.perf_counter() - t0:.0f} s", flush=True)
     pred = pd.concat(parts, ignore_index=True)
     table = summary(pred)
