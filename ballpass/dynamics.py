@@ -87,6 +87,8 @@ def poincare_section(res, strobe: str = "shaft", discard_s: float | None = None)
 
     Raises
     ------
+    TypeError
+        ``res`` is not a simulation result (e.g. an array of samples).
     ValueError
         No displacement in ``res``, an unknown ``strobe``, a ``discard_s`` outside the
         record.
@@ -103,6 +105,9 @@ def poincare_section(res, strobe: str = "shaft", discard_s: float | None = None)
     """
     from scipy.interpolate import make_interp_spline
 
+    if not hasattr(res, "truth"):
+        raise TypeError(f"res must be the SimulationResult of bp.simulate, got "
+                        f"{type(res).__name__}")
     disp = getattr(res.truth, "displacement", None)
     if disp is None:
         raise ValueError("res has no displacement: simulate with return_forces=True "
@@ -149,6 +154,8 @@ def _with(scene, parameter: str, value: float):
     if parameter == "radial_clearance_mm":
         return scene.replace(bearing=scene.bearing.with_clearance(value))
     current = getattr(scene, parameter)
+    if isinstance(current, int) and value != int(value):
+        raise ValueError(f"{parameter} takes whole numbers, got {value:g}")
     return scene.replace(**{parameter: type(current)(value) if isinstance(current, int)
                             else float(value)})
 
@@ -227,7 +234,8 @@ def bifurcation_diagram(scene, parameter: str, values, *, model: str = "rotor2",
     except (TypeError, ValueError):
         raise TypeError(f"values must be a sequence of numbers, got {values!r}") from None
     if vals.size == 0 or not np.all(np.isfinite(vals)):
-        raise ValueError(f"values must be a non-empty sequence of finite numbers, got {values!r}")
+        raise ValueError("values must be a non-empty sequence of finite numbers, got "
+                         f"{vals.tolist()}")
     if isinstance(n_jobs, bool) or not isinstance(n_jobs, int) or n_jobs == 0:
         raise ValueError(f"n_jobs must be a non-zero int (-1 = all cores), got {n_jobs!r}")
     if strobe not in STROBES:

@@ -53,6 +53,9 @@ __all__ = [
 
 #: File extensions understood by :func:`read_signal` and :func:`write_signal`.
 SUFFIXES = (".npz", ".csv", ".parquet")
+#: Extensions that name a file: a new output folder ending in one is a mistake.
+_FILE_SUFFIXES = SUFFIXES + (".png", ".pdf", ".svg", ".jpg", ".jpeg", ".mat", ".json",
+                             ".md", ".txt")
 _TIME = "t_s"
 _ARROW_KEY = b"ballpass"
 
@@ -148,7 +151,8 @@ def check_output_path(path, *, option: str = "path", suffixes=None,
     Raises
     ------
     ValueError
-        Wrong extension, a folder where a file is wanted or the reverse.
+        Wrong extension, a folder where a file is wanted or the reverse, a new folder
+        named like a file (``figs.png``).
     PermissionError
         The folder cannot be written.
 
@@ -168,6 +172,9 @@ def check_output_path(path, *, option: str = "path", suffixes=None,
         raise ValueError(f"{option} must end in {allowed}, got {str(path)!r}")
     if folder and path.exists() and not path.is_dir():
         raise ValueError(f"{option} {path} is a file, not a folder")
+    if folder and not path.exists() and path.suffix.lower() in _FILE_SUFFIXES:
+        raise ValueError(f"{option} must be a folder, got {str(path)!r}, a "
+                         f"{path.suffix} file's name")
     if not folder and path.is_dir():
         raise ValueError(f"{option} {path} is a folder, not a file")
     ancestor = path if folder and path.is_dir() else path.parent

@@ -12,6 +12,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import scipy.io
 
 import ballpass as bp
 from ballpass.cli import main
@@ -41,8 +42,11 @@ def workdir(tmp_path, monkeypatch, dataset):
     np.savez(tmp_path / "complex.npz", accel=np.ones((1, 100)) * (1 + 1j), fs=1000.0)
     good = (DATA / "cwru_mat" / "12k_DE_IR007_0.mat").read_bytes()
     (tmp_path / "truncated.mat").write_bytes(good[: len(good) // 2])
+    scipy.io.savemat(tmp_path / "other.mat", {"signal": np.zeros(100), "fs": 1000.0})
     (tmp_path / "afile").write_text("in the way")
     (tmp_path / "empty").mkdir()
+    (tmp_path / "sigs").mkdir()
+    shutil.copy(tmp_path / "sig.npz", tmp_path / "sigs")
     (tmp_path / "a.npz").mkdir()  # a folder named like a file
     (tmp_path / "broken").mkdir()
     shutil.copy(tmp_path / "truncated.mat", tmp_path / "broken")
@@ -71,7 +75,9 @@ CASES = [
     (["features", "truncated.mat"], "not a readable MATLAB"),
     (["features", "missing.npz"], "no such"),
     (["features", "empty"], "neither a dataset nor a folder of recordings"),
+    (["features", "sigs"], "give its signal files as inputs (sigs/*.npz)"),
     (["features", "broken"], "none of its .mat files could be read"),
+    (["features", "other.mat"], "other.mat is neither a CWRU recording"),
     (["features", "sig.npz", "--out", "afile/f.csv"], "afile is a file"),
     (["features", "sig.npz", "--out", "f.xlsx"], ".csv or .parquet"),
     (["features", "sig.npz", "--plot", "afile"], "is a file, not a folder"),
@@ -82,6 +88,9 @@ CASES = [
     (["plot", "sig.npz", "--out", "afile"], "is a file, not a folder"),
     (["plot", "text.npz", "--out", "figs"], "not a NumPy .npz archive"),
     (["plot", "sig.npz", "--max-figures", "0"], "--max-figures"),
+    (["plot", "sig.npz", "--out", "fig.npz"], "--out must be a folder, got 'fig.npz'"),
+    (["features", "sig.npz", "--plot", "fig.png"], "--plot must be a folder, got 'fig.png'"),
+    (["benchmark", "ds", "--out", "report.md"], "--out must be a folder, got 'report.md'"),
     # benchmark
     (["benchmark", "ds", "--out", "afile/rep"], "afile is a file"),
     (["benchmark", "ds", "--out", "rep", "--folds", "1"], "n_splits (--folds) must be"),
@@ -96,6 +105,9 @@ CASES = [
     (["work-precision", "--no-scipy", "--csv", "same.csv", "--plot", "same.csv"],
      "--plot must end in"),
     (["work-precision", "--no-scipy", "--repeats", "0"], "--repeats"),
+    (["work-precision", "--scipy", "RK45", "rk45"], "--scipy takes RK45, DOP853"),
+    (["work-precision", "--scipy-time-limit", "0"], "--scipy-time-limit must be > 0"),
+    (["work-precision", "--no-scipy", "--snr", "10"], "--snr 10: work-precision compares"),
     # bifurcation: outputs and the swept parameter before any simulation
     (["bifurcation", "--parameter", "rpm", "--values", "1000", "--out", "afile/b.csv"],
      "afile is a file"),
@@ -110,6 +122,8 @@ CASES = [
     # the others
     (["bearings", "--bearing", "nope"], "nope"),
     (["models", "--needs", "gear_mesh", "rotor_dynamics"], "no model represents"),
+    (["models", "--needs", "envelope", "--bearing", "nope"], "unknown bearing 'nope'"),
+    (["models", "--bearing", "6203"], "give --needs too"),
     (["simulate", "--needs", "gear_mesh", "--out", "x.npz"], "has no gear pair"),
     (["info", "nowhere"], "nowhere"),
     (["generate", "missing.toml", "--out", "new"], "missing.toml"),
@@ -131,6 +145,12 @@ def test_bad_input_is_one_clear_line_and_writes_nothing(workdir, capsys, argv, m
     assert message in errors[0], err
     assert "Traceback" not in err
     assert _files(workdir) == before
+
+
+def test_models_prints_nothing_before_refusing(capsys):
+    """The table is not printed ahead of an error about the scene of --needs."""
+    assert main(["models", "--needs", "envelope", "--bearing", "nope"]) == 2
+    assert capsys.readouterr().out == ""
 
 
 def test_no_traceback_from_the_installed_command(workdir):
@@ -167,7 +187,7 @@ def test_a_bug_keeps_its_traceback(monkeypatch):
 
 
 OUTPUT_MESSAGES = ("afile is a file", "cannot write", "must end in", "is a folder",
-                   "is a file, not a folder")
+                   "is a file, not a folder", "must be a folder")
 OUTPUT_CASES = [c for c in CASES if any(m in c[1] for m in OUTPUT_MESSAGES)]
 
 

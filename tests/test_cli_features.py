@@ -2,6 +2,7 @@
 
 import io
 import json
+import sys
 
 import numpy as np
 import pandas as pd
@@ -133,6 +134,9 @@ def test_plots(tmp_path, outer_file, capsys):
     assert (tmp_path / "one.png").stat().st_size > 10_000
     assert main(["plot", str(outer_file), "--out", str(tmp_path / "x.png")]) == 2
     assert "give a folder" in capsys.readouterr().err
+    # another figure format is written in that format, not made a folder of that name
+    assert main(["plot", str(one), "--out", str(tmp_path / "one.pdf")]) == 0
+    assert (tmp_path / "one.pdf").read_bytes()[:5] == b"%PDF-"
 
 
 def test_dataset_folder(tmp_path, monkeypatch, capsys):
@@ -190,3 +194,19 @@ def test_help_has_examples_and_pitfalls(capsys):
         main(["features", "--help"])
     text = capsys.readouterr().out
     assert "48 kHz" in text and "9.80665" in text
+
+
+def test_plot_shows_progress_on_a_terminal_only(tmp_path, capsys, monkeypatch):
+    one = write_signal(tmp_path / "one.npz", impacts(100.0), FS)
+    monkeypatch.setattr(sys.stderr, "isatty", lambda: True)  # captured stderr as a terminal
+    assert main(["plot", str(one), "--out", str(tmp_path / "a")]) == 0
+    assert "plot:" in capsys.readouterr().err  # the bar, "plot: 100%|..."
+    assert main(["plot", str(one), "--out", str(tmp_path / "b"), "--quiet"]) == 0
+    assert "plot:" not in capsys.readouterr().err
+
+
+def test_fs_for_a_signal_file_is_not_silently_dropped(outer_file, capsys):
+    """A signal file carries its rate; --fs (for .mat files) is ignored with a warning."""
+    with pytest.warns(UserWarning, match=r"outer.npz states its own rate, 12000 Hz: --fs 1000"):
+        assert main(["features", str(outer_file), "--fs", "1000"]) == 0
+    assert set(pd.read_csv(io.StringIO(capsys.readouterr().out)).fs) == {FS}

@@ -72,6 +72,16 @@ def local_dataset(grid_file, tmp_path_factory):
     return out
 
 
+def test_cli_progress_bar_only_on_a_terminal(tmp_path, capsys):
+    """stderr captured (not a terminal, as in a log file): no progress bar in it."""
+    small = tmp_path / "tiny.toml"
+    small.write_text(GRID_TOML.replace('fault = ["healthy", "outer", "inner", "ball"]',
+                                       'fault = ["healthy"]'))
+    assert main(["generate", str(small), "--out", str(tmp_path / "ds")]) == 0
+    err = capsys.readouterr().err
+    assert "generate:" not in err and "%|" not in err, err
+
+
 def test_cli_end_to_end(local_dataset, capsys):
     X, meta = load(local_dataset)
     assert len(meta) == N_ROWS == read_grid(tomllib.loads(GRID_TOML)).n_rows

@@ -70,6 +70,8 @@ def test_poincare_refuses_bad_input():
                               truth=GroundTruth(**{**res.truth.__dict__, "displacement": None}))
     with pytest.raises(ValueError, match="return_forces=True"):
         bp.dynamics.poincare_section(nodisp)
+    with pytest.raises(TypeError, match="res must be the SimulationResult.*ndarray"):
+        bp.dynamics.poincare_section(res.accel)  # the samples, not the result
 
 
 def _rotor_scene(**kw):
@@ -122,6 +124,10 @@ def test_bifurcation_over_clearance_and_errors_before_work(monkeypatch):
         bp.dynamics.bifurcation_diagram(scene, "rpm", [600, -5], progress=False)
     with pytest.raises(ValueError, match="values"):
         bp.dynamics.bifurcation_diagram(scene, "rpm", [], progress=False)
+    with pytest.raises(ValueError, match=r"got \[600\.0, nan\]$"):  # a list, not array(...)
+        bp.dynamics.bifurcation_diagram(scene, "rpm", np.array([600, np.nan]), progress=False)
+    with pytest.raises(ValueError, match="seed takes whole numbers, got 1.5"):  # not seed 1
+        bp.dynamics.bifurcation_diagram(scene, "seed", [1.5], progress=False)
     ramp = scene.replace(rpm=(600.0, 1200.0))
     with pytest.raises(ValueError, match="parameter must be one of"):
         bp.dynamics.bifurcation_diagram(ramp, "rpm", [600], progress=False)

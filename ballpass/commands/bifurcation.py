@@ -20,6 +20,8 @@ examples:
 
 def add_parser(subparsers) -> argparse.ArgumentParser:
     """Register ``bifurcation`` on the ``ballpass`` command."""
+    from .features import add_quiet_argument
+
     p = subparsers.add_parser(
         "bifurcation",
         help="bifurcation diagram of the rotor (Poincare sections over a parameter)",
@@ -57,7 +59,7 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     p.add_argument("--jobs", type=int, default=1, help="parallel processes (-1 = all cores)")
     p.add_argument("--out", "-o", required=True, help="CSV file of the section points")
     p.add_argument("--plot", default=None, metavar="PNG", help="also draw the diagram")
-    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    add_quiet_argument(p)
     p.set_defaults(func=run)
     return p
 
@@ -110,4 +112,6 @@ def run(args: argparse.Namespace) -> int:
         writes.append((plot, figure_writer(fig, plot)))
     atomic_write_many(writes)
     print(f"{len(df)} section points over {len(values)} values of {args.parameter} -> {out}")
+    if plot is not None:
+        print(f"plot -> {plot}")
     return 0

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -142,6 +143,9 @@ def _from_signal_file(path: Path, args) -> list[Signal]:
     from ..signalio import read_signal
 
     sig = read_signal(path)
+    if args.fs is not None and args.fs != sig.fs:
+        warnings.warn(f"{path.name} states its own rate, {sig.fs:g} Hz: --fs {args.fs:g} "
+                      "applies to .mat files only and is ignored for it", stacklevel=2)
     bearing = args.bearing or sig.meta.get("bearing")
     rpm = args.rpm if args.rpm is not None else sig.meta.get("rpm")
     label = sig.meta.get("label")
@@ -187,8 +191,13 @@ def _from_mat_folder(folder: Path, args) -> list[Signal]:
     from ..datasets.real import read_all
 
     if not any(folder.glob("*.mat")):
+        from ..signalio import SUFFIXES
+
+        files = sorted(p.name for p in folder.iterdir() if p.suffix.lower() in SUFFIXES)
+        hint = (f"; give its signal files as inputs ({folder / '*'}{Path(files[0]).suffix})"
+                if files else "")
         raise ValueError(f"{folder} is a folder without manifest.json or .mat files: "
-                         "neither a dataset nor a folder of recordings")
+                         f"neither a dataset nor a folder of recordings{hint}")
     found = read_all(folder, lambda p: _from_mat(p, args))
     if not found:
         raise ValueError(f"{folder}: none of its .mat files could be read")
@@ -319,18 +328,26 @@ def add_quiet_argument(p: argparse.ArgumentParser) -> None:
                    help="hide the progress bar (shown on stderr when it is a terminal)")
 
 
-def plot_signals(signals: list[Signal], folder: Path, band=None, names=None) -> list[Path]:
-    """One overview PNG per signal in ``folder`` (each written atomically); the paths.
+def plot_signals(signals: list[Signal], folder: Path, band=None, names=None,
+                 suffix: str = ".png", progress: bool = False) -> list[Path]:
+    """One overview figure per signal in ``folder`` (each written atomically); the paths.
 
-    ``names`` are the file stems (default: the signals' names).
+    ``names`` are the file stems (default: the signals' names); ``suffix`` the figure
+    format (one of ``FIGURE_SUFFIXES``); ``progress`` shows a bar on stderr.
     """
+    import sys
+
+    from tqdm import tqdm
+
     from ..features.bands import as_bearing
     from ..plot import signal_overview
     from ..signalio import atomic_write
     from ._output import figure_writer
 
     paths = []
-    for sig, stem in zip(signals, names or [s.name for s in signals], strict=True):
+    stems = names or [s.name for s in signals]
+    for sig, stem in tqdm(list(zip(signals, stems, strict=True)), desc="plot", unit="figure",
+                          disable=not progress, leave=False, file=sys.stderr):
         known = is_known(sig.bearing) and is_known(sig.rpm)
         bearing = as_bearing(sig.bearing) if known else None
         shaft_hz = float(sig.rpm) / 60.0 if known else None
@@ -338,7 +355,7 @@ def plot_signals(signals: list[Signal], folder: Path, band=None, names=None) -> 
         title = " · ".join(
             str(p) for p in (sig.name, label, f"{sig.rpm:g} rpm" if known else None) if p
         )
-        path = folder / f"{stem}.png"
+        path = folder / f"{stem}{suffix}"
         fig = signal_overview(
             sig.x, sig.fs, bearing=bearing, shaft_hz=shaft_hz, band=band, title=title
         )
@@ -364,7 +381,7 @@ def run(args) -> int:
     band = tuple(args.band) if args.band is not None else None
     frame = pd.DataFrame(feature_rows(signals, band, progress=show_progress(args)))
     if plots is not None:  # figures first: the table appears only once they all exist
-        paths = plot_signals(signals, plots, band)
+        paths = plot_signals(signals, plots, band, progress=show_progress(args))
         print(f"{len(paths)} figure(s) -> {plots}", file=sys.stderr if out is None else None)
     if out is None:
         frame.to_csv(sys.stdout, index=False)

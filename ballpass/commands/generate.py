@@ -19,6 +19,8 @@ SCHEDULER_TIMEOUT_S = 5
 
 def add_parser(subparsers) -> None:
     """Register the ``generate`` subcommand."""
+    from .features import add_quiet_argument
+
     p = subparsers.add_parser(
         "generate",
         help="simulate a labelled dataset over a TOML parameter grid",
@@ -41,14 +43,14 @@ def add_parser(subparsers) -> None:
                         "(needs `pip install ballpass[cluster]`; DIR must be shared storage)")
     p.add_argument("--force", action="store_true",
                    help="start even if the estimated disk or memory need exceeds what is free")
-    p.add_argument("--no-progress", action="store_true", help="hide the progress bar")
+    add_quiet_argument(p)
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
     """Run ``ballpass generate``; returns the exit code."""
     from ..datasets import dry_run, generate
-    from ._output import compile_notice
+    from ._output import compile_notice, show_progress
 
     compile_notice()  # both paths simulate (dry-run times one run per model)
     if args.dry_run:
@@ -58,7 +60,7 @@ def run(args) -> int:
         raise ValueError("--out DIR is required (unless --dry-run)")
     if args.scheduler is None:
         summary = generate(args.grid, args.out, n_jobs=args.jobs, features=args.features,
-                           progress=not args.no_progress, force=args.force)
+                           progress=show_progress(args), force=args.force)
     else:
         try:
             from distributed import Client
@@ -73,7 +75,7 @@ def run(args) -> int:
                              "`dask scheduler` or check the address") from None
         with client:
             summary = generate(args.grid, args.out, executor=client.get_executor(),
-                               features=args.features, progress=not args.no_progress,
+                               features=args.features, progress=show_progress(args),
                                force=args.force)
     print(summary)
     return 0

@@ -40,7 +40,7 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     p.add_argument("--needs", nargs="+", metavar="PHENOMENON", choices=sorted(PHENOMENA),
                    default=None, help="phenomena a scene asks for: " + ", ".join(
                        sorted(PHENOMENA)) + "; prints the model auto picks")
-    p.add_argument("--bearing", default="6205",
+    p.add_argument("--bearing", default=None,
                    help="bearing of the scene --needs describes (default 6205; a roller "
                    "bearing changes which models can take it)")
     p.add_argument("--format", choices=("table", "csv", "json"), default="table",
@@ -91,16 +91,20 @@ def run(args: argparse.Namespace) -> int:
 
     from ._output import format_records
 
+    # the scene of --needs is checked (and resolved) before anything is printed
+    answer = None
+    if args.needs is None and args.bearing is not None:
+        raise ValueError("--bearing describes the scene of --needs: give --needs too")
+    if args.needs is not None:
+        scene = bp.Scene(bearing=args.bearing or "6205", needs=tuple(args.needs))
+        answer = (f"needs {', '.join(sorted(args.needs))} on a {scene.bearing.name}: "
+                  f"model='auto' runs {bp.simulate.resolve_model(scene)}\n")
     records = rows(with_reference=args.format != "table")
     sys.stdout.write(format_records(
         records, args.format, headers=_HEADERS,
         text_columns={"model", "solvers", "represents", "reference"},
         cell=lambda key, value: f"{value:g}" if key == "relative_cost" else str(value)) + "\n")
-    if args.needs is not None:
-        scene = bp.Scene(bearing=args.bearing, needs=tuple(args.needs))
-        chosen = bp.simulate.resolve_model(scene)
+    if answer is not None:
         # the machine-readable formats stay parseable: the answer goes to stderr
-        stream = sys.stdout if args.format == "table" else sys.stderr
-        stream.write(f"needs {', '.join(sorted(args.needs))} on a {scene.bearing.name}: "
-                     f"model='auto' runs {chosen}\n")
+        (sys.stdout if args.format == "table" else sys.stderr).write(answer)
     return 0

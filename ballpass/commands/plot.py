@@ -17,7 +17,7 @@ pitfalls: values in g, the normal baseline sampled at 48 kHz)."""
 
 def add_parser(subparsers) -> argparse.ArgumentParser:
     """Register ``plot`` on the ``ballpass`` command."""
-    from .features import add_input_arguments
+    from .features import add_input_arguments, add_quiet_argument
 
     p = subparsers.add_parser(
         "plot",
@@ -34,8 +34,8 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
         "-o",
         default=".",
         metavar="PATH",
-        help="folder for the figures (default: current folder), or a .png file "
-        "when there is one signal",
+        help="folder for the figures (default: current folder), or a .png (.pdf, .svg, "
+        ".jpg) file when there is one signal",
     )
     p.add_argument(
         "--max-figures",
@@ -44,6 +44,7 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
         metavar="N",
         help="draw at most N figures (default 50)",
     )
+    add_quiet_argument(p)
     p.set_defaults(func=run)
     return p
 
@@ -52,14 +53,15 @@ def run(args) -> int:
     """Draw the figures; returns the exit code."""
     from pathlib import Path
 
-    from ._output import check_output_path
+    from ._output import FIGURE_SUFFIXES, check_output_path, show_progress
     from .features import load_inputs, plot_signals
 
     if args.max_figures < 1:
         raise ValueError(f"--max-figures must be >= 1, got {args.max_figures}")
     out = Path(args.out)
-    single = out.suffix.lower() == ".png"
-    check_output_path(out, option="--out", suffixes=(".png",), folder=not single)
+    suffix = out.suffix.lower()
+    single = suffix in FIGURE_SUFFIXES
+    check_output_path(out, option="--out", suffixes=FIGURE_SUFFIXES, folder=not single)
     signals = load_inputs(args)
     band = tuple(args.band) if args.band is not None else None
     if single:
@@ -68,11 +70,11 @@ def run(args) -> int:
                 f"--out {out.name} names one figure but the inputs hold "
                 f"{len(signals)} signals; give a folder"
             )
-        plot_signals(signals, out.parent, band, names=[out.stem])
+        plot_signals(signals, out.parent, band, names=[out.stem], suffix=suffix)
         print(f"figure -> {out}")
         return 0
     shown = signals[: args.max_figures]
-    paths = plot_signals(shown, out, band)
+    paths = plot_signals(shown, out, band, progress=show_progress(args))
     skipped = len(signals) - len(shown)
     print(
         f"{len(paths)} figure(s) -> {out}"

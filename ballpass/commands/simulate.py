@@ -10,7 +10,7 @@ examples:
   ballpass simulate --bearing 6205 --fault inner --width 0.53 --depth 0.1 \\
       --fs 12000 --resonance 3000 --duration 2 --out inner.csv
   ballpass simulate --fault ball --sensors loaded unloaded --snr 10 --out ball.parquet
-  ballpass simulate --bearing 6208 --rpm 2000 --fault inner --gears seed004-1st \
+  ballpass simulate --bearing 6208 --rpm 2000 --fault inner --gears seed004-1st \\
       --torque 80 --fs 24000 --resonance 3000 --out gearbox.npz
 """
 

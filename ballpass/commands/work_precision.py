@@ -21,6 +21,8 @@ simulated second: start with a short --duration.
 
 def add_parser(subparsers) -> argparse.ArgumentParser:
     """Register ``work-precision`` on the ``ballpass`` command."""
+    from .features import add_quiet_argument
+
     p = subparsers.add_parser(
         "work-precision",
         help="wall time against error of the ballpass solvers and scipy for a scene",
@@ -32,7 +34,8 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     add_scene_arguments(p)
-    p.add_argument("--model", default="auto", help="auto (default), sr5 or sr4")
+    p.add_argument("--model", default="auto", choices=("auto", "sr5", "sr4"),
+                   help="auto (default), sr5 or sr4")
     p.add_argument("--scipy", nargs="+", default=None, metavar="METHOD",
                    help="solve_ivp methods to compare (default: RK45 DOP853 LSODA Radau)")
     p.add_argument("--no-scipy", action="store_true", help="compare the ballpass solvers only")
@@ -46,6 +49,7 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     p.add_argument("--csv", default=None, help="also write the table to this CSV file")
     p.add_argument("--plot", default="work_precision.png", metavar="PNG",
                    help="log-log plot of the table (default work_precision.png)")
+    add_quiet_argument(p)
     p.set_defaults(func=run)
     return p
 
@@ -66,18 +70,33 @@ def run(args) -> int:
         work_precision,
     )
 
-    from ._output import FIGURE_SUFFIXES, check_output_path, compile_notice, figure_writer
+    from ._output import (
+        FIGURE_SUFFIXES,
+        check_output_path,
+        compile_notice,
+        figure_writer,
+        show_progress,
+    )
 
     csv = None if args.csv is None else check_output_path(args.csv, option="--csv",
                                                            suffixes=(".csv",))
     plot = check_output_path(args.plot, option="--plot", suffixes=FIGURE_SUFFIXES)
     if args.repeats < 1:
         raise ValueError(f"--repeats must be an int >= 1, got {args.repeats}")
-    scene = scene_from_args(args).replace(snr_db=None)
+    unknown = sorted(set(args.scipy or ()) - set(SCIPY_METHODS))
+    if unknown:
+        raise ValueError(f"--scipy takes {', '.join(SCIPY_METHODS)}, got {', '.join(unknown)}")
+    if not args.scipy_time_limit > 0:
+        raise ValueError(f"--scipy-time-limit must be > 0 s, got {args.scipy_time_limit}")
+    if args.snr is not None:
+        raise ValueError(f"--snr {args.snr:g}: work-precision compares noise-free signals "
+                         "(noise would be the error); leave it out")
+    scene = scene_from_args(args)
     compile_notice()
     methods = () if args.no_scipy else tuple(args.scipy or SCIPY_METHODS)
     table = work_precision(scene, model=args.model, scipy_methods=methods, repeats=args.repeats,
-                    scipy_time_limit=args.scipy_time_limit, progress=True)
+                    scipy_time_limit=args.scipy_time_limit,
+                           progress=show_progress(args))
     with pd.option_context("display.width", 200, "display.max_columns", 20,
                            "display.float_format", "{:.3g}".format):
         print()

@@ -564,13 +564,14 @@ def load_cwru(paths, fs: float = 12_000.0, segment_s: float = 1.0, channel: str 
     return segment_records(read_all(paths, read), fs, length)
 
 
-def _is_mfpt(path: Path) -> bool:
+def _mat_variables(path: Path) -> list[str] | None:
+    """Names of the variables of a ``.mat`` file; None when it cannot be read."""
     import scipy.io
 
     try:
-        return any(name == "bearing" for name, _, _ in scipy.io.whosmat(path))
+        return [name for name, _, _ in scipy.io.whosmat(path)]
     except Exception:  # unreadable: let the CWRU reader report it
-        return False
+        return None
 
 
 def read_mat(path, channel: str = "DE", fs: float | None = None):
@@ -581,10 +582,16 @@ def read_mat(path, channel: str = "DE", fs: float | None = None):
     ``columns()``. ``channel`` applies to CWRU files, ``fs`` overrides their rate.
     """
     path = _path(path)
-    if _is_mfpt(path):
+    names = _mat_variables(path)
+    if names is not None and "bearing" in names:
         from .mfpt import load_mfpt_mat
 
         return load_mfpt_mat(path)
+    if names is not None and not any(_VARIABLE.fullmatch(name) for name in names):
+        held = ", ".join(names[:5]) + (", ..." if len(names) > 5 else "") or "nothing"
+        raise ValueError(f"{path.name} is neither a CWRU recording (variables X<number>_DE_time, "
+                         f"_FE_time, _BA_time) nor an MFPT one (a struct `bearing`); it holds "
+                         f"{held}")
     return load_cwru_mat(path, channel=channel, fs=fs)
 
 
