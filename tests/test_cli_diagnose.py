@@ -64,8 +64,14 @@ def test_plot_writes_one_figure_per_signal(tmp_path, capsys):
     assert main(["diagnose", str(path), "--plot", str(figs), "--quiet"]) == 0
     assert sorted(p.name for p in figs.iterdir()) == ["two_faulty.png", "two_healthy.png"]
     assert all(p.read_bytes()[:4] == b"\x89PNG" for p in figs.iterdir())
+    capsys.readouterr()
     assert main(["diagnose", str(path), "--plot", str(path)]) != 0
-    assert "--plot must be a folder" in capsys.readouterr().err
+    assert "--plot" in capsys.readouterr().err
+    # a folder named like a file is refused, and a failed run leaves no folder behind
+    assert main(["diagnose", str(path), "--plot", str(tmp_path / "x.png")]) != 0
+    assert main(["diagnose", str(tmp_path / "missing.npz"), "--plot",
+                 str(tmp_path / "new")]) != 0
+    assert not (tmp_path / "x.png").exists() and not (tmp_path / "new").exists()
 
 
 def test_too_short_segments_are_refused_naming_the_option(tmp_path, capsys):

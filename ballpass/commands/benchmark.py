@@ -71,6 +71,26 @@ def _check_real_rpm(meta) -> None:
                          "store the speed in the file")
 
 
+def _same_bearing(real, bearing: str):
+    """The real rows about the simulated ``bearing`` (a CWRU fan-end fault file is about
+    the 6203 whichever accelerometer heard it); says on stderr what was left out."""
+    import sys
+
+    Xr, meta = real
+    keep = (meta["bearing"].astype(str) == bearing).to_numpy()
+    if not keep.any():
+        raise ValueError(f"--real: none of the recordings is about the simulated bearing "
+                         f"{bearing} (they are about {sorted(meta['bearing'].astype(str).unique())})"
+                         "; simulate that bearing, or give recordings of this one")
+    if not keep.all():
+        other = meta.loc[~keep]
+        print(f"ballpass benchmark: left out {other['group'].nunique()} real recording(s) "
+              f"about another bearing ({', '.join(sorted(other['bearing'].astype(str).unique()))}"
+              f"; e.g. {other['group'].iloc[0]}): the dataset simulates the {bearing}; "
+              "benchmark them against a dataset of their bearing", file=sys.stderr)
+    return Xr[keep], meta.loc[keep].reset_index(drop=True)
+
+
 def run(args) -> int:
     """Run ``ballpass benchmark``; returns the exit code."""
     import pandas as pd
@@ -92,6 +112,9 @@ def run(args) -> int:
                              "needs one rate")
         fs = float(rates[0])
         real = load_real(args.real, fs=fs, segment_s=X.shape[1] / fs, channel=args.channel)
+        bearings = sorted(meta["bearing"].astype(str).unique())
+        if len(bearings) == 1:
+            real = _same_bearing(real, bearings[0])
         _check_real_rpm(real[1])
     result = run_benchmark(X, meta, real=real, splits=args.splits, models=args.models,
                            features=args.features, n_splits=args.folds,

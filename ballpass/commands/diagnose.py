@@ -110,7 +110,8 @@ def run(args) -> int:
 
     out = None if args.out is None else check_output_path(
         args.out, option="--out", suffixes=TABLE_SUFFIXES)
-    plots = None if args.plot is None else check_plot_dir(args.plot)
+    plots = None if args.plot is None else check_output_path(args.plot, option="--plot",
+                                                              folder=True)
     signals = load_inputs(args)
     band = tuple(args.band) if args.band is not None else None
     results = verdict_rows(signals, band, progress=show_progress(args))
@@ -123,32 +124,29 @@ def run(args) -> int:
         write_table(frame, Path(out))
         print(f"{len(frame)} verdict(s) -> {out}")
     if plots is not None:
-        written = write_plots(signals, [why for why, _ in results], plots)
+        written = write_plots(signals, [why for why, _ in results], plots,
+                              progress=show_progress(args))
         print(f"{len(written)} figure(s) -> {plots}")
     return 0
 
 
-def check_plot_dir(path) -> Path:
-    """``--plot DIR``: a folder (created if missing), not an existing file."""
-    folder = Path(path)
-    if folder.exists() and not folder.is_dir():
-        raise ValueError(f"--plot must be a folder, got the file {str(folder)!r}")
-    folder.mkdir(parents=True, exist_ok=True)
-    return folder
-
-
-def write_plots(signals, explanations, folder: Path) -> list[Path]:
-    """One PNG per signal in ``folder``: its SES with the lines the diagnoser read."""
+def write_plots(signals, explanations, folder: Path, progress: bool = True) -> list[Path]:
+    """One PNG per signal in ``folder`` (created): its SES with the lines the diagnoser
+    read."""
     import re
+    import sys
 
     import numpy as np
+    from tqdm import tqdm
 
     from ..diagnose import plot_explanation
     from ..signalio import atomic_write
     from ._output import figure_writer
 
+    folder.mkdir(parents=True, exist_ok=True)
     written = []
-    for sig, why in zip(signals, explanations, strict=True):
+    for sig, why in tqdm(list(zip(signals, explanations, strict=True)), desc="plot",
+                         unit="figure", disable=not progress, leave=False, file=sys.stderr):
         stem = re.sub(r"[^A-Za-z0-9_.@-]+", "_", str(sig.name)).strip("_") or "signal"
         path = folder / f"{stem}.png"
         k = 2

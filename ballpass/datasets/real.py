@@ -103,8 +103,11 @@ class CwruRecord:
     channel : str
         ``"DE"``, ``"FE"`` or ``"BA"``.
     bearing : str or None
-        Catalogue name of the bearing at that accelerometer (``"6205"`` at DE,
-        ``"6203"`` at FE, None for the base).
+        Catalogue name of the bearing the label is about: for a fault file the faulty
+        bearing (``"6205"`` at the drive end, ``"6203"`` at the fan end) whichever
+        accelerometer heard it, whose fault lines a diagnosis must look for; otherwise
+        the bearing at that accelerometer (``"6205"`` at DE, ``"6203"`` at FE, None for
+        the base).
     label : str
         ``"healthy"``, ``"inner"``, ``"outer"``, ``"ball"``, or ``"unknown"`` when
         neither the name nor the record number tells.
@@ -375,7 +378,7 @@ def load_cwru_mat(path, channel: str = "DE", fs: float | None = None) -> CwruRec
         fs=float(fs),
         rpm=float(rpm),
         channel=channel,
-        bearing=CWRU_BEARINGS.get(channel),
+        bearing=CWRU_BEARINGS[info["end"]] if faulty else CWRU_BEARINGS.get(channel),
         label=kind,
         fault_end=info["end"] if faulty else None,
         fault_width_mm=info["size_in"] * 25.4 if faulty else math.nan,
