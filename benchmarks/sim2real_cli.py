@@ -17,7 +17,8 @@ Run::
     PYTHONPATH=. python benchmarks/sim2real_cli.py --real ../shared/data/cwru   # ~2 min
 
 ``--engagement 0.3,0.5,0.7`` adds the grid's ``fault_engagement`` axis (intermittent
-ball defects; measured in docs/sim2real.md), ``--repeats`` changes its repeats.
+ball defects; measured in docs/sim2real.md), ``--repeats`` changes its repeats,
+``--features`` the learned pipelines' feature set.
 
 Writes ``docs/sim2real_cli.md``, ``docs/sim2real_cli.csv`` (every prediction) and
 ``docs/sim2real_cli.png``.
@@ -46,7 +47,7 @@ ENDS = {"DE": "6205", "FE": "6203"}
 
 
 def predictions(real: Path, seed: int, end: str, jobs: int, repeats=None,
-                engagement=None) -> pd.DataFrame:
+                engagement=None, features="dimensionless") -> pd.DataFrame:
     """Train on the shipped grid for ``end``'s bearing (root seed ``seed``; ``repeats``
     and the ``fault_engagement`` axis if given), test on that end's records and the
     healthy recording at that sensor."""
@@ -64,7 +65,8 @@ def predictions(real: Path, seed: int, end: str, jobs: int, repeats=None,
     fs = float(meta["fs"].iloc[0])
     files = sorted(real.glob(f"12k_{end}_*.mat")) + sorted(real.glob("Normal_*.mat"))
     Xr, mr = load_real(files, fs=fs, segment_s=X.shape[1] / fs, channel=end)
-    res = run_benchmark(X, meta, real=(Xr, mr), splits=["sim2real"], models=MODELS)
+    res = run_benchmark(X, meta, real=(Xr, mr), splits=["sim2real"], models=MODELS,
+                        features=features)
     pred = res.predictions.drop(columns=["fold", "split"], errors="ignore")
     return pred.assign(end=end, seed=seed)
 
@@ -182,6 +184,8 @@ def main(argv=None) -> int:
     parser.add_argument("--engagement", default=None,
                         help="fault_engagement axis of the grid, e.g. 0.3,0.5,0.7 "
                         "(default: the grid's own)")
+    parser.add_argument("--features", default="dimensionless",
+                        help="feature set of the learned pipelines (default dimensionless)")
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--out", type=Path, default=ROOT / "docs")
     args = parser.parse_args(argv)
@@ -192,7 +196,7 @@ def main(argv=None) -> int:
     for seed in map(int, args.seeds.split(",")):
         for end in ENDS:
             parts.append(predictions(args.real, seed, end, args.jobs, args.repeats,
-                                     engagement))
+                                     engagement, args.features))
             print(f"seed {seed} {end}: {time.perf_counter() - t0:.0f} s", flush=True)
     pred = pd.concat(parts, ignore_index=True)
     table = summary(pred)

@@ -266,6 +266,21 @@ def test_benchmark_real_accepts_both_sets(tmp_path, capsys, bearing, fs, real):
         assert "left out 2 real recording(s) about another bearing (6203" in captured.err
 
 
+def test_benchmark_refuses_real_recordings_of_another_bearing_only(tmp_path, capsys):
+    grid = {"dataset": {"duration_s": 0.25, "fs": 12_000, "repeats": 1, "seed": 1},
+            "grid": {"bearing": ["6205"], "fault": ["healthy", "outer"],
+                     "fault_width_mm": [0.5], "rpm": [1797], "radial_load_n": [300],
+                     "resonance_hz": [4000], "sensor": ["loaded"]}}
+    bp.datasets.generate(grid, tmp_path / "ds", n_jobs=1, progress=False)
+    (tmp_path / "fe").mkdir()
+    shutil.copy(CWRU / "12k_FE_OR007@12_0.mat", tmp_path / "fe")
+    code = main(["benchmark", str(tmp_path / "ds"), "--real", str(tmp_path / "fe"), "--out",
+                 str(tmp_path / "rep"), "--splits", "sim2real", "--models", "envelope"])
+    assert code != 0
+    assert "none of the recordings is about the simulated bearing 6205" in \
+        capsys.readouterr().err
+
+
 @pytest.mark.filterwarnings("ignore:12k_FE_OR014")
 def test_a_fault_file_is_about_its_faulty_bearing_at_either_sensor():
     """The label of a fan-end fault file is about the fan-end 6203 even at the drive-end

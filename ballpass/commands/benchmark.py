@@ -77,15 +77,16 @@ def _same_bearing(real, bearing: str):
     import sys
 
     Xr, meta = real
-    keep = (meta["bearing"].astype(str) == bearing).to_numpy()
+    names = meta["bearing"].astype(str)
+    keep = (names == bearing).to_numpy()
     if not keep.any():
         raise ValueError(f"--real: none of the recordings is about the simulated bearing "
-                         f"{bearing} (they are about {sorted(meta['bearing'].astype(str).unique())})"
-                         "; simulate that bearing, or give recordings of this one")
+                         f"{bearing} (they are about {sorted(names.unique())}); simulate "
+                         "that bearing, or give recordings of this one")
     if not keep.all():
         other = meta.loc[~keep]
         print(f"ballpass benchmark: left out {other['group'].nunique()} real recording(s) "
-              f"about another bearing ({', '.join(sorted(other['bearing'].astype(str).unique()))}"
+              f"about another bearing ({', '.join(sorted(names[~keep].unique()))}"
               f"; e.g. {other['group'].iloc[0]}): the dataset simulates the {bearing}; "
               "benchmark them against a dataset of their bearing", file=sys.stderr)
     return Xr[keep], meta.loc[keep].reset_index(drop=True)
