@@ -147,6 +147,17 @@ def test_bad_input_is_one_clear_line_and_writes_nothing(workdir, capsys, argv, m
     assert _files(workdir) == before
 
 
+@pytest.mark.parametrize("argv", [["generate", "grid.toml", "--out", "ds", "--jobs", "0"],
+                                  ["bifurcation", "--jobs", "x", "--out", "b.csv"]])
+def test_jobs_is_refused_naming_the_option(capsys, argv):
+    # the library's message named n_jobs, an argument nobody typed
+    with pytest.raises(SystemExit) as exit_:
+        main(argv)
+    assert exit_.value.code == 2
+    err = capsys.readouterr().err
+    assert "argument --jobs" in err and "-1 (every core)" in err and "n_jobs" not in err
+
+
 def test_models_prints_nothing_before_refusing(capsys):
     """The table is not printed ahead of an error about the scene of --needs."""
     assert main(["models", "--needs", "envelope", "--bearing", "nope"]) == 2

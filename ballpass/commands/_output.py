@@ -38,6 +38,20 @@ def figure_writer(fig, path, dpi: int = 120):
     return lambda tmp: fig.savefig(tmp, format=fmt, dpi=dpi)
 
 
+def jobs(value: str) -> int:
+    """argparse type of ``--jobs``: a positive int, or -1 for every core."""
+    import argparse
+
+    try:
+        n = int(value)
+    except ValueError:
+        n = 0
+    if n < 1 and n != -1:
+        raise argparse.ArgumentTypeError(
+            f"must be a positive number of processes or -1 (every core), got {value!r}")
+    return n
+
+
 def show_progress(args) -> bool:
     """Progress bars go to stderr, only when it is a terminal and ``--quiet`` is not set."""
     return not getattr(args, "quiet", False) and sys.stderr.isatty()

@@ -20,6 +20,7 @@ examples:
 
 def add_parser(subparsers) -> argparse.ArgumentParser:
     """Register ``bifurcation`` on the ``ballpass`` command."""
+    from ._output import jobs
     from .features import add_quiet_argument
 
     p = subparsers.add_parser(
@@ -56,7 +57,7 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     p.add_argument("--strobe", choices=["shaft", "cage"], default="shaft",
                    help="strobe once per shaft (default) or cage revolution")
     p.add_argument("--model", default="rotor2", help="model (default rotor2)")
-    p.add_argument("--jobs", type=int, default=1, help="parallel processes (-1 = all cores)")
+    p.add_argument("--jobs", type=jobs, default=1, help="parallel processes (-1 = all cores)")
     p.add_argument("--out", "-o", required=True, help="CSV file of the section points")
     p.add_argument("--plot", default=None, metavar="PNG", help="also draw the diagram")
     add_quiet_argument(p)

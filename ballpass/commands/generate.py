@@ -19,6 +19,7 @@ SCHEDULER_TIMEOUT_S = 5
 
 def add_parser(subparsers) -> None:
     """Register the ``generate`` subcommand."""
+    from ._output import jobs
     from .features import add_quiet_argument
 
     p = subparsers.add_parser(
@@ -32,7 +33,7 @@ def add_parser(subparsers) -> None:
     p.add_argument("grid", metavar="GRID", help="TOML grid file (see docs/datasets.md)")
     p.add_argument("--out", metavar="DIR", help="dataset folder (created; resumed if it "
                    "holds this grid's dataset); required unless --dry-run")
-    p.add_argument("--jobs", "-j", type=int, default=1, metavar="N",
+    p.add_argument("--jobs", "-j", type=jobs, default=1, metavar="N",
                    help="local worker processes, -1 for every core (default 1)")
     p.add_argument("--dry-run", action="store_true",
                    help="print rows, estimated time and disk, and write nothing")
