@@ -713,6 +713,13 @@ _CATALOG: dict[str, dict] = {
         n_elements=8, element_diameter_mm=0.235 * 25.4, pitch_diameter_mm=1.245 * 25.4,
         source="NICE bearing of the MFPT fault data set (0.235 in elements, 1.245 in pitch)",
     ),
+    # The XJTU-SY run-to-failure data set's test bearing (Wang, Lei, Li, Yan, IEEE Trans.
+    # Reliability 69 (2020) 401-412, Table 2): 8 balls of 7.92 mm on a 34.55 mm pitch
+    # circle, contact angle 0; its stated BPFO 107.91 Hz and BPFI 172.09 Hz at 35 Hz follow.
+    "UER204": dict(
+        n_elements=8, element_diameter_mm=7.92, pitch_diameter_mm=34.55,
+        source="LDK UER204, XJTU-SY bearing data set (Wang et al. 2020, Table 2)",
+    ),
 }
 
 

@@ -448,6 +448,17 @@ def markdown(table: pd.DataFrame, seconds: float, sweep: pd.DataFrame | None = N
         "P partly, N not diagnosable. Segment letters: h healthy, o outer, i inner, "
         "b ball.",
         "",
+        "A right verdict for a wrong reason: the fan-end channel carries a comb of lines "
+        "at 29.75-29.86 Hz and its harmonics (0.2-0.6 % below the shaft speed; origin "
+        "unknown), whose 3rd, 6th and 9th members fall inside the slip search of the "
+        "6203's BPFO (at 0.98 of it). The whole `12k_FE_OR007@12_0 FE` record is named "
+        "outer (7.4 dB) on those lines, not on its own BPFO, and the comb lifts the "
+        "healthy fan-end channel's outer evidence to 4.8 dB. A rule that lets lines at "
+        "the halves and thirds of a family's spacing refute it (a finer comb explains "
+        "them) was tried: it turns that verdict into inner, the outer fault's mirror "
+        "line (BPFI = Z fr - BPFO), and costs one-second segments (fan-end inner 28 -> "
+        "21 of 30); not shipped.",
+        "",
         _md(per),
         "",
     ])
