@@ -108,7 +108,8 @@ def test_load_cwru_mat_converts_g_and_parses_the_name(tmp_path):
     assert rec.fault_angle_deg == 0.0  # 6 o'clock = centre of the load zone
     assert rec.bearing == "6205"
     fe = load_cwru_mat(path, channel="fe")
-    assert fe.bearing == "6203" and fe.accel[0] == pytest.approx(0.1 * 9.80665)
+    # the fan-end channel of a drive-end fault file: the label is about the 6205
+    assert fe.bearing == "6205" and fe.accel[0] == pytest.approx(0.1 * 9.80665)
 
 
 @pytest.mark.parametrize(
