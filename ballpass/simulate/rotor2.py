@@ -381,8 +381,8 @@ def _bind(scene: Scene, params: Rotor2Parameters) -> _Bound:
             f"most loaded roller beyond the elastic limit {limit * 1e6:.0f} um "
             f"({MAX_DEFLECTION_RATIO:.0%} of the roller diameter)")
     speed = scene.speed
-    r = b.diameter_ratio
-    cage_ratio = 0.5 * (1.0 - r)
+    orders = b.frequencies(1.0)  # the kinematic frequencies per unit shaft speed
+    cage_ratio = orders.ftf
     z = b.n_elements
     psi0 = math.radians(params.cage_angle_deg) + 2.0 * math.pi * np.arange(z) / z
     faults, levels = _fault_table(scene, psi0)
@@ -397,7 +397,7 @@ def _bind(scene: Scene, params: Rotor2Parameters) -> _Bound:
     p[_K.P_W1] = speed.rpm_end * math.pi / 30.0
     p[_K.P_T] = scene.duration_s
     p[_K.P_CAGE] = cage_ratio
-    p[_K.P_SPIN] = (b.pitch_diameter_mm / (2 * b.element_diameter_mm) * (1 - r * r)) / cage_ratio
+    p[_K.P_SPIN] = orders.bsf / orders.ftf
     p[_K.P_Z] = z
     p[P_MUE] = params.unbalance_mass_kg * params.unbalance_eccentricity_m
     p[P_UPH] = math.radians(params.unbalance_phase_deg)
