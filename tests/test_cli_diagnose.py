@@ -20,15 +20,20 @@ def impacts(rate, n=24_000, seed=0):
     return x + 0.2 * np.random.default_rng(seed).standard_normal(n)
 
 
+def faulty_and_healthy(folder, fault: str):
+    """One file ``two.npz`` with channels ``faulty`` (impacts at the 6205's ``fault``
+    frequency, "bpfo" or "bpfi") and ``healthy`` (white noise)."""
+    rate = getattr(bp.Bearing.catalog("6205").frequencies(RPM / 60), fault)
+    noise = np.random.default_rng(3).standard_normal(24_000)
+    return write_signal(folder / "two.npz", np.stack([impacts(rate), noise]), FS,
+                        channels=["faulty", "healthy"], meta={"bearing": "6205", "rpm": RPM})
+
+
 def test_verdicts_printed_and_tabled(tmp_path, capsys):
     """An inner-race signal and pure noise, one file: the verdicts are the diagnoser's
     (catches a table that mixes up rows or families, or a verdict taken from the wrong
     family), and the table carries the evidence that decided them."""
-    f = bp.Bearing.catalog("6205").frequencies(RPM / 60)
-    noise = np.random.default_rng(3).standard_normal(24_000)
-    path = write_signal(tmp_path / "two.npz", np.stack([impacts(f.bpfi), noise]), FS,
-                        channels=["faulty", "healthy"],
-                        meta={"bearing": "6205", "rpm": RPM})
+    path = faulty_and_healthy(tmp_path, "bpfi")
     out = tmp_path / "v.csv"
     assert main(["diagnose", str(path), "--out", str(out)]) == 0
     printed = capsys.readouterr().out
@@ -55,11 +60,7 @@ def test_unknown_speed_is_refused_naming_the_option(tmp_path, capsys):
 def test_plot_writes_one_figure_per_signal(tmp_path, capsys):
     """--plot DIR: one PNG per signal, named after it; a file given as DIR is refused
     before any work."""
-    f = bp.Bearing.catalog("6205").frequencies(RPM / 60)
-    noise = np.random.default_rng(3).standard_normal(24_000)
-    path = write_signal(tmp_path / "two.npz", np.stack([impacts(f.bpfo), noise]), FS,
-                        channels=["faulty", "healthy"],
-                        meta={"bearing": "6205", "rpm": RPM})
+    path = faulty_and_healthy(tmp_path, "bpfo")
     figs = tmp_path / "figs"
     assert main(["diagnose", str(path), "--plot", str(figs), "--quiet"]) == 0
     assert sorted(p.name for p in figs.iterdir()) == ["two_faulty.png", "two_healthy.png"]
