@@ -68,6 +68,8 @@ CASES = [
     (SIM + ["--out", "x.npz", "--duration", "0"], "duration_s"),
     (SIM + ["--out", "x.npz", "--bearing", "nope"], "unknown bearing"),
     (SIM + ["--out", "x.npz", "--width", "-1"], "width_mm"),
+    (["simulate", "--fault", "healthy", "--width", "5", "--out", "x.npz"],
+     "--width describes a fault; a healthy bearing has none"),
     (SIM + ["--out", "x.npz", "--rpm", "1", "2", "3"], "--rpm takes"),
     # features: unreadable inputs, bad outputs, nonsense options
     (["features", "text.npz"], "not a NumPy .npz archive"),

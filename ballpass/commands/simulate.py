@@ -64,9 +64,9 @@ def add_scene_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--load", type=float, default=500.0, help="radial load, N (default 500)")
     p.add_argument("--fault", choices=["healthy", "outer", "inner", "ball"], default="outer",
                    help="fault kind (default outer)")
-    p.add_argument("--width", type=float, default=0.5, help="fault width, mm (default 0.5)")
-    p.add_argument("--depth", type=float, default=0.1, help="fault depth, mm (default 0.1)")
-    p.add_argument("--angle", type=float, default=0.0,
+    p.add_argument("--width", type=float, default=None, help="fault width, mm (default 0.5)")
+    p.add_argument("--depth", type=float, default=None, help="fault depth, mm (default 0.1)")
+    p.add_argument("--angle", type=float, default=None,
                    help="fault angle from the load line, deg (default 0)")
     p.add_argument("--duration", type=float, default=1.0, help="seconds (default 1)")
     p.add_argument("--fs", type=float, default=48_000.0, help="sampling rate, Hz (default 48000)")
@@ -88,10 +88,18 @@ def scene_from_args(args):
     if len(args.rpm) not in (1, 2):
         raise ValueError(f"--rpm takes one speed or two (a ramp), got {args.rpm}")
     rpm = args.rpm[0] if len(args.rpm) == 1 else tuple(args.rpm)
+    shape = {"--width": args.width, "--depth": args.depth, "--angle": args.angle}
     fault = None
-    if args.fault != "healthy":
-        fault = bp.Fault(args.fault, width_mm=args.width, depth_mm=args.depth,
-                         angle_deg=args.angle)
+    if args.fault == "healthy":
+        given = [name for name, value in shape.items() if value is not None]
+        if given:
+            verb = "describes" if len(given) == 1 else "describe"
+            raise ValueError(f"{', '.join(given)} {verb} a fault; a healthy bearing has "
+                             "none (give --fault outer, inner or ball)")
+    else:
+        width, depth, angle = (d if v is None else v
+                               for v, d in zip(shape.values(), (0.5, 0.1, 0.0), strict=True))
+        fault = bp.Fault(args.fault, width_mm=width, depth_mm=depth, angle_deg=angle)
     sensors = []
     for s in args.sensors:
         try:
