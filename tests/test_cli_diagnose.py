@@ -45,7 +45,7 @@ def test_verdicts_printed_and_tabled(tmp_path, capsys):
                                                                 table.ball_db[0])
     assert (table[["outer_db", "inner_db", "ball_db"]].iloc[1] < 6.0).all()
     assert table.band_lo_hz[0] <= 3_000 <= table.band_hi_hz[0]
-    assert (table.rpm_used == RPM).all()
+    assert (table.rpm_used == RPM).all() and (table.bearing.astype(str) == "6205").all()
 
 
 def test_unknown_speed_is_refused_naming_the_option(tmp_path, capsys):

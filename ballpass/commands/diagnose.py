@@ -58,8 +58,9 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
 
 def verdict_rows(signals, band=None, progress: bool = True):
     """``(explanation, row)`` per signal: the diagnoser's :class:`Explanation` and a
-    table row (source, truth when known, verdict, grade, evidence and threshold per
-    family in dB, the verdict's band, the speeds stated and used, notes)."""
+    table row (source, truth when known, the bearing whose lines were read, verdict,
+    grade, evidence and threshold per family in dB, the verdict's band, the speeds
+    stated and used, notes)."""
     import sys
 
     import numpy as np
@@ -91,7 +92,8 @@ def verdict_rows(signals, band=None, progress: bool = True):
         diag = EnvelopeDiagnoser(bearing=sig.bearing, fs=sig.fs, rpm=float(sig.rpm), band=band)
         why = diag.explain(np.asarray(sig.x, dtype=np.float64)[None])[0]
         lo, hi = why.band_hz.get(why.label, (np.nan, np.nan))
-        row = {"source": sig.name, **sig.columns, "prediction": why.label, "grade": why.grade}
+        row = {"source": sig.name, **sig.columns, "bearing": str(sig.bearing),
+               "prediction": why.label, "grade": why.grade}
         for family, value in why.evidence_db.items():
             row[f"{family}_db"] = value
             row[f"{family}_threshold_db"] = why.threshold_db[family]
