@@ -82,3 +82,20 @@ def test_too_short_segments_are_refused_naming_the_option(tmp_path, capsys):
     assert main(["diagnose", str(path), "--segment", "0.1"]) != 0
     err = capsys.readouterr().err
     assert "--segment" in err and "0.168 s" in err and "X rows" not in err
+
+
+def test_segments_come_with_their_whole_record(tmp_path, capsys):
+    """--segment: each record is also diagnosed whole, printed with the tally of its
+    segments' verdicts, and tabled with scope "record" (catches a tally counting another
+    record's segments: the healthy record's segments are all healthy)."""
+    path = faulty_and_healthy(tmp_path, "bpfi")
+    out = tmp_path / "v.csv"
+    assert main(["diagnose", str(path), "--segment", "0.5", "--out", str(out),
+                 "--quiet"]) == 0
+    printed = capsys.readouterr().out
+    assert "two_faulty, whole record (2 s): inner (grade" in printed
+    assert "two_healthy, whole record (2 s): healthy (grade" in printed
+    assert "its 4 segments: 4 healthy" in printed.split("two_healthy, whole record")[1]
+    table = pd.read_csv(out)
+    assert table.scope.tolist() == ["segment"] * 8 + ["record"] * 2
+    assert table[table.scope == "record"].prediction.tolist() == ["inner", "healthy"]

@@ -20,7 +20,8 @@ verdict (healthy, outer, inner, ball), a grade in the spirit of Smith & Randall 
 diagnosed, P partly, N not diagnosable), the evidence of each fault family against its
 threshold (dB), the lines that carried the decision, and what was corrected (a stated
 speed that the shaft harmonics contradict). Diagnose whole records: a 10 s record
-resolves fault lines that one-second segments cannot (docs/diagnosis.md)."""
+resolves fault lines that one-second segments cannot (docs/diagnosis.md); with --segment
+each record is also diagnosed whole, next to the tally of its segments' verdicts."""
 
 
 def add_parser(subparsers) -> argparse.ArgumentParser:
@@ -108,21 +109,26 @@ def run(args) -> int:
     import pandas as pd
 
     from ._output import TABLE_SUFFIXES, check_output_path, show_progress, write_table
-    from .features import load_inputs
+    from .features import load_records, segment_signals
 
     out = None if args.out is None else check_output_path(
         args.out, option="--out", suffixes=TABLE_SUFFIXES)
     plots = None if args.plot is None else check_output_path(args.plot, option="--plot",
                                                               folder=True)
-    signals = load_inputs(args)
+    records = load_records(args)
+    segmented = args.segment is not None
+    signals = segment_signals(records, args.segment) if segmented else records
     band = tuple(args.band) if args.band is not None else None
     results = verdict_rows(signals, band, progress=show_progress(args))
     for why, row in results:
         truth = row.get("label")
         known = f" (label: {truth})" if isinstance(truth, str) and truth else ""
         print(f"{row['source']}{known}: {why}")
+    rows = [row | {"scope": "segment" if segmented else "record"} for _, row in results]
+    if segmented:
+        rows += record_verdicts(records, results, band, progress=show_progress(args))
     if out is not None:
-        frame = pd.DataFrame([row for _, row in results])
+        frame = pd.DataFrame(rows)
         write_table(frame, Path(out))
         print(f"{len(frame)} verdict(s) -> {out}")
     if plots is not None:
@@ -130,6 +136,23 @@ def run(args) -> int:
                               progress=show_progress(args))
         print(f"{len(written)} figure(s) -> {plots}")
     return 0
+
+
+def record_verdicts(records, segment_results, band, progress: bool = True) -> list[dict]:
+    """Each whole record diagnosed too, printed with the tally of its segments' verdicts:
+    a 10 s record resolves lines that its one-second segments cannot
+    (docs/diagnosis_length.md). Returns its table rows (``scope`` = ``"record"``)."""
+    from collections import Counter
+
+    rows = []
+    for rec, (why, row) in zip(records, verdict_rows(records, band, progress), strict=True):
+        mine = [r["prediction"] for _, r in segment_results
+                if r["source"].startswith(f"{rec.name}_seg")]
+        tally = ", ".join(f"{n} {label}" for label, n in Counter(mine).most_common())
+        print(f"{rec.name}, whole record ({len(rec.x) / rec.fs:.3g} s): {why.label} "
+              f"(grade {why.grade}); its {len(mine)} segments: {tally}")
+        rows.append(row | {"scope": "record"})
+    return rows
 
 
 def write_plots(signals, explanations, folder: Path, progress: bool = True) -> list[Path]:

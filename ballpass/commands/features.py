@@ -235,8 +235,12 @@ def _from_dataset(folder: Path, args) -> list[Signal]:
 
 def load_inputs(args) -> list[Signal]:
     """Every signal of ``args.inputs`` (segmented with ``--segment``), in input order."""
-    import numpy as np
+    signals = load_records(args)
+    return signals if args.segment is None else segment_signals(signals, args.segment)
 
+
+def load_records(args) -> list[Signal]:
+    """Every signal of ``args.inputs``, whole, in input order."""
     from ..signalio import SUFFIXES
 
     signals: list[Signal] = []
@@ -258,16 +262,22 @@ def load_inputs(args) -> list[Signal]:
                 f"{path.name}: INPUT must be a {', '.join(SUFFIXES)} or .mat file "
                 "or a dataset folder"
             )
-    if args.segment is None:
-        return signals
+    return signals
+
+
+def segment_signals(signals: list[Signal], seconds: float) -> list[Signal]:
+    """Each signal cut into consecutive segments of ``seconds`` (``--segment``), named
+    ``<name>_seg000`` ..., in order; a trailing part shorter than a segment is dropped."""
+    import numpy as np
+
     from .._validation import check_segment
 
     out = []
     for sig in signals:
-        length = check_segment(args.segment, sig.fs, "--segment")
+        length = check_segment(seconds, sig.fs, "--segment")
         n = len(sig.x) // length
         if n == 0:
-            raise ValueError(f"{sig.name}: shorter than one --segment of {args.segment} s")
+            raise ValueError(f"{sig.name}: shorter than one --segment of {seconds} s")
         for k, piece in enumerate(np.reshape(sig.x[: n * length], (n, length))):
             columns = sig.columns | {"segment": k, "start_s": k * length / sig.fs}
             out.append(
