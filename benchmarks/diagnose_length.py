@@ -29,9 +29,11 @@ import numpy as np
 import pandas as pd
 from diagnose_loro import _md, real_records, records_parser, segments
 
-from ballpass.diagnose import EnvelopeDiagnoser
+from ballpass.diagnose import EnvelopeDiagnoser, plot_explanation
 from ballpass.signalio import atomic_write
 
+#: The record the example figure shows: faint, out of the load zone, named only whole.
+EXAMPLE = "12k_FE_OR007@3_0 FE"
 #: Segment lengths, s (None: the whole record).
 LENGTHS = (1.0, 2.0, 2.5, 5.0, None)
 GOAL_LABELS = ("healthy", "inner", "outer")
@@ -97,7 +99,30 @@ def figure(summary: pd.DataFrame, path: Path) -> None:
     fig.savefig(path, dpi=100)
 
 
-def markdown(table: pd.DataFrame, summary: pd.DataFrame, seconds: float) -> str:
+def example_figure(records, path: Path) -> tuple | None:
+    """The outer-race SES of :data:`EXAMPLE`'s first second above that of the whole
+    record, each with the lines the diagnoser read: their outer-race evidence, dB
+    (None if the record is absent)."""
+    from matplotlib.figure import Figure
+
+    rec = next((r for r in records if r.name == EXAMPLE), None)
+    if rec is None:
+        return None
+    fig = Figure(figsize=(8, 6), layout="constrained")
+    top, bottom = fig.subplots(2, 1)
+    diag = EnvelopeDiagnoser(bearing=rec.bearing, fs=rec.fs, rpm=rec.rpm)
+    evidence = []
+    for ax, x in ((top, segments(rec.x, rec.fs, 1.0)[0]), (bottom, rec.x)):
+        why = diag.explain(x[None])[0]
+        plot_explanation(x, rec.fs, why, family="outer", ax=ax)
+        ax.set_title(f"{len(x) / rec.fs:.3g} s: " + ax.get_title(), fontsize="small")
+        evidence.append(why.evidence_db["outer"])
+    fig.savefig(path, dpi=90)
+    return tuple(evidence)
+
+
+def markdown(table: pd.DataFrame, summary: pd.DataFrame, seconds: float,
+             example: tuple | None = None) -> str:
     letters = (table.assign(letter=table.prediction.str[0])
                .groupby(["record", "length"], sort=False).letter.agg("".join)
                .unstack("length"))
@@ -124,6 +149,14 @@ def markdown(table: pd.DataFrame, summary: pd.DataFrame, seconds: float) -> str:
         "",
         _md(shown),
         "",
+        *([f"`{EXAMPLE}`, an outer-race fault out of the load zone, drawn by "
+           "`bp.diagnose.plot_explanation` (the outer-race family of each): in its first "
+           f"second the BPFO lines read {example[0]:.1f} dB, no higher than the shaft "
+           "lines beside them; over the whole record (0.1 Hz bins) they read "
+           f"{example[1]:.1f} dB.",
+           "",
+           "![one second against the whole record](diagnosis_length_example.png)",
+           ""] if example is not None else []),
         "Segment letters (h healthy, o outer, i inner, b ball):",
         "",
         _md(letters.fillna("")),
@@ -140,7 +173,8 @@ def main(argv=None) -> None:
     args.out.mkdir(parents=True, exist_ok=True)
     atomic_write(args.out / "diagnosis_length.csv", lambda tmp: table.to_csv(tmp, index=False))
     figure(summary, args.out / "diagnosis_length.png")
-    text = markdown(table, summary, time.perf_counter() - t0)
+    example = example_figure(records, args.out / "diagnosis_length_example.png")
+    text = markdown(table, summary, time.perf_counter() - t0, example)
     atomic_write(args.out / "diagnosis_length.md",
                  lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
     print(summary.round(3).to_string(index=False))
