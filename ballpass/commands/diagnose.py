@@ -150,7 +150,8 @@ def record_verdicts(records, segment_results, band, progress: bool = True) -> li
                 if r["source"].startswith(f"{rec.name}_seg")]
         tally = ", ".join(f"{n} {label}" for label, n in Counter(mine).most_common())
         print(f"{rec.name}, whole record ({len(rec.x) / rec.fs:.3g} s): {why.label} "
-              f"(grade {why.grade}); its {len(mine)} segments: {tally}")
+              f"(grade {why.grade}); its {len(mine)} segment{'s' * (len(mine) != 1)}: "
+              f"{tally}")
         rows.append(row | {"scope": "record"})
     return rows
 
