@@ -126,7 +126,8 @@ def run(args) -> int:
         print(f"{row['source']}{known}: {why}")
     rows = [row | {"scope": "segment" if segmented else "record"} for _, row in results]
     if segmented:
-        rows += record_verdicts(records, results, band, progress=show_progress(args))
+        rows += record_verdicts(records, results, args.segment, band,
+                                progress=show_progress(args))
     if out is not None:
         frame = pd.DataFrame(rows)
         write_table(frame, Path(out))
@@ -138,16 +139,21 @@ def run(args) -> int:
     return 0
 
 
-def record_verdicts(records, segment_results, band, progress: bool = True) -> list[dict]:
-    """Each whole record diagnosed too, printed with the tally of its segments' verdicts:
-    a 10 s record resolves lines that its one-second segments cannot
+def record_verdicts(records, segment_results, seconds: float, band,
+                    progress: bool = True) -> list[dict]:
+    """Each whole record diagnosed too, printed with the tally of its segments' verdicts
+    (``segment_results`` in record order, as :func:`segment_signals` cuts them into
+    ``seconds``): a 10 s record resolves lines that its one-second segments cannot
     (docs/diagnosis_length.md). Returns its table rows (``scope`` = ``"record"``)."""
     from collections import Counter
 
+    from .._validation import check_segment
+
     rows = []
+    verdicts = iter(row["prediction"] for _, row in segment_results)
     for rec, (why, row) in zip(records, verdict_rows(records, band, progress), strict=True):
-        mine = [r["prediction"] for _, r in segment_results
-                if r["source"].startswith(f"{rec.name}_seg")]
+        n = len(rec.x) // check_segment(seconds, rec.fs, "--segment")
+        mine = [next(verdicts) for _ in range(n)]
         tally = ", ".join(f"{n} {label}" for label, n in Counter(mine).most_common())
         print(f"{rec.name}, whole record ({len(rec.x) / rec.fs:.3g} s): {why.label} "
               f"(grade {why.grade}); its {len(mine)} segment{'s' * (len(mine) != 1)}: "
@@ -157,9 +163,8 @@ def record_verdicts(records, segment_results, band, progress: bool = True) -> li
 
 
 def write_plots(signals, explanations, folder: Path, progress: bool = True) -> list[Path]:
-    """One PNG per signal in ``folder`` (created): its SES with the lines the diagnoser
-    read."""
-    import re
+    """One PNG per signal in ``folder`` (created), named after it as ``plot`` and
+    ``features --plot`` name theirs: its SES with the lines the diagnoser read."""
     import sys
 
     import numpy as np
@@ -173,11 +178,7 @@ def write_plots(signals, explanations, folder: Path, progress: bool = True) -> l
     written = []
     for sig, why in tqdm(list(zip(signals, explanations, strict=True)), desc="plot",
                          unit="figure", disable=not progress, leave=False, file=sys.stderr):
-        stem = re.sub(r"[^A-Za-z0-9_.@-]+", "_", str(sig.name)).strip("_") or "signal"
-        path = folder / f"{stem}.png"
-        k = 2
-        while path in written:
-            path, k = folder / f"{stem}_{k}.png", k + 1
+        path = folder / f"{sig.name}.png"
         ax = plot_explanation(np.asarray(sig.x, dtype=np.float64), sig.fs, why)
         atomic_write(path, figure_writer(ax.figure, path))
         written.append(path)
