@@ -155,11 +155,12 @@ class Explanation:
         return "\n".join(parts)
 
 
-def _shaft_note(ev: EnvelopeEvidence, fault: str, i: int) -> list[str]:
-    """Note on the carriers of ``fault`` in row ``i`` that read as background on shaft
-    harmonics, with the record length that tells them apart (empty if none)."""
+def _shaft_note(ev: EnvelopeEvidence, fault: str, i: int, lines: list) -> list[str]:
+    """Note on the carriers of ``fault`` (its :func:`family_lines` ``lines``) in row ``i``
+    that read as background on shaft harmonics, with the record length that tells them
+    apart (empty if none)."""
     names = np.asarray(ev.line_names[fault], dtype=object)
-    carrier = np.arange(names.size) % 3 == 0  # family_lines: carrier, -side, +side
+    carrier = np.array([side == 0 for _, _, side in lines])
     hidden = carrier & ev.on_shaft[fault][i]
     if not hidden.any():
         return []
@@ -543,7 +544,7 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
                     notes.append(f"{f} not judged: fewer than two of its carriers are free "
                                  "of another family's lines")
                 if f != label and not silent:
-                    notes.extend(_shaft_note(ev, f, i))
+                    notes.extend(_shaft_note(ev, f, i, layout[f]))
             if silent:
                 grade = "Y"
             elif not any(np.isfinite(v) for v in evidence.values()):
