@@ -17,8 +17,11 @@ Run::
     PYTHONPATH=. python benchmarks/sim2real_cli.py --real ../shared/data/cwru   # ~2 min
 
 ``--engagement 0.3,0.5,0.7`` adds the grid's ``fault_engagement`` axis (intermittent
-ball defects; measured in docs/sim2real.md), ``--repeats`` changes its repeats,
-``--features`` the learned pipelines' feature set.
+ball defects), ``--angles 0,90,180`` sets its ``fault_angle_deg`` axis (outer-race faults
+at 6, 3 and 12 o'clock), ``--clearance -5`` adds a ``clearance_um`` axis (a preload, so
+that faults out of the load zone strike); each is measured in docs/sim2real.md.
+``--repeats`` changes the grid's repeats, ``--features`` the learned pipelines' feature
+set.
 
 Writes ``docs/sim2real_cli.md``, ``docs/sim2real_cli.csv`` (every prediction) and
 ``docs/sim2real_cli.png``.
@@ -47,18 +50,17 @@ ENDS = {"DE": "6205", "FE": "6203"}
 
 
 def predictions(real: Path, seed: int, end: str, jobs: int, repeats=None,
-                engagement=None, features="dimensionless") -> pd.DataFrame:
+                axes=None, features="dimensionless") -> pd.DataFrame:
     """Train on the shipped grid for ``end``'s bearing (root seed ``seed``; ``repeats``
-    and the ``fault_engagement`` axis if given), test on that end's records and the
-    healthy recording at that sensor."""
+    and the grid ``axes``, a dict of axis -> values, if given), test on that end's
+    records and the healthy recording at that sensor."""
     with GRID.open("rb") as fh:
         spec = tomllib.load(fh)
     spec["dataset"]["seed"] = seed
     if repeats is not None:
         spec["dataset"]["repeats"] = repeats
     spec["grid"]["bearing"] = [ENDS[end]]
-    if engagement is not None:
-        spec["grid"]["fault_engagement"] = list(engagement)
+    spec["grid"].update(axes or {})
     with tempfile.TemporaryDirectory() as tmp:
         generate(spec, Path(tmp) / "ds", n_jobs=jobs, progress=False)
         X, meta = load(Path(tmp) / "ds")
@@ -181,6 +183,12 @@ def main(argv=None) -> int:
                         help="root seeds of the grid (default ten)")
     parser.add_argument("--repeats", type=int, default=None,
                         help="repeats of the grid (default: the grid's own, 3)")
+    parser.add_argument("--angles", default=None,
+                        help="fault_angle_deg axis of the grid, e.g. 0,90,180 (default: "
+                        "the grid's own, 0)")
+    parser.add_argument("--clearance", default=None,
+                        help="clearance_um axis of the grid, um, e.g. -5 (default: the "
+                        "bearing's catalogue clearance)")
     parser.add_argument("--engagement", default=None,
                         help="fault_engagement axis of the grid, e.g. 0.3,0.5,0.7 "
                         "(default: the grid's own)")
@@ -191,12 +199,13 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     t0 = time.perf_counter()
     parts = []
-    engagement = (None if args.engagement is None
-                  else [float(v) for v in args.engagement.split(",")])
+    axes = {axis: [float(v) for v in values.split(",")] for axis, values in (
+        ("fault_engagement", args.engagement), ("fault_angle_deg", args.angles),
+        ("clearance_um", args.clearance)) if values is not None}
     for seed in map(int, args.seeds.split(",")):
         for end in ENDS:
             parts.append(predictions(args.real, seed, end, args.jobs, args.repeats,
-                                     engagement, args.features))
+                                     axes, args.features))
             print(f"seed {seed} {end}: {time.perf_counter() - t0:.0f} s", flush=True)
     pred = pd.concat(parts, ignore_index=True)
     table = summary(pred)

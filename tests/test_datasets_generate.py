@@ -343,3 +343,45 @@ def test_dataset_written_before_the_engagement_column_resumes_and_loads(tmp_path
         X, meta = load(out)
         assert np.array_equal(X, X_old)
         pd.testing.assert_frame_equal(meta, meta_old)
+
+
+def test_clearance_axis_is_stored_and_simulated(tmp_path):
+    """A preload from the grid reaches the signal (the stored row is the simulation of a
+    scene with that clearance, and differs from the same run at the catalogue clearance)
+    and the ``clearance_um`` column (NaN: the catalogue clearance). Catches an axis that
+    is validated and stored but never passed to the simulator."""
+    grid = {"dataset": {"duration_s": 0.1, "fs": 12000, "model": "sr5"},
+            "grid": {"bearing": ["6205"], "fault": ["outer"], "fault_angle_deg": [180],
+                     "rpm": [1797], "resonance_hz": [3000], "clearance_um": [-10.0]}}
+    generate(grid, tmp_path / "pre", progress=False)
+    X, meta = load(tmp_path / "pre")
+    assert meta.clearance_um.tolist() == [-10.0]
+    assert list(meta.columns).index("clearance_um") == list(meta.columns).index(
+        "radial_load_n") + 1
+    scene = json.loads(meta.scene[0])
+    assert scene["clearance_um"] == -10.0
+    assert np.array_equal(regenerate(meta.iloc[0]), X[0])
+    del grid["grid"]["clearance_um"]
+    generate(grid, tmp_path / "free", progress=False)
+    X_free, meta_free = load(tmp_path / "free")
+    assert np.isnan(meta_free.clearance_um[0])
+    # a 12 o'clock fault under a 10 um preload strikes; at the catalogue clearance it is
+    # out of the load zone (tests/test_silent_faults.py): the signals must differ
+    assert not np.allclose(X[0], X_free[0])
+
+
+def test_dataset_written_before_the_clearance_column_loads(tmp_path, monkeypatch):
+    """Rows of a dataset written before the ``clearance_um`` column load with it as NaN
+    (the catalogue clearance, the only one that grid could give), in its place."""
+    generate_module = importlib.import_module("ballpass.datasets.generate")
+    grid = {"dataset": {"duration_s": 0.05, "fs": 12000, "model": "impulse"},
+            "grid": {"bearing": ["6205"], "fault": ["healthy", "outer"], "rpm": [1797],
+                     "resonance_hz": [3000]}}
+    monkeypatch.setattr(generate_module, "COLUMNS",
+                        tuple(c for c in generate_module.COLUMNS if c != "clearance_um"))
+    generate(grid, tmp_path / "old", progress=False)
+    assert "clearance_um" not in pq.read_schema(tmp_path / "old" / "part-00000.parquet").names
+    _, meta = load(tmp_path / "old")
+    assert meta.clearance_um.isna().all() and len(meta) == 2
+    assert list(meta.columns).index("clearance_um") == list(meta.columns).index(
+        "radial_load_n") + 1

@@ -202,3 +202,22 @@ def test_sim2real_example_engagement_line_counts_as_its_comment_says():
     assert g.n_runs == 252
     assert {r.build_scene().fault.engagement for r in g.runs
             if r.scene.get("fault", {}).get("kind") == "ball"} == {0.3, 0.5, 0.7}
+
+
+# ------------------------------------------------------------------ clearance_um axis
+def test_clearance_axis_reaches_every_scene():
+    g = read_grid(with_("grid", clearance_um=[-5.0, 10.0]))
+    # (1 healthy + 2 x 2 faults) x 2 clearances x 2 repeats: healthy rows multiply too
+    assert g.n_runs == 5 * 2 * 2
+    assert {r.build_scene().clearance_um for r in g.runs} == {-5.0, 10.0}
+    # left out: the catalogue clearance, and scenes without the key (run ids unchanged)
+    assert all("clearance_um" not in r.scene for r in read_grid(BASE).runs)
+
+
+@pytest.mark.parametrize("value, match", [
+    (-80.0, r"clearance_um=-80.0.*\): clearance_um must be a finite number in \(-50, 200\)"),
+    ("tight", r"grid.clearance_um\[0\] must be a number"),
+])
+def test_bad_clearance_is_refused_naming_the_axis(value, match):
+    with pytest.raises(ValueError, match=match):
+        read_grid(with_("grid", clearance_um=[value]))

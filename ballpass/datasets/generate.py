@@ -59,8 +59,8 @@ __all__ = ["generate", "dry_run", "regenerate", "run_shard", "GenerateSummary", 
 #: metadata columns of a dataset, in stored order (the signal column comes first)
 COLUMNS = (
     "label", "bearing", "fault_width_mm", "fault_depth_mm", "fault_angle_deg",
-    "fault_engagement", "rpm", "rpm_start", "rpm_end", "radial_load_n", "slip", "snr_db",
-    "noise_rms", "resonance_hz", "resonance_damping", "sensor",
+    "fault_engagement", "rpm", "rpm_start", "rpm_end", "radial_load_n", "clearance_um", "slip",
+    "snr_db", "noise_rms", "resonance_hz", "resonance_damping", "sensor",
     "segment", "start_s", "duration_s", "fs", "run_id", "group", "repeat", "seed", "model",
     "solver", "scene",
 )
@@ -94,6 +94,7 @@ def _simulate_run(run: Run, solver: str, signal_length: int, n_segments: int):
         "rpm_start": speed.rpm_start,
         "rpm_end": speed.rpm_end,
         "radial_load_n": scene.radial_load_n,
+        "clearance_um": math.nan if scene.clearance_um is None else scene.clearance_um,
         "slip": scene.slip,
         "snr_db": math.inf if scene.snr_db is None else scene.snr_db,
         "noise_rms": scene.noise_rms or 0.0,

@@ -74,15 +74,15 @@ DATASET_DEFAULTS: dict[str, object] = {
 #: varying fastest
 AXES = (
     "bearing", "fault", "fault_width_mm", "fault_depth_mm", "fault_angle_deg",
-    "fault_engagement", "rpm", "radial_load_n", "slip", "snr_db", "noise_rms", "resonance_hz",
-    "resonance_damping", "model", "sensor",
+    "fault_engagement", "rpm", "radial_load_n", "clearance_um", "slip", "snr_db", "noise_rms",
+    "resonance_hz", "resonance_damping", "model", "sensor",
 )
 REQUIRED_AXES = ("bearing", "fault", "rpm")
 _FAULT_AXES = {"fault_width_mm": "width_mm", "fault_depth_mm": "depth_mm",
                "fault_angle_deg": "angle_deg", "fault_engagement": "engagement"}
 #: fault axes of ball faults only: race-fault points do not multiply over them
 _BALL_AXES = ("fault_engagement",)
-_SCENE_AXES = ("radial_load_n", "slip", "snr_db", "noise_rms", "resonance_hz",
+_SCENE_AXES = ("radial_load_n", "clearance_um", "slip", "snr_db", "noise_rms", "resonance_hz",
                "resonance_damping")
 _NUMERIC_AXES = (*_FAULT_AXES, "rpm", *_SCENE_AXES)
 _SENSOR_KEYS = {f.name for f in fields(Sensor)}
@@ -472,7 +472,10 @@ def read_grid(source) -> Grid:
     ``fault_width_mm``, ``fault_depth_mm``, ``fault_angle_deg`` (fault rows only),
     ``fault_engagement`` (ball rows only: ``Fault(engagement=...)``, the share of the
     ball's spin revolutions, in (0, 1], on which its defect strikes; see below),
-    ``rpm`` (a value or a ``[start, end]`` ramp), ``radial_load_n`` (N), ``slip``,
+    ``rpm`` (a value or a ``[start, end]`` ramp), ``radial_load_n`` (N),
+    ``clearance_um`` (mounted radial clearance, um, in (-50, 200); negative is a preload,
+    which loads every ball so that outer-race faults out of the load zone strike;
+    ``Scene(clearance_um=...)``; left out: the bearing's catalogue clearance), ``slip``,
     ``snr_db`` (dB; ``inf`` = noise-free) or ``noise_rms`` (absolute sensor noise,
     m/s^2), ``resonance_hz`` (Hz), ``resonance_damping`` (ratio), ``model``, and
     ``sensor`` ("loaded", "unloaded" or a table of :class:`~ballpass.Sensor` fields),

@@ -51,7 +51,9 @@ FORMAT_VERSION = 2
 #: units of the stored columns
 UNITS = {
     "signal": "m/s^2", "fs": "Hz", "duration_s": "s", "start_s": "s", "rpm": "rpm",
-    "rpm_start": "rpm", "rpm_end": "rpm", "radial_load_n": "N", "fault_width_mm": "mm",
+    "rpm_start": "rpm", "rpm_end": "rpm", "radial_load_n": "N",
+    "clearance_um": "um (negative: preload; NaN = the bearing's catalogue clearance)",
+    "fault_width_mm": "mm",
     "fault_depth_mm": "mm", "fault_angle_deg": "deg from the load line",
     "fault_engagement": "1 (share of ball spin revolutions struck)", "slip": "1",
     "snr_db": "dB (inf = noise-free)", "noise_rms": "m/s^2 (0 = none)", "resonance_hz": "Hz",
@@ -303,23 +305,26 @@ def _read(files: list[Path], columns, filters):
         raise CorruptShardError(f"cannot read the shards: {exc}") from None
 
 
-#: metadata columns added since the first datasets -> the value every fault row written
-#: before had (the grid could not set another). A dataset resumes only with its own grid,
-#: so all fault rows of a dataset begun before the column have it, also those written
-#: after: :func:`load` fills it where a shard lacks the column (or the column is missing)
-ADDED_FAULT_COLUMNS = {"fault_engagement": 1.0}
+#: metadata columns added since the first datasets -> (the column they follow, the value
+#: every fault row written before had: the grid could not set another). A dataset resumes
+#: only with its own grid, so all fault rows of a dataset begun before the column have
+#: it, also those written after: :func:`load` fills it where a shard lacks the column (or
+#: the column is missing). Healthy rows get NaN, as do all rows for ``clearance_um``
+#: (NaN: the bearing's catalogue clearance, the only one the grid could give).
+ADDED_COLUMNS = {"fault_engagement": ("fault_angle_deg", 1.0),
+                 "clearance_um": ("radial_load_n", np.nan)}
 
 
 def _fill_added_columns(meta, insert: bool) -> None:
-    """Give rows written before a column of :data:`ADDED_FAULT_COLUMNS` existed its value
+    """Give rows written before a column of :data:`ADDED_COLUMNS` existed its value
     then: the old value for fault rows, NaN for healthy ones (in place; ``insert``: also
     add the column to a table of a dataset that has none)."""
-    for name, old in ADDED_FAULT_COLUMNS.items():
+    for name, (after, old) in ADDED_COLUMNS.items():
         if "label" not in meta or (name not in meta and not insert):
             continue
         if name not in meta:
-            meta.insert(int(meta.columns.get_loc("fault_angle_deg")) + 1
-                        if "fault_angle_deg" in meta else len(meta.columns), name, np.nan)
+            meta.insert(int(meta.columns.get_loc(after)) + 1
+                        if after in meta else len(meta.columns), name, np.nan)
         missing = meta[name].isna() & (meta["label"] != "healthy")
         meta.loc[missing, name] = old
 
@@ -347,7 +352,8 @@ def load(path, columns=None, filters=None):
         One row per signal: ``label``, the parameters, ``run_id``, ``group``, ``sensor``,
         ``segment``, ``seed``, ``model``, ... Rows written before a parameter column
         existed get the value they were simulated with (``fault_engagement`` 1 for a
-        fault row of a dataset written before that column).
+        fault row of a dataset written before that column, ``clearance_um`` NaN: the
+        bearing's catalogue clearance).
 
     Examples
     --------
