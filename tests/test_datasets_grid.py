@@ -214,6 +214,17 @@ def test_clearance_axis_reaches_every_scene():
     assert all("clearance_um" not in r.scene for r in read_grid(BASE).runs)
 
 
+def test_sim2real_example_preload_line_reads():
+    # the example's commented-out preload, uncommented with the positions its comment
+    # names: 3 angles multiply the fault rows, the one clearance every row
+    text = (Path(__file__).parent.parent / "examples" / "sim2real_cwru.toml").read_text()
+    text = text.replace("# clearance_um =", "clearance_um =").replace(
+        "fault_angle_deg = [0]", "fault_angle_deg = [0, 90, 180]")
+    g = read_grid(tomllib.loads(text))
+    assert g.n_runs == (1 + 3 * 4 * 3) * 4 * 3
+    assert {r.build_scene().clearance_um for r in g.runs} == {-5.0}
+
+
 @pytest.mark.parametrize("value, match", [
     (-80.0, r"clearance_um=-80.0.*\): clearance_um must be a finite number in \(-50, 200\)"),
     ("tight", r"grid.clearance_um\[0\] must be a number"),
