@@ -19,7 +19,9 @@ Run::
 ``--engagement 0.3,0.5,0.7`` adds the grid's ``fault_engagement`` axis (intermittent
 ball defects), ``--angles 0,90,180`` sets its ``fault_angle_deg`` axis (outer-race faults
 at 6, 3 and 12 o'clock), ``--clearance -5`` adds a ``clearance_um`` axis (a preload, so
-that faults out of the load zone strike); each is measured in docs/sim2real.md.
+that faults out of the load zone strike), ``--noise-rms 0.6`` replaces the grid's
+``snr_db`` by a fixed background of that RMS (m/s^2); each is measured in
+docs/sim2real.md.
 ``--repeats`` changes the grid's repeats, ``--features`` the learned pipelines' feature
 set.
 
@@ -60,7 +62,10 @@ def predictions(real: Path, seed: int, end: str, jobs: int, repeats=None,
     if repeats is not None:
         spec["dataset"]["repeats"] = repeats
     spec["grid"]["bearing"] = [ENDS[end]]
-    spec["grid"].update(axes or {})
+    axes = axes or {}
+    if "noise_rms" in axes:  # a fixed background instead of the grid's SNR (not both)
+        spec["grid"].pop("snr_db", None)
+    spec["grid"].update(axes)
     with tempfile.TemporaryDirectory() as tmp:
         generate(spec, Path(tmp) / "ds", n_jobs=jobs, progress=False)
         X, meta = load(Path(tmp) / "ds")
@@ -189,6 +194,9 @@ def main(argv=None) -> int:
     parser.add_argument("--clearance", default=None,
                         help="clearance_um axis of the grid, um, e.g. -5 (default: the "
                         "bearing's catalogue clearance)")
+    parser.add_argument("--noise-rms", default=None,
+                        help="a fixed background, m/s^2, instead of the grid's snr_db, e.g. "
+                        "0.6 (default: the grid's own)")
     parser.add_argument("--engagement", default=None,
                         help="fault_engagement axis of the grid, e.g. 0.3,0.5,0.7 "
                         "(default: the grid's own)")
@@ -201,7 +209,8 @@ def main(argv=None) -> int:
     parts = []
     axes = {axis: [float(v) for v in values.split(",")] for axis, values in (
         ("fault_engagement", args.engagement), ("fault_angle_deg", args.angles),
-        ("clearance_um", args.clearance)) if values is not None}
+        ("clearance_um", args.clearance), ("noise_rms", args.noise_rms))
+        if values is not None}
     for seed in map(int, args.seeds.split(",")):
         for end in ENDS:
             parts.append(predictions(args.real, seed, end, args.jobs, args.repeats,
