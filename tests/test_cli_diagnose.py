@@ -82,6 +82,13 @@ def test_too_short_segments_are_refused_naming_the_option(tmp_path, capsys):
     assert main(["diagnose", str(path), "--segment", "0.1"]) != 0
     err = capsys.readouterr().err
     assert "--segment" in err and "0.168 s" in err and "X rows" not in err
+    # a whole record that short is the record's fault: no --segment to blame
+    short = write_signal(tmp_path / "short.npz", impacts(100.0)[None, :1200], FS,
+                         channels=["a"], meta={"bearing": "6205", "rpm": RPM})
+    assert main(["diagnose", str(short)]) != 0
+    err = capsys.readouterr().err
+    assert "0.168 s" in err and "needs at least that much of the record" in err
+    assert "--segment" not in err
 
 
 def test_segments_come_with_their_whole_record(tmp_path, capsys):

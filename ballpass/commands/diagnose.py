@@ -57,11 +57,12 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     return p
 
 
-def verdict_rows(signals, band=None, progress: bool = True):
+def verdict_rows(signals, band=None, progress: bool = True, segmented: bool = False):
     """``(explanation, row)`` per signal: the diagnoser's :class:`Explanation` and a
     table row (source, truth when known, the bearing whose lines were read, verdict,
     grade, evidence and threshold per family in dB, the verdict's band, the speeds
-    stated and used, notes)."""
+    stated and used, notes). ``segmented``: the signals are ``--segment`` cuts (a
+    signal too short is then the option's fault, not the record's)."""
     import sys
 
     import numpy as np
@@ -83,10 +84,12 @@ def verdict_rows(signals, band=None, progress: bool = True):
             float(sig.rpm) / 60.0).ftf
         seconds = len(sig.x) / sig.fs
         if seconds < shortest:
+            remedy = ("give a --segment of at least that, or diagnose the whole record"
+                      if segmented else "the diagnoser needs at least that much of the "
+                      "record (a ball fault's +-FTF sidebands are resolved over it)")
             raise ValueError(
                 f"{sig.name} lasts {seconds:.3g} s, shorter than {MIN_CAGE_PERIODS:g} cage "
-                f"periods ({shortest:.3g} s at {float(sig.rpm):g} rpm): give a --segment of "
-                "at least that, or the whole record")
+                f"periods ({shortest:.3g} s at {float(sig.rpm):g} rpm): {remedy}")
     out = []
     for sig in tqdm(signals, desc="diagnose", unit="signal", disable=not progress,
                     leave=False, file=sys.stderr):
@@ -119,7 +122,7 @@ def run(args) -> int:
     segmented = args.segment is not None
     signals = segment_signals(records, args.segment) if segmented else records
     band = tuple(args.band) if args.band is not None else None
-    results = verdict_rows(signals, band, progress=show_progress(args))
+    results = verdict_rows(signals, band, progress=show_progress(args), segmented=segmented)
     for why, row in results:
         truth = row.get("label")
         known = f" (label: {truth})" if isinstance(truth, str) and truth else ""
