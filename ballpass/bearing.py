@@ -720,6 +720,17 @@ _CATALOG: dict[str, dict] = {
         n_elements=8, element_diameter_mm=7.92, pitch_diameter_mm=34.55,
         source="LDK UER204, XJTU-SY bearing data set (Wang et al. 2020, Table 2)",
     ),
+    # The IMS (University of Cincinnati / NASA) run-to-failure rig's bearings (Qiu, Lee,
+    # Lin, J. Sound Vib. 289 (2006) 1066-1090): Rexnord ZA-2115, two rows of 16 rollers
+    # of 0.331 in on a 2.815 in pitch circle, contact angle 15.17 deg; BPFO 236.4 Hz at
+    # 2000 rpm follows. The roller length is not published: point contact is assumed, so
+    # its frequencies are exact and a simulation of it is indicative only.
+    "ZA-2115": dict(
+        n_elements=16, element_diameter_mm=0.331 * 25.4, pitch_diameter_mm=2.815 * 25.4,
+        contact_angle_deg=15.17,
+        source="Rexnord ZA-2115, IMS run-to-failure rig (Qiu et al. 2006; 16 rollers per "
+               "row, the planar models treat one row; point contact assumed)",
+    ),
 }
 
 
