@@ -19,9 +19,9 @@ Run::
 ``--engagement 0.3,0.5,0.7`` adds the grid's ``fault_engagement`` axis (intermittent
 ball defects), ``--angles 0,90,180`` sets its ``fault_angle_deg`` axis (outer-race faults
 at 6, 3 and 12 o'clock), ``--clearance -5`` adds a ``clearance_um`` axis (a preload, so
-that faults out of the load zone strike), ``--noise-rms 0.6`` replaces the grid's
-``snr_db`` by a fixed background of that RMS (m/s^2); each is measured in
-docs/sim2real.md.
+that faults out of the load zone strike), ``--snr 0,10,20`` sets its ``snr_db`` axis,
+``--noise-rms 0.6`` replaces that axis by a fixed background of that RMS (m/s^2); each
+is measured in docs/sim2real.md.
 ``--repeats`` changes the grid's repeats, ``--features`` the learned pipelines' feature
 set.
 
@@ -194,6 +194,9 @@ def main(argv=None) -> int:
     parser.add_argument("--clearance", default=None,
                         help="clearance_um axis of the grid, um, e.g. -5 (default: the "
                         "bearing's catalogue clearance)")
+    parser.add_argument("--snr", default=None,
+                        help="snr_db axis of the grid, dB, e.g. 0,10,20 (default: the "
+                        "grid's own, 20)")
     parser.add_argument("--noise-rms", default=None,
                         help="a fixed background, m/s^2, instead of the grid's snr_db, e.g. "
                         "0.6 (default: the grid's own)")
@@ -209,7 +212,8 @@ def main(argv=None) -> int:
     parts = []
     axes = {axis: [float(v) for v in values.split(",")] for axis, values in (
         ("fault_engagement", args.engagement), ("fault_angle_deg", args.angles),
-        ("clearance_um", args.clearance), ("noise_rms", args.noise_rms))
+        ("clearance_um", args.clearance), ("snr_db", args.snr),
+        ("noise_rms", args.noise_rms))
         if values is not None}
     for seed in map(int, args.seeds.split(",")):
         for end in ENDS:
