@@ -66,6 +66,7 @@ from ..features._validation import (
 )
 from ..features.bands import as_bearing
 from ..features.kurtogram import FLOOR_DB
+from ..features.shaft import SHAFT_GUARD_BINS, SHAFT_GUARD_RELATIVE, shaft_line_bins
 from .speed import estimate_shaft_speed
 
 __all__ = [
@@ -89,18 +90,6 @@ FAULT_FAMILIES = {
 #: (a factor 4 in SES power); closer, the line may be a member of a ball fault's FTF
 #: comb and the outer-race evidence is marked down by the shortfall.
 OUTER_SIDEBAND_MARGIN_DB = 6.0
-#: A shaft harmonic standing this far above the SES background (dB) is a line in its
-#: own right; a fault line on it would be no evidence (the decision threshold: a shaft
-#: line strong enough to count as evidence does not count) ...
-SHAFT_LINE_DB = 6.0
-#: ... and its SES bins closer than this many bins read as background: the Hann
-#: window's main lobe (+-2 bins) plus the +-1 bin line window ...
-SHAFT_GUARD_BINS = 3.0
-#: ... or closer than this fraction of the harmonic's frequency: an induction motor's
-#: synchronous speed, whose multiples carry electromagnetic lines, lies 0.17-0.25 %
-#: above the shaft speed at no load (CWRU: 1796-1797 rpm against 1800 rpm; the healthy
-#: fan-end channel carries lines at 360.0 and 450.0 Hz).
-SHAFT_GUARD_RELATIVE = 0.0025
 #: A shaft-harmonic comb must stand this high (median of its ten harmonics above the
 #: spectrum's background, dB) to correct the stated speed. Noise alone reads a few dB
 #: at the best of the candidate speeds; the whole CWRU records read 22-37 dB, the
@@ -374,37 +363,6 @@ def _family_scores(ses, notch, df, shaft_hz, orders, fault, harmonics, slip, bac
     return score[i, j], level[i, j], (c[i, j] + best[i, j]) * df, scales[j], on_shaft[i, j]
 
 
-def _shaft_notch(freqs: np.ndarray, ses: np.ndarray, shaft_hz: np.ndarray,
-                 background_hz: float) -> np.ndarray:
-    """Bins of each row on a shaft harmonic that stands out, (n, n_bins) bool.
-
-    A harmonic ``k fr`` stands out when the largest SES bin within +-1 bin of it is at
-    least :data:`SHAFT_LINE_DB` above the median SES over +-``background_hz``; its bins
-    within the guard (:data:`SHAFT_GUARD_BINS`, :data:`SHAFT_GUARD_RELATIVE`) are marked.
-    Only where the guard spans at most a quarter of the shaft speed: at coarser
-    resolution (records shorter than 12 shaft revolutions) a fault line and the shaft
-    harmonic beside it share the same bins, and marking them would blank a fault line
-    as often as a shaft line.
-    """
-    n, n_bins = ses.shape
-    df = freqs[1]
-    fine = SHAFT_GUARD_BINS * df <= 0.25 * shaft_hz  # (n,)
-    k = np.arange(1, int(freqs[-1] / shaft_hz.min()) + 1)
-    centre = np.rint(k[None, :] * shaft_hz[:, None] / df).astype(np.int64)  # (n, K)
-    half = max(5, math.ceil(background_hz / df))
-    rows = np.arange(n)[:, None, None]
-    around = np.clip(centre[..., None] + np.arange(-half, half + 1), 1, n_bins - 1)
-    background = np.median(ses[rows, around], axis=-1)
-    near = np.clip(centre[..., None] + np.arange(-1, 2), 1, n_bins - 1)
-    peak = ses[rows, near].max(axis=-1)
-    present = (centre < n_bins - 1) & (peak >= background * 10 ** (SHAFT_LINE_DB / 10))
-    m = np.maximum(np.rint(freqs[None, :] / shaft_hz[:, None]), 1.0)  # nearest harmonic
-    guard = np.maximum(SHAFT_GUARD_BINS * df, SHAFT_GUARD_RELATIVE * m * shaft_hz[:, None])
-    close = np.abs(freqs[None, :] - m * shaft_hz[:, None]) < guard
-    idx = np.clip(m.astype(np.int64) - 1, 0, k.size - 1)
-    return close & np.take_along_axis(present, idx, axis=1) & fine[:, None]
-
-
 def shaft_resolving_length(freq_hz, shaft_hz: float):
     """Shortest record whose SES tells a line at ``freq_hz`` from the nearest shaft
     harmonic, s (``inf``: closer than :data:`SHAFT_GUARD_RELATIVE`, never).
@@ -652,7 +610,7 @@ def _best_bands(xv, shaft_hz, *, fs, orders, harmonics, slip, background_hz, pre
             continue
         freqs, ses = envelope_spectrum(xv, fs, tuple(b), prewhiten=prewhiten)
         df = freqs[1]
-        notch = _shaft_notch(freqs, ses, shaft_hz, background_hz)
+        notch = shaft_line_bins(freqs, ses, shaft_hz, background_hz)
         for fault in FAULT_FAMILIES:
             ev, level, found, scale, on_shaft = _family_scores(
                 ses, notch, df, shaft_hz, orders, fault, harmonics, slip, background_hz,
