@@ -165,7 +165,15 @@ def fault_band_levels(
     flat_ses = np.ascontiguousarray(ses).reshape(-1, n_bins)
     if shaft_guard:
         shaft_hz = np.broadcast_to(rpm, ses.shape[:-1]).reshape(-1) / 60.0
-        flat_ses = without_shaft_lines(freqs, flat_ses, shaft_hz, background_hz)
+        # Only the bins the line search reads need the guard, with every harmonic whose
+        # guard or background window reaches them: one shaft spacing and one background
+        # window beyond the highest line's window and background.
+        reach = (targets.max() * (1.0 + tolerance) + (margin + _GUARD_BINS + 2) * df
+                 + shaft_hz.max() + background_hz)
+        top = min(n_bins, math.ceil(reach / df) + 1)
+        flat_ses = np.concatenate([
+            without_shaft_lines(freqs[:top], flat_ses[:, :top], shaft_hz, background_hz),
+            flat_ses[:, top:]], axis=1)
     f = targets.reshape(-1, targets.shape[-1])
     # Search window [lo, hi] (bins): the slip tolerance, at least the nearest bin.
     in_range = f * (1.0 - tolerance) <= freqs[-1]

@@ -37,6 +37,8 @@ def _harmonic_bins(freqs: np.ndarray, ses: np.ndarray, shaft_hz: np.ndarray,
     df = freqs[1]
     fine = SHAFT_GUARD_BINS * df <= 0.25 * shaft_hz  # (n,)
     k = np.arange(1, int(freqs[-1] / shaft_hz.min()) + 1)
+    if k.size == 0:  # the spectrum ends below the first harmonic
+        return np.zeros(ses.shape, dtype=bool), np.zeros(ses.shape)
     centre = np.rint(k[None, :] * shaft_hz[:, None] / df).astype(np.int64)  # (n, K)
     half = max(5, math.ceil(background_hz / df))
     rows = np.arange(n)[:, None, None]
