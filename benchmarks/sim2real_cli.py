@@ -49,6 +49,14 @@ from ballpass.signalio import atomic_write
 
 #: CWRU end -> its bearing
 ENDS = {"DE": "6205", "FE": "6203"}
+#: options that set an axis of the shipped grid: flag -> (axis, example, default)
+AXIS_OPTIONS = {
+    "--angles": ("fault_angle_deg", "0,90,180", "the grid's own, 0"),
+    "--clearance": ("clearance_um", "-5 (um)", "the bearing's catalogue clearance"),
+    "--snr": ("snr_db", "0,10,20 (dB)", "the grid's own, 20"),
+    "--noise-rms": ("noise_rms", "0.6 (m/s^2; replaces snr_db)", "none"),
+    "--engagement": ("fault_engagement", "0.3,0.5,0.7", "none"),
+}
 
 
 def predictions(real: Path, seed: int, end: str, jobs: int, repeats=None,
@@ -188,21 +196,10 @@ def main(argv=None) -> int:
                         help="root seeds of the grid (default ten)")
     parser.add_argument("--repeats", type=int, default=None,
                         help="repeats of the grid (default: the grid's own, 3)")
-    parser.add_argument("--angles", default=None,
-                        help="fault_angle_deg axis of the grid, e.g. 0,90,180 (default: "
-                        "the grid's own, 0)")
-    parser.add_argument("--clearance", default=None,
-                        help="clearance_um axis of the grid, um, e.g. -5 (default: the "
-                        "bearing's catalogue clearance)")
-    parser.add_argument("--snr", default=None,
-                        help="snr_db axis of the grid, dB, e.g. 0,10,20 (default: the "
-                        "grid's own, 20)")
-    parser.add_argument("--noise-rms", default=None,
-                        help="a fixed background, m/s^2, instead of the grid's snr_db, e.g. "
-                        "0.6 (default: the grid's own)")
-    parser.add_argument("--engagement", default=None,
-                        help="fault_engagement axis of the grid, e.g. 0.3,0.5,0.7 "
-                        "(default: the grid's own)")
+    for flag, (axis, example, default) in AXIS_OPTIONS.items():
+        parser.add_argument(flag, default=None, dest=axis,
+                            help=f"{axis} axis of the grid, e.g. {example} (default: "
+                            f"{default})")
     parser.add_argument("--features", default="dimensionless",
                         help="feature set of the learned pipelines (default dimensionless)")
     parser.add_argument("--jobs", type=int, default=2)
@@ -210,11 +207,8 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     t0 = time.perf_counter()
     parts = []
-    axes = {axis: [float(v) for v in values.split(",")] for axis, values in (
-        ("fault_engagement", args.engagement), ("fault_angle_deg", args.angles),
-        ("clearance_um", args.clearance), ("snr_db", args.snr),
-        ("noise_rms", args.noise_rms))
-        if values is not None}
+    axes = {axis: [float(v) for v in getattr(args, axis).split(",")]
+            for axis, _, _ in AXIS_OPTIONS.values() if getattr(args, axis) is not None}
     for seed in map(int, args.seeds.split(",")):
         for end in ENDS:
             parts.append(predictions(args.real, seed, end, args.jobs, args.repeats,
