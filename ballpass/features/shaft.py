@@ -39,13 +39,19 @@ def _harmonic_bins(freqs: np.ndarray, ses: np.ndarray, shaft_hz: np.ndarray,
     k = np.arange(1, int(freqs[-1] / shaft_hz.min()) + 1)
     if k.size == 0:  # the spectrum ends below the first harmonic
         return np.zeros(ses.shape, dtype=bool), np.zeros(ses.shape)
-    centre = np.rint(k[None, :] * shaft_hz[:, None] / df).astype(np.int64)  # (n, K)
+    exact = k[None, :] * shaft_hz[:, None] / df  # harmonic frequencies in bins, (n, K)
+    centre = np.rint(exact).astype(np.int64)
     half = max(5, math.ceil(background_hz / df))
     rows = np.arange(n)[:, None, None]
     around = np.clip(centre[..., None] + np.arange(-half, half + 1), 1, n_bins - 1)
     background = np.median(ses[rows, around], axis=-1)  # (n, K)
-    near = np.clip(centre[..., None] + np.arange(-1, 2), 1, n_bins - 1)
-    peak = ses[rows, near].max(axis=-1)
+    # The harmonic's line is looked for within the +-1 bin line window, or in its nearest
+    # bin alone where one bin exceeds the synchronous-speed offset at that harmonic: no
+    # shaft or motor line sits a bin away there, but a fault line can (coarse bins).
+    reach = (SHAFT_GUARD_RELATIVE * exact >= 1.0).astype(np.int64)  # bins, (n, K)
+    steps = np.arange(-1, 2)
+    near = np.clip(centre[..., None] + steps, 1, n_bins - 1)
+    peak = np.where(np.abs(steps) <= reach[..., None], ses[rows, near], 0.0).max(axis=-1)
     present = (centre < n_bins - 1) & (peak >= background * 10 ** (SHAFT_LINE_DB / 10))
     m = np.maximum(np.rint(freqs[None, :] / shaft_hz[:, None]), 1.0)  # nearest harmonic
     guard = np.maximum(SHAFT_GUARD_BINS * df, SHAFT_GUARD_RELATIVE * m * shaft_hz[:, None])
@@ -62,6 +68,11 @@ def shaft_line_bins(freqs: np.ndarray, ses: np.ndarray, shaft_hz: np.ndarray,
     A harmonic ``k fr`` stands out when the largest SES bin within +-1 bin of it is at
     least :data:`SHAFT_LINE_DB` above the median SES over +-``background_hz``; its bins
     within the guard (:data:`SHAFT_GUARD_BINS`, :data:`SHAFT_GUARD_RELATIVE`) are marked.
+    Where one bin is wider than the synchronous-speed offset at the harmonic
+    (``SHAFT_GUARD_RELATIVE k fr``: low harmonics on short records) only the bin nearest
+    ``k fr`` counts: no shaft or motor line can sit a bin away, but a fault line can (the
+    6203's BPFO, 3.05 orders, 1.5 bins above 3x on 1 s records, leaks into the nearest
+    bin some 13 dB below its own peak, so it cannot raise the guard that would blank it).
     Only where the guard spans at most a quarter of the shaft speed: at coarser
     resolution (records shorter than 12 shaft revolutions) a fault line and the shaft
     harmonic beside it share the same bins, and marking them would blank a fault line
