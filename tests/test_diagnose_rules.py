@@ -110,6 +110,18 @@ def test_names_cwru_fan_end_recordings(name, label):
     assert list(diag.predict(_segments(x))) == [label] * (len(x) // round(FS))
 
 
+def test_a_fan_end_inner_race_line_beside_a_shaft_harmonic_is_not_blanked():
+    # Seconds 1-2 of the fan-end 0.021 in inner-race record (6203): its BPFI lines lie
+    # 1-3 Hz from shaft harmonics (4.947 orders beside 5x, 9.894 beside 10x), and on
+    # 1 Hz bins a line 1.5 bins away used to raise the guard of the harmonic beside it
+    # and blank itself: both seconds were called healthy. The harmonic is now judged at
+    # its nearest bin on such coarse bins, and both are named. Catches the guard judged
+    # on +-1 bin at every resolution (planted: ["healthy", "healthy"]).
+    x, rpm = _crop("cwru_12k_FE_IR021_0_FE_crop.npz")
+    diag = EnvelopeDiagnoser(bearing="6203", fs=FS, rpm=rpm)
+    assert list(diag.predict(_segments(x))) == ["inner", "inner"]
+
+
 def test_explanation_names_the_lines_of_the_cwru_inner_race_fault():
     x, rpm = _crop("cwru_12k_DE_IR007_0_DE_crop.npz")
     (exp,) = EnvelopeDiagnoser(fs=FS, rpm=rpm).explain(x[None, :12_000])
