@@ -21,8 +21,9 @@ Three traps make a naive family score fail on real machines, and each has a rule
 2. **Shaft harmonics.** The 6203 has each defect frequency within 2 % of a shaft
    harmonic (2xBSF 3.988, BPFI 4.947, BPFO 3.053 orders) and a healthy machine's SES
    carries shaft harmonics. Where a shaft harmonic stands out in the SES (6 dB above
-   its background, judged on short records in the bin nearest it, so that a fault line
-   1.5 bins away cannot raise it: :func:`~ballpass.features.shaft.shaft_line_bins`),
+   its background; where a bin is wider than 0.25 % of the harmonic, judged in the bin
+   nearest it, so that a fault line 1.5 bins away cannot raise it:
+   :func:`~ballpass.features.shaft.shaft_line_bins`),
    the bins closer to it than the SES can resolve (3 bins: the Hann
    main lobe of +-2 bins plus the +-1 bin line window; at least 0.25 % of its
    frequency) read as background, so a family line that lands on it counts for

@@ -25,7 +25,8 @@ SHAFT_GUARD_BINS = 3.0
 #: ... or closer than this fraction of the harmonic's frequency: an induction motor's
 #: synchronous speed, whose multiples carry electromagnetic lines, lies 0.17-0.25 %
 #: above the shaft speed at no load (CWRU: 1796-1797 rpm against 1800 rpm; the healthy
-#: fan-end channel carries lines at 360.0 and 450.0 Hz).
+#: fan-end channel carries lines at 360.0 and 450.0 Hz). Where one bin is wider than
+#: this fraction, a harmonic is looked for in its nearest bin only.
 SHAFT_GUARD_RELATIVE = 0.0025
 
 
