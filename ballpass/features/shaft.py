@@ -49,10 +49,11 @@ def _harmonic_bins(freqs: np.ndarray, ses: np.ndarray, shaft_hz: np.ndarray,
     # The harmonic's line is looked for within the +-1 bin line window, or in its nearest
     # bin alone where one bin exceeds the synchronous-speed offset at that harmonic: no
     # shaft or motor line sits a bin away there, but a fault line can (coarse bins).
-    reach = (SHAFT_GUARD_RELATIVE * exact >= 1.0).astype(np.int64)  # bins, (n, K)
+    wide = SHAFT_GUARD_RELATIVE * exact >= 1.0  # the +-1 bin window applies, (n, K)
     steps = np.arange(-1, 2)
     near = np.clip(centre[..., None] + steps, 1, n_bins - 1)
-    peak = np.where(np.abs(steps) <= reach[..., None], ses[rows, near], 0.0).max(axis=-1)
+    looked = (steps == 0) | wide[..., None]  # (n, K, 3)
+    peak = np.where(looked, ses[rows, near], 0.0).max(axis=-1)
     present = (centre < n_bins - 1) & (peak >= background * 10 ** (SHAFT_LINE_DB / 10))
     m = np.maximum(np.rint(freqs[None, :] / shaft_hz[:, None]), 1.0)  # nearest harmonic
     guard = np.maximum(SHAFT_GUARD_BINS * df, SHAFT_GUARD_RELATIVE * m * shaft_hz[:, None])
