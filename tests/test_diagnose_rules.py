@@ -169,6 +169,34 @@ def test_fit_calibrates_thresholds_on_healthy_rows(simulated):
         EnvelopeDiagnoser(fs=FS).fit(X[:2], ["outer", "inner"], rpm=rpm[:2])
 
 
+def test_each_family_may_have_its_own_threshold(simulated):
+    X, labels, rpm = simulated
+    # An outer-race threshold no evidence reaches silences that family alone: its
+    # records are no longer "outer", every other verdict stands. Catches a dict that is
+    # ignored or applied to the wrong family.
+    deaf = EnvelopeDiagnoser(fs=FS, threshold_db={"outer": 90.0})
+    predicted = deaf.predict(X, rpm=rpm)
+    assert not (predicted == "outer").any()
+    np.testing.assert_array_equal(predicted[labels != "outer"], labels[labels != "outer"])
+    (why,) = deaf.explain(X[:1], rpm=rpm[:1])
+    assert why.threshold_db == {"outer": 90.0, "inner": 6.0, "ball": 6.0}
+    # Thresholds fitted on one diagnoser carry over to another as a dict (a healthy
+    # baseline recorded at another rate): the same scores, bit for bit.
+    fitted = EnvelopeDiagnoser(fs=FS, quantile=1.0, margin_db=3.0).fit(X, labels, rpm=rpm)
+    carried = EnvelopeDiagnoser(fs=FS, threshold_db=fitted.thresholds_)
+    np.testing.assert_array_equal(carried.decision_function(X, rpm=rpm),
+                                  fitted.decision_function(X, rpm=rpm))
+    # fit raises each family from its own floor: the outer race stays at its 30 dB,
+    # the others (floor 0) become the healthy rows' largest evidence plus 3 dB
+    healthy = labels == "healthy"
+    ev = envelope_evidence(X[healthy], FS, "6205", rpm[healthy])
+    refit = EnvelopeDiagnoser(fs=FS, threshold_db={"outer": 30.0, "inner": 0.0, "ball": 0.0},
+                              quantile=1.0, margin_db=3.0).fit(X, labels, rpm=rpm)
+    assert refit.thresholds_["outer"] == 30.0
+    for fault in ("inner", "ball"):
+        assert refit.thresholds_[fault] == pytest.approx(ev.evidence_db[fault].max() + 3.0)
+
+
 def test_works_without_fit_and_is_an_estimator():
     from sklearn.utils.validation import check_is_fitted
 
@@ -196,6 +224,8 @@ def test_a_fixed_band_is_used():
     ({"harmonics": 0}, None, ValueError, "harmonics must be an int >= 1"),
     ({"slip": 0.5}, None, ValueError, "slip must be in"),
     ({"bearing": 6205}, None, TypeError, "bearing must be"),
+    ({"threshold_db": {"cage": 5.0}}, None, ValueError, "threshold_db has unknown families"),
+    ({"threshold_db": {"outer": -1.0}}, None, ValueError, r"threshold_db\['outer'\]"),
 ])
 def test_bad_arguments_are_named(kwargs, rpm, error, match):
     x = np.random.default_rng(0).standard_normal((2, 12_000))

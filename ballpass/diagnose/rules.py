@@ -216,10 +216,13 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
         Half-width of the SES background median, Hz (default 10).
     speed_tolerance : float, optional
         Largest relative speed correction, in [0, 0.1] (default 0.04; 0 trusts rpm).
-    threshold_db : float, optional
-        Evidence a family needs to be named, dB (default :data:`DEFAULT_THRESHOLD_DB`).
+    threshold_db : float or dict of str to float, optional
+        Evidence a family needs to be named, dB (default :data:`DEFAULT_THRESHOLD_DB`);
+        a dict gives each family its own (keys ``"outer"``, ``"inner"``, ``"ball"``; a
+        family left out keeps the default), e.g. the ``thresholds_`` of a diagnoser
+        fitted on a healthy baseline recorded at another sampling rate.
     quantile, margin_db : float, optional
-        :meth:`fit`: a family's threshold becomes the larger of ``threshold_db`` and
+        :meth:`fit`: a family's threshold becomes the larger of its ``threshold_db`` and
         that quantile of its healthy evidence plus ``margin_db`` (defaults 0.99, 1 dB).
     softness_db : float, optional
         Temperature of :meth:`predict_proba`, dB (default 2.0).
@@ -342,6 +345,7 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
                     f"{0.5 * fs:g} Hz; rpm must be below "
                     f"{speed.max() * 0.5 * fs / top:.0f} rev/min, or use fewer harmonics")
         check_separate(self.separate, self.other_shafts)
+        self._floors()  # a bad threshold_db fails before any work
         return X, speed, fs
 
     # ------------------------------------------------------------ evidence
@@ -363,12 +367,23 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
         ftf = as_bearing(self.bearing).frequencies(1.0).ftf * ev.rpm / 60.0
         return ev, ev.duration_s * ftf < FTF_RESOLVED_CAGE_PERIODS
 
+    def _floors(self) -> dict:
+        """``threshold_db`` as one threshold per family, dB, validated."""
+        given = self.threshold_db
+        if not isinstance(given, dict):
+            return dict.fromkeys(FAULT_FAMILIES,
+                                 float(check_nonnegative("threshold_db", given)))
+        unknown = sorted(str(k) for k in set(given) - set(FAULT_FAMILIES))
+        if unknown:
+            raise ValueError(f"threshold_db has unknown families {unknown}; allowed: "
+                             f"{list(FAULT_FAMILIES)}")
+        return {f: float(check_nonnegative(f"threshold_db[{f!r}]",
+                                           given.get(f, DEFAULT_THRESHOLD_DB)))
+                for f in FAULT_FAMILIES}
+
     def _thresholds(self) -> dict:
         fitted = getattr(self, "thresholds_", None)
-        if fitted is not None:
-            return dict(fitted)
-        value = float(check_nonnegative("threshold_db", self.threshold_db))
-        return dict.fromkeys(FAULT_FAMILIES, value)
+        return dict(fitted) if fitted is not None else self._floors()
 
     def _decision(self, ev: EnvelopeEvidence) -> np.ndarray:
         thresholds = self._thresholds()
@@ -380,8 +395,8 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
     def fit(self, X, y=None, rpm=None):
         """Raise the per-family thresholds to what healthy signals of the machine read.
 
-        Each threshold becomes the larger of ``threshold_db`` and the ``quantile`` of
-        that family's evidence over the healthy rows plus ``margin_db``.
+        Each threshold becomes the larger of its ``threshold_db`` and the ``quantile``
+        of that family's evidence over the healthy rows plus ``margin_db``.
 
         Parameters
         ----------
@@ -401,6 +416,7 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
         if isinstance(q, bool) or not isinstance(q, numbers.Real) or not 0.0 < q <= 1.0:
             raise ValueError(f"quantile must be in (0, 1], got {self.quantile!r}")
         margin = float(check_nonnegative("margin_db", self.margin_db))
+        floors = self._floors()
         n = len(X) if hasattr(X, "__len__") else 0
         if y is None:
             healthy = np.ones(n, bool)
@@ -419,12 +435,11 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
         X = check_array(X, dtype=[np.float64, np.float32], ensure_min_features=2)
         speed = None if rpm is None else check_rpm(rpm, (len(X),))[healthy]
         ev, _ = self._evidence(X[healthy], speed)
-        floor = float(check_nonnegative("threshold_db", self.threshold_db))
         self.thresholds_ = {}
         for f in FAULT_FAMILIES:
             judged = ev.evidence_db[f][np.isfinite(ev.evidence_db[f])]
-            level = float(np.quantile(judged, q)) + margin if judged.size else floor
-            self.thresholds_[f] = max(floor, level)
+            level = float(np.quantile(judged, q)) + margin if judged.size else floors[f]
+            self.thresholds_[f] = max(floors[f], level)
         return self
 
     def decision_function(self, X, rpm=None):
