@@ -29,7 +29,8 @@ import numpy as np
 import pandas as pd
 from diagnose_loro import _md, real_records, records_parser, segments
 
-from ballpass.diagnose import EnvelopeDiagnoser, plot_explanation
+from ballpass.diagnose import EnvelopeDiagnoser, baseline_thresholds, plot_explanation
+from ballpass.diagnose.baseline import WINDOW_STEP, sliding_windows
 from ballpass.diagnose.rules import DEFAULT_THRESHOLD_DB
 from ballpass.signalio import atomic_write
 
@@ -38,8 +39,6 @@ EXAMPLE = "12k_FE_OR007@3_0 FE"
 #: Segment lengths, s (None: the whole record).
 LENGTHS = (1.0, 2.0, 2.5, 5.0, None)
 GOAL_LABELS = ("healthy", "inner", "outer")
-#: Healthy windows start every this fraction of their length (1/8 s for 1 s windows).
-WINDOW_STEP = 0.125
 #: Thresholds of the one-second trade table, dB (the default is 6).
 SWEEP_DB = (4.5, 5.0, 5.5, 5.8, 6.0, 6.5, 7.0)
 
@@ -50,17 +49,22 @@ def goal_records(records):
     return [r for r in records if r.group in ("DE", "FE")]
 
 
-def predict(records, seconds) -> pd.DataFrame:
-    """One row per segment of ``seconds`` (None: per record): truth and prediction."""
+def predict(records, seconds, thresholds: dict | None = None) -> pd.DataFrame:
+    """One row per segment of ``seconds`` (None: per record): truth and prediction.
+    ``thresholds``: per group, the diagnoser's ``threshold_db`` (default: its own)."""
     rows = []
+    length = "whole" if seconds is None else f"{seconds:g} s"
+    if thresholds is not None:
+        length += ", baseline"
     for rec in records:
         x = rec.x[None] if seconds is None else segments(rec.x, rec.fs, seconds)
         if not len(x):
             continue
-        diag = EnvelopeDiagnoser(bearing=rec.bearing, fs=rec.fs, rpm=rec.rpm)
+        own = {} if thresholds is None else {"threshold_db": thresholds[rec.group]}
+        diag = EnvelopeDiagnoser(bearing=rec.bearing, fs=rec.fs, rpm=rec.rpm, **own)
         for i, exp in enumerate(diag.explain(x)):
             strongest = max(exp.evidence_db, key=exp.evidence_db.get)
-            rows.append({"length": "whole" if seconds is None else f"{seconds:g} s",
+            rows.append({"length": length,
                          "record": rec.name, "group": rec.group, "segment": i,
                          "truth": rec.label, "prediction": exp.label,
                          "strongest": strongest,
@@ -88,22 +92,27 @@ def scores(table: pd.DataFrame) -> pd.DataFrame:
 
 def healthy_windows(records, seconds: float = 1.0) -> pd.DataFrame:
     """Every window of ``seconds`` of the healthy records, started every
-    :data:`WINDOW_STEP` of it: one row per window with its strongest family and that
-    family's evidence, dB. Consecutive segments give a healthy recording only a few
-    draws; a user's seconds start anywhere."""
+    :data:`~ballpass.diagnose.baseline.WINDOW_STEP` of it: one row per window with its
+    strongest family and that family's evidence, dB. Consecutive segments give a
+    healthy recording only a few draws; a user's seconds start anywhere."""
     rows = []
     for rec in records:
         if rec.label != "healthy":
             continue
         n = round(seconds * rec.fs)
-        starts = np.arange(0, len(rec.x) - n + 1, round(WINDOW_STEP * n))
         diag = EnvelopeDiagnoser(bearing=rec.bearing, fs=rec.fs, rpm=rec.rpm)
-        for start, exp in zip(starts, diag.explain(np.stack([rec.x[i:i + n] for i in starts])),
-                              strict=True):
+        for k, exp in enumerate(diag.explain(sliding_windows(rec.x, n))):
             strongest = max(exp.evidence_db, key=exp.evidence_db.get)
-            rows.append({"record": rec.name, "start_s": start / rec.fs,
+            rows.append({"record": rec.name, "start_s": k * round(WINDOW_STEP * n) / rec.fs,
                          "strongest": strongest, "evidence_db": exp.evidence_db[strongest]})
     return pd.DataFrame(rows)
+
+
+def group_baselines(records, seconds: float = 1.0) -> dict:
+    """Per group (sensor), the thresholds :func:`ballpass.diagnose.baseline_thresholds`
+    fits on that group's healthy recording, dB."""
+    return {rec.group: baseline_thresholds([(rec.x, rec.fs, rec.rpm)], rec.bearing, seconds)
+            for rec in records if rec.label == "healthy"}
 
 
 def threshold_trade(table: pd.DataFrame, windows: pd.DataFrame, length: str = "1 s",
@@ -196,7 +205,8 @@ def _windows_note(windows: pd.DataFrame) -> list[str]:
 
 
 def markdown(table: pd.DataFrame, summary: pd.DataFrame, trade: pd.DataFrame,
-             windows: pd.DataFrame, seconds: float, example: tuple | None = None) -> str:
+             windows: pd.DataFrame, baselines: dict, seconds: float,
+             example: tuple | None = None) -> str:
     letters = (table.assign(letter=table.prediction.str[0])
                .groupby(["record", "length"], sort=False).letter.agg("".join)
                .unstack("length"))
@@ -221,6 +231,14 @@ def markdown(table: pd.DataFrame, summary: pd.DataFrame, trade: pd.DataFrame,
         "![scores by segment length](diagnosis_length.png)",
         "",
         _md(shown),
+        "",
+        "`1 s, baseline`: the one-second segments diagnosed with the thresholds "
+        "`bp.diagnose.baseline_thresholds` fits on the healthy recording at the same "
+        "sensor (one-second windows every 1/8 s; 99th percentile plus 1 dB, never below "
+        "6 dB; `ballpass diagnose --baseline`): "
+        + "; ".join(f"{group} " + ", ".join(f"{f} {v:.1f}" for f, v in th.items())
+                    for group, th in baselines.items())
+        + " dB. Its healthy segments are then in-sample; its fault segments are not.",
         "",
         *([f"`{EXAMPLE}`, an outer-race fault out of the load zone, drawn by "
            "`bp.diagnose.plot_explanation` (the outer-race family of each): in its first "
@@ -254,15 +272,18 @@ def main(argv=None) -> None:
     args = records_parser(__doc__).parse_args(argv)
     t0 = time.perf_counter()
     records = goal_records(real_records(args.data))
-    table = pd.concat([predict(records, s) for s in LENGTHS], ignore_index=True)
+    baselines = group_baselines(records)
+    table = pd.concat([predict(records, s) for s in LENGTHS]
+                      + [predict(records, 1.0, baselines)], ignore_index=True)
     summary = scores(table)
     args.out.mkdir(parents=True, exist_ok=True)
     atomic_write(args.out / "diagnosis_length.csv", lambda tmp: table.to_csv(tmp, index=False))
-    figure(summary, args.out / "diagnosis_length.png")
+    figure(summary[~summary.length.str.endswith("baseline")], args.out / "diagnosis_length.png")
     example = example_figure(records, args.out / "diagnosis_length_example.png")
     windows = healthy_windows(records)
     trade = threshold_trade(table, windows)
-    text = markdown(table, summary, trade, windows, time.perf_counter() - t0, example)
+    text = markdown(table, summary, trade, windows, baselines, time.perf_counter() - t0,
+                    example)
     atomic_write(args.out / "diagnosis_length.md",
                  lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
     print(summary.round(3).to_string(index=False))

@@ -13,6 +13,7 @@ examples:
   ballpass diagnose cwru/ --out verdicts.csv            # every .mat file of a folder
   ballpass diagnose OuterRaceFault_vload_1.mat --segment 1
   ballpass diagnose 12k_DE_OR007@6_0.mat --plot figures/   # the SES behind each verdict
+  ballpass diagnose cwru/ --segment 1 --baseline Normal_0.mat  # thresholds from healthy
 
 Inputs are those of `ballpass features` (see `ballpass features --help` for the CWRU
 pitfalls: values in g, the normal baseline sampled at 48 kHz). Each signal gets a
@@ -21,7 +22,10 @@ diagnosed, P partly, N not diagnosable), the evidence of each fault family again
 threshold (dB), the lines that carried the decision, and what was corrected (a stated
 speed that the shaft harmonics contradict). Diagnose whole records: a 10 s record
 resolves fault lines that one-second segments cannot (docs/diagnosis.md); with --segment
-each record is also diagnosed whole, next to the tally of its segments' verdicts."""
+each record is also diagnosed whole, next to the tally of its segments' verdicts.
+With --baseline, the thresholds come from healthy recordings of the machine instead of
+from noise statistics alone: a healthy machine's own lines (the CWRU drive end carries
+one 0.85 % above BPFO) then no longer pass for a fault (docs/diagnosis_length.md)."""
 
 
 def add_parser(subparsers) -> argparse.ArgumentParser:
@@ -37,7 +41,18 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
         epilog=EXAMPLE,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
-    add_input_arguments(p)
+    add_input_arguments(p, band_default="each fault family's band, chosen by its own "
+                        "evidence")
+    p.add_argument(
+        "--baseline",
+        nargs="+",
+        default=None,
+        metavar="HEALTHY",
+        help="healthy recording(s) of the same machine and sensor (inputs as INPUT, read "
+        "with the same --fs/--channel/--rpm/--bearing): each fault family's threshold "
+        "becomes what their windows of the diagnosed length read (started every 1/8 of "
+        "it; 99th percentile + 1 dB, never below 6 dB)",
+    )
     p.add_argument(
         "--out",
         "-o",
@@ -57,12 +72,14 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     return p
 
 
-def verdict_rows(signals, band=None, progress: bool = True, segmented: bool = False):
+def verdict_rows(signals, band=None, progress: bool = True, segmented: bool = False,
+                 thresholds=None):
     """``(explanation, row)`` per signal: the diagnoser's :class:`Explanation` and a
     table row (source, truth when known, the bearing whose lines were read, verdict,
     grade, evidence and threshold per family in dB, the verdict's band, the speeds
     stated and used, notes). ``segmented``: the signals are ``--segment`` cuts (a
-    signal too short is then the option's fault, not the record's)."""
+    signal too short is then the option's fault, not the record's). ``thresholds``:
+    a :class:`BaselineThresholds` (``--baseline``), or None for the default."""
     import sys
 
     import numpy as np
@@ -93,7 +110,9 @@ def verdict_rows(signals, band=None, progress: bool = True, segmented: bool = Fa
     out = []
     for sig in tqdm(signals, desc="diagnose", unit="signal", disable=not progress,
                     leave=False, file=sys.stderr):
-        diag = EnvelopeDiagnoser(bearing=sig.bearing, fs=sig.fs, rpm=float(sig.rpm), band=band)
+        own = {} if thresholds is None else {"threshold_db": thresholds(sig)}
+        diag = EnvelopeDiagnoser(bearing=sig.bearing, fs=sig.fs, rpm=float(sig.rpm), band=band,
+                                 **own)
         why = diag.explain(np.asarray(sig.x, dtype=np.float64)[None])[0]
         lo, hi = why.band_hz.get(why.label, (np.nan, np.nan))
         row = {"source": sig.name, **sig.columns, "bearing": str(sig.bearing),
@@ -122,7 +141,13 @@ def run(args) -> int:
     segmented = args.segment is not None
     signals = segment_signals(records, args.segment) if segmented else records
     band = tuple(args.band) if args.band is not None else None
-    results = verdict_rows(signals, band, progress=show_progress(args), segmented=segmented)
+    thresholds = None
+    if args.baseline is not None:
+        healthy = load_records(argparse.Namespace(**{**vars(args), "inputs": args.baseline}))
+        thresholds = BaselineThresholds(healthy, band)
+        thresholds.check(records)
+    results = verdict_rows(signals, band, progress=show_progress(args), segmented=segmented,
+                           thresholds=thresholds)
     for why, row in results:
         truth = row.get("label")
         known = f" (label: {truth})" if isinstance(truth, str) and truth else ""
@@ -130,7 +155,7 @@ def run(args) -> int:
     rows = [row | {"scope": "segment" if segmented else "record"} for _, row in results]
     if segmented:
         rows += record_verdicts(records, results, args.segment, band,
-                                progress=show_progress(args))
+                                progress=show_progress(args), thresholds=thresholds)
     if out is not None:
         frame = pd.DataFrame(rows)
         write_table(frame, Path(out))
@@ -143,7 +168,7 @@ def run(args) -> int:
 
 
 def record_verdicts(records, segment_results, seconds: float, band,
-                    progress: bool = True) -> list[dict]:
+                    progress: bool = True, thresholds=None) -> list[dict]:
     """Each whole record diagnosed too, printed with the tally of its segments' verdicts
     (``segment_results`` in record order, as :func:`segment_signals` cuts them into
     ``seconds``): a 10 s record resolves lines that its one-second segments cannot
@@ -154,7 +179,8 @@ def record_verdicts(records, segment_results, seconds: float, band,
 
     rows = []
     verdicts = iter(row["prediction"] for _, row in segment_results)
-    for rec, (why, row) in zip(records, verdict_rows(records, band, progress), strict=True):
+    whole = verdict_rows(records, band, progress, thresholds=thresholds)
+    for rec, (why, row) in zip(records, whole, strict=True):
         n = len(rec.x) // check_segment(seconds, rec.fs, "--segment")
         mine = [next(verdicts) for _ in range(n)]
         tally = ", ".join(f"{n} {label}" for label, n in Counter(mine).most_common())
@@ -163,6 +189,51 @@ def record_verdicts(records, segment_results, seconds: float, band,
               f"{tally}")
         rows.append(row | {"scope": "record"})
     return rows
+
+
+class BaselineThresholds:
+    """``--baseline``: per bearing and signal length, the thresholds that
+    :func:`ballpass.diagnose.baseline_thresholds` fits on the healthy ``baseline``
+    signals of that bearing (windows as long as the signal diagnosed, or the whole
+    baseline if shorter), fitted once and printed. Call it with a signal to get its
+    ``threshold_db``."""
+
+    def __init__(self, baseline, band=None):
+        self.baseline = baseline
+        self.band = band
+        self._fitted = {}
+
+    def check(self, signals) -> None:
+        """A ValueError, before any work, if a signal's bearing has no baseline."""
+        from .features import is_known
+
+        have = {str(b.bearing) for b in self.baseline}
+        for sig in [*signals, *self.baseline]:
+            if not (is_known(sig.bearing) and is_known(sig.rpm)):
+                raise ValueError(f"{sig.name}: the input does not give the bearing or the "
+                                 "shaft speed; pass --bearing and --rpm (the baseline "
+                                 "needs both too)")
+        missing = sorted({str(s.bearing) for s in signals} - have)
+        if missing:
+            raise ValueError(f"--baseline holds no healthy recording of bearing "
+                             f"{', '.join(missing)} (it has {', '.join(sorted(have))}): "
+                             "give one of the same machine and sensor")
+
+    def __call__(self, sig) -> dict:
+        from ..diagnose import baseline_thresholds
+
+        mine = [b for b in self.baseline if str(b.bearing) == str(sig.bearing)]
+        # windows as long as the signal, at most as long as the longest baseline
+        seconds = min(len(sig.x) / sig.fs, max(len(b.x) / b.fs for b in mine))
+        key = (str(sig.bearing), round(seconds, 3))
+        if key not in self._fitted:
+            found = baseline_thresholds([(b.x, b.fs, float(b.rpm)) for b in mine],
+                                        sig.bearing, seconds, band=self.band)
+            self._fitted[key] = found
+            print(f"baseline ({', '.join(b.name for b in mine)}), {key[0]} on {seconds:.3g} s "
+                  "windows: thresholds "
+                  + ", ".join(f"{f} {v:.1f}" for f, v in found.items()) + " dB")
+        return self._fitted[key]
 
 
 def write_plots(signals, explanations, folder: Path, progress: bool = True) -> list[Path]:

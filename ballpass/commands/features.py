@@ -60,8 +60,10 @@ class Signal:
     columns: dict = field(default_factory=dict)
 
 
-def add_input_arguments(p: argparse.ArgumentParser) -> None:
-    """Options shared by ``features`` and ``plot``: inputs and what they lack."""
+def add_input_arguments(p: argparse.ArgumentParser,
+                        band_default: str = "chosen by the fast kurtogram") -> None:
+    """Options shared by ``features``, ``plot`` and ``diagnose``: inputs and what they
+    lack (``band_default`` says what ``--band`` defaults to)."""
     p.add_argument(
         "inputs",
         nargs="+",
@@ -93,7 +95,7 @@ def add_input_arguments(p: argparse.ArgumentParser) -> None:
         nargs=2,
         default=None,
         metavar=("LO", "HI"),
-        help="demodulation band, Hz (default: chosen by the fast kurtogram)",
+        help=f"demodulation band, Hz (default: {band_default})",
     )
     p.add_argument(
         "--segment",

@@ -6,6 +6,7 @@ EnvelopeDiagnoser     scikit-learn classifier from the squared-envelope-spectrum
 envelope_evidence     evidence of each fault family (BPFO, BPFI +- fr, 2xBSF +- FTF), dB
 Explanation           which lines carried a decision, and how far above the background
 plot_explanation      the squared envelope spectrum behind a decision, its lines marked
+baseline_thresholds   each family's threshold from healthy recordings of the machine
 
 Learned
 -------
@@ -49,6 +50,7 @@ _NAMES = {
     "write_report": "report",
     "plot_confusion": "report",
     "plot_explanation": "figure",
+    "baseline_thresholds": "baseline",
 }
 
 __all__ = sorted(_NAMES)
