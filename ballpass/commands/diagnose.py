@@ -204,16 +204,17 @@ class BaselineThresholds:
         self._fitted = {}
 
     def check(self, signals) -> None:
-        """A ValueError, before any work, if a signal's bearing has no baseline."""
+        """A ValueError, before any work, if a baseline lacks its bearing or speed or a
+        signal's bearing has no baseline (the signals' own gaps are
+        :func:`verdict_rows`' to report)."""
         from .features import is_known
 
-        have = {str(b.bearing) for b in self.baseline}
-        for sig in [*signals, *self.baseline]:
+        for sig in self.baseline:
             if not (is_known(sig.bearing) and is_known(sig.rpm)):
-                raise ValueError(f"{sig.name}: the input does not give the bearing or the "
-                                 "shaft speed; pass --bearing and --rpm (the baseline "
-                                 "needs both too)")
-        missing = sorted({str(s.bearing) for s in signals} - have)
+                raise ValueError(f"--baseline {sig.name}: the input does not give the "
+                                 "bearing or the shaft speed; pass --bearing and --rpm")
+        have = {str(b.bearing) for b in self.baseline}
+        missing = sorted({str(s.bearing) for s in signals if is_known(s.bearing)} - have)
         if missing:
             raise ValueError(f"--baseline holds no healthy recording of bearing "
                              f"{', '.join(missing)} (it has {', '.join(sorted(have))}): "
