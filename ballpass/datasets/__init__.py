@@ -15,6 +15,7 @@ Real recordings
 load_cwru     Case Western Reserve University bearing data (.mat) in the same shape
 load_cwru_mat one CWRU .mat recording
 load_mfpt     the MFPT (Society for Machinery Failure Prevention Technology) bearing data
+load_manifest recordings of any rig listed in a table (CSV or Parquet), one row each
 
 Importing this package loads numpy only; numba, pyarrow and pandas load on first use.
 """
@@ -41,6 +42,7 @@ __all__ = [
     "load_cwru",
     "load_cwru_mat",
     "load_mfpt",
+    "load_manifest",
 ]
 
 
@@ -49,6 +51,8 @@ def __getattr__(name: str):
         return getattr(importlib.import_module(".real", __name__), name)
     if name == "load_mfpt":
         return getattr(importlib.import_module(".mfpt", __name__), name)
+    if name == "load_manifest":
+        return getattr(importlib.import_module(".manifest", __name__), name)
     raise AttributeError(f"module 'ballpass.datasets' has no attribute {name!r}")
 
 
