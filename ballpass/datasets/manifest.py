@@ -56,7 +56,7 @@ from ..features._validation import check_fs
 from .recordings import Recording, RecordingMismatch, read_recording
 
 __all__ = ["LABELS", "REQUIRED", "OPTIONAL", "is_manifest", "read_manifest",
-           "manifest_records", "load_manifest"]
+           "manifest_records", "load_manifest", "read_recordings"]
 
 #: Columns every manifest has.
 REQUIRED = ("path", "fs", "rpm", "bearing")
@@ -362,3 +362,66 @@ def load_manifest(manifest, fs: float | None = None, segment_s: float = 1.0, *,
                              f"pass fs to resample them to one rate (e.g. fs={rates[0]:g})")
         fs = rates[0]
     return segment_records(records, fs, check_segment(segment_s, fs))
+
+
+def read_recordings(source, *, fs=None, column=None, variable=None, channel: str = "DE",
+                    require_label: bool = False) -> list[tuple[Path, Recording]]:
+    """``[(path, Recording)]`` of any source of real recordings, whole and at their rates.
+
+    The one place that tells the sources apart, for the ``ballpass`` commands that read
+    recordings (``features``, ``diagnose``, ``plot``, ``benchmark --real``):
+
+    * a manifest (:func:`is_manifest`): its rows (:func:`manifest_records`); ``fs``,
+      ``column`` and ``variable`` are then the table's, per row;
+    * a folder: its ``.mat`` recordings (CWRU or MFPT; unreadable ones skipped with a
+      warning);
+    * a file: its recording(s) (:func:`ballpass.datasets.recordings.read_recording`).
+
+    Parameters
+    ----------
+    source : str or os.PathLike
+    fs : float, optional
+        Sampling frequency of a file that does not state it (or of CWRU files), Hz.
+    column, variable : str, optional
+        Column of a plain CSV file, variable of a generic ``.mat`` file.
+    channel : {"DE", "FE", "BA"}, optional
+        CWRU accelerometer (default ``"DE"``).
+    require_label : bool, optional
+        A manifest must give every row's label.
+
+    Examples
+    --------
+    >>> import numpy as np, tempfile, pathlib
+    >>> from ballpass.datasets.manifest import read_recordings
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "rec.npy"
+    >>> np.save(path, np.zeros(1000))
+    >>> [(p.name, rec.fs) for p, rec in read_recordings(path, fs=12_000)]
+    [('rec.npy', 12000.0)]
+    """
+    from .real import read_all, read_mat
+    from .recordings import from_real
+
+    path = Path(source)
+    if is_manifest(path):
+        given = [f"--{name}" for name, value in (("fs", fs), ("column", column),
+                                                  ("variable", variable)) if value is not None]
+        if given:
+            warnings.warn(f"{path.name} is a manifest, which states {', '.join(given)} per "
+                          "row: ignored for it", stacklevel=2)
+        return manifest_records(path, require_label=require_label)
+    if path.is_dir():
+        if not any(path.glob("*.mat")):
+            from .recordings import RECORDING_SUFFIXES
+
+            files = sorted(p.name for p in path.iterdir()
+                           if p.suffix.lower() in RECORDING_SUFFIXES)
+            hint = (f"; give its signal files as inputs ({path / '*'}{Path(files[0]).suffix})"
+                    if files else "")
+            raise ValueError(f"{path} is a folder without manifest.json or .mat files: "
+                             f"neither a dataset nor a folder of recordings{hint}")
+        found = read_all(path, lambda p: from_real(read_mat(p, channel=channel, fs=fs)))
+        if not found:
+            raise ValueError(f"{path}: none of its .mat files could be read")
+        return found
+    return [(path, rec) for rec in read_recording(path, fs=fs, column=column,
+                                                  variable=variable, mat_channel=channel)]

@@ -47,6 +47,7 @@ Examples
 from __future__ import annotations
 
 import math
+import struct
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -56,7 +57,7 @@ import numpy as np
 from ..features._validation import check_fs
 from .real import _samples
 
-__all__ = ["RECORDING_SUFFIXES", "Recording", "RecordingMismatch", "read_recording"]
+__all__ = ["RECORDING_SUFFIXES", "Recording", "RecordingMismatch", "from_real", "read_recording"]
 
 #: File extensions :func:`read_recording` reads.
 RECORDING_SUFFIXES = (".npz", ".parquet", ".csv", ".npy", ".wav", ".mat")
@@ -171,7 +172,8 @@ def read_recording(path, *, fs=None, column=None, variable=None, channel=None,
     suffix = path.suffix.lower()
     if suffix not in RECORDING_SUFFIXES:
         raise ValueError(f"{path.name}: a recording must be a "
-                         f"{', '.join(RECORDING_SUFFIXES)} file")
+                         f"{', '.join(RECORDING_SUFFIXES[:-1])} or {RECORDING_SUFFIXES[-1]} "
+                         "file")
     if not path.is_file():
         raise FileNotFoundError(f"no such file: {path}")
     if fs is not None:
@@ -195,6 +197,13 @@ def read_recording(path, *, fs=None, column=None, variable=None, channel=None,
     return [Recording(_samples(row, f"{path.name}: channel {name}"), float(stated), path.stem,
                       name)
             for name, row in _pick(path, names, rows, channel)]
+
+
+def from_real(rec) -> Recording:
+    """A :class:`Recording` of a CWRU or MFPT record (its loader's columns in ``info``)."""
+    columns = rec.columns()
+    return Recording(rec.accel, float(rec.fs), rec.name, str(columns["channel"]),
+                     rpm=float(rec.rpm), bearing=rec.bearing, label=rec.label, info=columns)
 
 
 def _check_rate(path: Path, fs, stated: float) -> None:
@@ -315,7 +324,7 @@ def _read_wav(path: Path):
         with warnings.catch_warnings():  # unknown chunks (cue points, metadata) are fine
             warnings.simplefilter("ignore", scipy.io.wavfile.WavFileWarning)
             rate, data = scipy.io.wavfile.read(path)
-    except (ValueError, OSError, EOFError) as exc:
+    except (ValueError, OSError, EOFError, struct.error) as exc:
         reason = str(exc).splitlines()[0][:120] if str(exc) else type(exc).__name__
         raise ValueError(f"{path.name}: not a readable WAV file ({reason})") from None
     if data.dtype.kind in "iu":
@@ -343,10 +352,7 @@ def _read_mat(path: Path, fs, variable, channel, mat_channel: str) -> Recording:
             raise
         if isinstance(rec, MfptRecord):
             _check_rate(path, fs, rec.fs)  # its struct states the rate
-        columns = rec.columns()
-        return Recording(rec.accel, float(rec.fs), rec.name, str(columns["channel"]),
-                         rpm=float(rec.rpm), bearing=rec.bearing, label=rec.label,
-                         info=columns)
+        return from_real(rec)
     names = _mat_variables(path)
     if names is not None and variable not in names:
         held = ", ".join(names[:8]) + (", ..." if len(names) > 8 else "") or "nothing"
