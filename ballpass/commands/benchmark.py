@@ -7,9 +7,9 @@ from pathlib import Path
 
 EXAMPLE = """\
 examples:
-  ballpass generate examples/quick.toml --out out/quick --jobs 2
+  ballpass generate quick --out out/quick --jobs 2
   ballpass benchmark out/quick --out out/quick-bench --models envelope,logistic
-  ballpass generate examples/sim2real_cwru.toml --out out/sim2real --jobs 2
+  ballpass generate sim2real_cwru --out out/sim2real --jobs 2
   ballpass benchmark out/sim2real --real path/to/cwru --out out/sim2real-bench
   ballpass benchmark out/sim2real --real recordings.csv --out out/rig-bench  # a manifest
 

@@ -9,6 +9,7 @@ load          a dataset folder as ``(X float32 (n, L), meta DataFrame)``
 load_features the feature table written by ``generate(..., features=True)``
 regenerate    simulate one stored row again, bit for bit
 info          what a dataset folder holds (counts per label and condition, fs, size)
+example_grid  path of a grid shipped with the package (``example_grids`` lists them)
 
 Real recordings
 ---------------
@@ -26,6 +27,7 @@ import importlib
 
 # Eager imports (numpy only; pyarrow, pandas and numba load on first use). They also
 # make ``ballpass.datasets.generate`` the function rather than its module.
+from .examples import example_grid, example_grids
 from .generate import dry_run, generate, regenerate
 from .grid import Grid, read_grid
 from .store import info, load, load_features
@@ -39,6 +41,8 @@ __all__ = [
     "load_features",
     "regenerate",
     "info",
+    "example_grid",
+    "example_grids",
     "load_cwru",
     "load_cwru_mat",
     "load_mfpt",
