@@ -30,7 +30,15 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["waveform", "envelope_spectrum", "kurtogram", "signal_overview"]
+__all__ = [
+    "waveform",
+    "spectrum",
+    "psd",
+    "spectrogram",
+    "envelope_spectrum",
+    "kurtogram",
+    "signal_overview",
+]
 
 #: Marker style per fault line: (label, colour).
 LINE_STYLE = {
@@ -122,6 +130,174 @@ def waveform(x, fs_or_t, *, channels=None, unit="m/s²", ax=None):
     ax.grid(True, alpha=0.3)
     if len(data) > 1:
         ax.legend(loc="upper right", fontsize="small", ncols=min(len(data), 4))
+    return ax
+
+
+def _one_signal(x, fs) -> tuple[np.ndarray, float]:
+    """``x`` as a finite 1-D float array of at least 16 samples and ``fs`` > 0, or a
+    ValueError naming the argument."""
+    from .features._validation import check_fs
+
+    fs = check_fs(fs)
+    x = np.asarray(x, dtype=float)
+    if x.ndim != 1 or x.size < 16 or not np.all(np.isfinite(x)):
+        raise ValueError(
+            f"x must be one finite signal of at least 16 samples, got shape {x.shape}"
+            + ("" if np.all(np.isfinite(x)) else " with NaN or inf")
+        )
+    return x, fs
+
+
+def spectrum(x, fs: float, *, db: bool = False, fmax: float | None = None, unit="m/s²",
+             ax=None):
+    """Plot the one-sided amplitude spectrum of a signal (Hann window).
+
+    A sinusoid of amplitude ``A`` on a bin reads ``A`` (the window's coherent gain is
+    divided out), so the plot reads in the signal's unit.
+
+    Parameters
+    ----------
+    x : array_like, shape (n_samples,)
+        Signal, e.g. acceleration in m/s^2; at least 16 samples.
+    fs : float
+        Sampling frequency, Hz.
+    db : bool, optional
+        Plot ``20 log10(amplitude)`` (dB re 1 unit) instead of the amplitude.
+    fmax : float, optional
+        Upper frequency limit, Hz (default fs/2).
+    unit : str, optional
+        Unit of ``x`` for the y label.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on (default: a new figure).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ballpass.plot import spectrum
+    >>> t = np.arange(4800) / 4800.0
+    >>> ax = spectrum(2.0 * np.sin(2 * np.pi * 300 * t), 4800.0)
+    >>> f, a = ax.lines[0].get_data()
+    >>> float(f[np.argmax(a)]), round(float(a.max()), 3)
+    (300.0, 2.0)
+    """
+    x, fs = _one_signal(x, fs)
+    window = np.hanning(x.size + 1)[:-1]  # periodic Hann
+    amp = 2.0 * np.abs(np.fft.rfft((x - x.mean()) * window)) / window.sum()
+    freqs = np.fft.rfftfreq(x.size, 1.0 / fs)
+    ax = _axes(ax)
+    ax.plot(freqs, 20 * np.log10(np.maximum(amp, 1e-300)) if db else amp, lw=0.8, color="k")
+    ax.set_xlim(0, fs / 2 if fmax is None else fmax)
+    ax.set_xlabel("Frequency (Hz)")
+    ax.set_ylabel(f"Amplitude (dB re 1 {unit})" if db else f"Amplitude ({unit})")
+    ax.grid(True, alpha=0.3)
+    return ax
+
+
+def psd(x, fs: float, *, nperseg: int | None = None, unit="m/s²", ax=None):
+    """Plot the power spectral density of a signal (Welch, Hann, 50 % overlap), log scale.
+
+    Parameters
+    ----------
+    x : array_like, shape (n_samples,)
+        Signal, e.g. acceleration in m/s^2; at least 16 samples.
+    fs : float
+        Sampling frequency, Hz.
+    nperseg : int, optional
+        Segment length, samples (default: the power of two nearest ``fs / 8``, so the
+        resolution is about 8 Hz, capped at the signal length).
+    unit : str, optional
+        Unit of ``x`` for the y label (the PSD is in unit^2/Hz).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on (default: a new figure).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+
+    Examples
+    --------
+    The PSD of white noise of variance 1 integrates to 1:
+
+    >>> import numpy as np
+    >>> from ballpass.plot import psd
+    >>> ax = psd(np.random.default_rng(0).standard_normal(48_000), 12_000.0)
+    >>> f, p = ax.lines[0].get_data()
+    >>> round(float(np.sum(p) * (f[1] - f[0])), 1)
+    1.0
+    """
+    import scipy.signal
+
+    x, fs = _one_signal(x, fs)
+    if nperseg is None:
+        nperseg = min(x.size, 2 ** max(4, round(np.log2(fs / 8))))
+    elif isinstance(nperseg, bool) or not isinstance(nperseg, numbers.Integral) or not (
+        16 <= nperseg <= x.size
+    ):
+        raise ValueError(f"nperseg must be an int in [16, n_samples={x.size}], got {nperseg!r}")
+    freqs, density = scipy.signal.welch(x, fs, nperseg=int(nperseg))
+    ax = _axes(ax)
+    ax.semilogy(freqs, np.maximum(density, 1e-300), lw=0.8, color="k")
+    ax.set_xlim(0, fs / 2)
+    ax.set_xlabel("Frequency (Hz)")
+    ax.set_ylabel(f"PSD (({unit})²/Hz)")
+    ax.grid(True, which="both", alpha=0.3)
+    return ax
+
+
+def spectrogram(x, fs: float, *, nperseg: int = 256, fmax: float | None = None,
+                colorbar: bool = True, ax=None):
+    """Plot the spectrogram of a signal (Hann, 75 % overlap), in dB.
+
+    Parameters
+    ----------
+    x : array_like, shape (n_samples,)
+        Signal, e.g. acceleration in m/s^2; at least ``nperseg`` samples.
+    fs : float
+        Sampling frequency, Hz.
+    nperseg : int, optional
+        Segment length, samples (default 256: 21 ms at 12 kHz).
+    fmax : float, optional
+        Upper frequency limit, Hz (default fs/2).
+    colorbar : bool, optional
+        Add a colour bar (default True).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on (default: a new figure).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ballpass.plot import spectrogram
+    >>> t = np.arange(12_000) / 12_000.0
+    >>> ax = spectrogram(np.sin(2 * np.pi * (500 * t + 1000 * t**2)), 12_000.0)
+    >>> ax.get_ylabel()
+    'Frequency (Hz)'
+    """
+    import scipy.signal
+
+    x, fs = _one_signal(x, fs)
+    if isinstance(nperseg, bool) or not isinstance(nperseg, numbers.Integral) or not (
+        16 <= nperseg <= x.size
+    ):
+        raise ValueError(f"nperseg must be an int in [16, n_samples={x.size}], got {nperseg!r}")
+    freqs, times, power = scipy.signal.spectrogram(
+        x, fs, window="hann", nperseg=int(nperseg), noverlap=3 * int(nperseg) // 4
+    )
+    ax = _axes(ax)
+    mesh = ax.pcolormesh(times, freqs, 10 * np.log10(np.maximum(power, 1e-300)),
+                         shading="nearest", cmap="magma")
+    ax.set_ylim(0, fs / 2 if fmax is None else fmax)
+    ax.set_xlabel("Time (s)")
+    ax.set_ylabel("Frequency (Hz)")
+    if colorbar:
+        ax.figure.colorbar(mesh, ax=ax, label="PSD (dB re 1 unit²/Hz)", pad=0.01)
     return ax
 
 

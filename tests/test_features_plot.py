@@ -98,3 +98,30 @@ def test_overview_outlines_the_band_its_spectrum_used(tmp_path):
     assert f"best band {lo:.0f}–{hi:.0f} Hz" in k_ax.get_title()
     assert "dashed" not in k_ax.get_title()
     assert any("grey: no content" in text.get_text() for text in k_ax.texts)
+
+
+def test_spectrum_psd_and_spectrogram_read_what_the_signal_holds():
+    fs = 12_000.0
+    t = np.arange(12_000) / fs
+    # amplitude spectrum: a 1.5 unit sine at 1 kHz (on a bin) reads 1.5 at 1 kHz
+    f, a = plot.spectrum(1.5 * np.sin(2 * np.pi * 1000 * t), fs).lines[0].get_data()
+    assert f[np.argmax(a)] == 1000.0 and a.max() == pytest.approx(1.5, rel=1e-9)
+    # PSD: Parseval, the density of a sine of amplitude 2 plus unit white noise
+    # integrates to A^2/2 + 1 = 3 (Welch's estimate: within 5 % over 12 000 samples)
+    x = 2 * np.sin(2 * np.pi * 1000 * t) + np.random.default_rng(1).standard_normal(t.size)
+    f, p = plot.psd(x, fs).lines[0].get_data()
+    assert np.sum(p) * (f[1] - f[0]) == pytest.approx(3.0, rel=0.05)
+    # spectrogram: the ridge of a linear chirp 500 -> 2500 Hz follows 500 + 2000 t
+    ax = plot.spectrogram(np.sin(2 * np.pi * (500 * t + 1000 * t**2)), fs, colorbar=False)
+    mesh = ax.collections[0]
+    power_db = np.asarray(mesh.get_array())  # (n_freqs, n_times)
+    corners = mesh.get_coordinates()  # cell edges: times along axis 1, freqs along axis 0
+    times = 0.5 * (corners[0, 1:, 0] + corners[0, :-1, 0])
+    freqs = 0.5 * (corners[1:, 0, 1] + corners[:-1, 0, 1])
+    ridge = freqs[np.argmax(power_db, axis=0)]
+    # one bin (fs / 256 = 47 Hz) plus the chirp's sweep over a segment (2000 Hz/s x 21 ms)
+    assert np.all(np.abs(ridge - (500 + 2000 * times)) < 47 + 43)
+    with pytest.raises(ValueError, match="^x must be one finite signal"):
+        plot.spectrum(np.ones(5), fs)
+    with pytest.raises(ValueError, match="^nperseg"):
+        plot.psd(x, fs, nperseg=10**9)
