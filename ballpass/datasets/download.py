@@ -307,7 +307,21 @@ def fetch_mfpt(*, cache_dir=None, url: str = MFPT_URL, sha256: str | None = None
     ValueError
         The archive holds no ``.mat`` file, or a member whose name would leave the
         folder (absolute, or with ``..``); nothing of it is unpacked then.
+
+    Examples
+    --------
+    >>> from ballpass.datasets.download import fetch_mfpt
+    >>> fetch_mfpt(sha256="not a hash")
+    Traceback (most recent call last):
+    ...
+    ValueError: sha256 must be 64 hexadecimal digits, got 'not a hash'
+
+    With a network::
+
+        from ballpass.datasets import fetch_mfpt, load_mfpt
+        X, meta = load_mfpt(sorted(fetch_mfpt().rglob("*.mat")))
     """
+    sha256 = _check_sha256(sha256)
     archive = fetch(url, sha256=sha256, cache_dir=cache_dir, progress=progress,
                     timeout=timeout)
     target = archive.with_suffix("")
