@@ -148,6 +148,13 @@ def _one_signal(x, fs) -> tuple[np.ndarray, float]:
     return x, fs
 
 
+def _check_nperseg(nperseg, n_samples: int) -> None:
+    if isinstance(nperseg, bool) or not isinstance(nperseg, numbers.Integral) or not (
+        16 <= nperseg <= n_samples
+    ):
+        raise ValueError(f"nperseg must be an int in [16, n_samples={n_samples}], got {nperseg!r}")
+
+
 def spectrum(x, fs: float, *, db: bool = False, fmax: float | None = None, unit="m/s²",
              ax=None):
     """Plot the one-sided amplitude spectrum of a signal (Hann window).
@@ -234,10 +241,8 @@ def psd(x, fs: float, *, nperseg: int | None = None, unit="m/s²", ax=None):
     x, fs = _one_signal(x, fs)
     if nperseg is None:
         nperseg = min(x.size, 2 ** max(4, round(np.log2(fs / 8))))
-    elif isinstance(nperseg, bool) or not isinstance(nperseg, numbers.Integral) or not (
-        16 <= nperseg <= x.size
-    ):
-        raise ValueError(f"nperseg must be an int in [16, n_samples={x.size}], got {nperseg!r}")
+    else:
+        _check_nperseg(nperseg, x.size)
     freqs, density = scipy.signal.welch(x, fs, nperseg=int(nperseg))
     ax = _axes(ax)
     ax.semilogy(freqs, np.maximum(density, 1e-300), lw=0.8, color="k")
@@ -283,10 +288,7 @@ def spectrogram(x, fs: float, *, nperseg: int = 256, fmax: float | None = None,
     import scipy.signal
 
     x, fs = _one_signal(x, fs)
-    if isinstance(nperseg, bool) or not isinstance(nperseg, numbers.Integral) or not (
-        16 <= nperseg <= x.size
-    ):
-        raise ValueError(f"nperseg must be an int in [16, n_samples={x.size}], got {nperseg!r}")
+    _check_nperseg(nperseg, x.size)
     freqs, times, power = scipy.signal.spectrogram(
         x, fs, window="hann", nperseg=int(nperseg), noverlap=3 * int(nperseg) // 4
     )
