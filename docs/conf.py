@@ -76,7 +76,7 @@ html_theme_options = {"navigation_with_keys": False, "show_toc_level": 2,
 html_static_path = ["_static"]
 html_css_files = ["ballpass.css"]
 # the site's whole table of contents in the left sidebar of every page, top-level ones too
-html_sidebars = {"**": ["sidebar-nav-bs"]}
+html_sidebars = {"**": ["globaltoc.html"]}
 
 
 def _skip_sklearn_routing(app, what, name, obj, skip, options):
