@@ -38,6 +38,7 @@ def folder(tmp_path, ir021):
     np.save(tmp_path / "rec.npy", ir021)
     scipy.io.wavfile.write(tmp_path / "rec.wav", 12_000, ir021)
     scipy.io.savemat(tmp_path / "logger.mat", {"vib": ir021[:, None], "other": np.ones(3)})
+    scipy.io.savemat(tmp_path / "one.mat", {"inside2d_1200_1": ir021})
     (tmp_path / "cwru").mkdir()
     (tmp_path / "cwru" / "12k_DE_IR007_0.mat").write_bytes(
         (DATA / "cwru_mat" / "12k_DE_IR007_0.mat").read_bytes())
@@ -58,21 +59,24 @@ BASE = {"fs": 12_000, "rpm": 1797, "bearing": "6205", "label": "inner"}
 
 
 def test_every_format_reads_the_same_samples(folder, ir021):
-    """.csv (header or not), .npy, .wav and a generic .mat variable all give back the
-    stored samples, in order, cut into 1 s segments at the stated rate. Catches a
-    reader that drops the first row as a header, transposes, or rescales a float WAV."""
+    """.csv (header or not), .npy, .wav, a generic .mat variable and a .mat file's only
+    variable all give back the stored samples, in order, cut into 1 s segments at the
+    stated rate. Catches a reader that drops the first row as a header, transposes, or
+    rescales a float WAV."""
     rows = [{"path": "rec.csv"}, {"path": "bare.csv"}, {"path": "rec.npy"},
-            {"path": "rec.wav"}, {"path": "logger.mat", "variable": "vib"}]
+            {"path": "rec.wav"}, {"path": "logger.mat", "variable": "vib"},
+            {"path": "one.mat"}]
     X, meta = load_manifest(_manifest(folder, [BASE | r for r in rows]))
-    assert X.shape == (10, 12_000)  # 5 recordings x two 1 s segments of 2 s
-    for k in range(5):
+    assert X.shape == (12, 12_000)  # 6 recordings x two 1 s segments of 2 s
+    for k in range(6):
         # float32 in, float32 out (CSV written with 9 significant digits: exact)
         np.testing.assert_array_equal(X[2 * k], ir021[:12_000])
         np.testing.assert_array_equal(X[2 * k + 1], ir021[12_000:])
     assert meta["group"].tolist() == ["rec", "rec", "bare", "bare", "rec", "rec", "rec", "rec",
-                                      "logger", "logger"]
+                                      "logger", "logger", "one", "one"]
     assert set(meta["label"]) == {"inner"} and set(meta["rpm_source"]) == {"manifest"}
-    assert meta["manifest_row"].tolist() == [1, 1, 2, 2, 3, 3, 4, 4, 5, 5]
+    assert meta["manifest_row"].tolist() == [1, 1, 2, 2, 3, 3, 4, 4, 5, 5, 6, 6]
+    assert meta["channel"].tolist()[-1] == "inside2d_1200_1"
     assert meta["start_s"].tolist()[:2] == [0.0, 1.0]
 
 

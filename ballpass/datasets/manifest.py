@@ -13,7 +13,8 @@ column        needed    meaning
 ``bearing``   yes       catalogue name (``ballpass bearings`` lists them)
 ``label``     scoring   ``healthy``, ``inner``, ``outer`` or ``ball``: required where
                         results are scored (``require_label=True``), optional elsewhere
-``variable``  no        the signal's variable in a generic ``.mat`` file
+``variable``  no        the signal's variable in a generic ``.mat`` file (default:
+                        its only variable)
 ``column``    no        the signal's column in a plain ``.csv`` file
 ``channel``   no        the channel of a file that holds several (a name, an index from
                         0, or ``DE``/``FE``/``BA`` of a CWRU file)

@@ -19,8 +19,8 @@ Formats, chosen by the file extension:
     fractions of full scale; the sensor's calibration is not in the file.
 ``.mat``
     A CWRU Bearing Data Center or MFPT recording (told apart by content, see
-    :mod:`ballpass.datasets.real`), or any MATLAB (v5-v7) file with ``variable``
-    naming a signal vector (then ``fs`` must be given).
+    :mod:`ballpass.datasets.real`), or any MATLAB (v5-v7) file: its only variable, or
+    the one ``variable`` names (then ``fs`` must be given).
 
 Samples are taken in the units stored (m/s^2 for ballpass files, converted from g for
 CWRU and MFPT files, as stored otherwise): the envelope diagnoser's evidence is a ratio
@@ -131,7 +131,7 @@ def read_recording(path, *, fs=None, column=None, variable=None, channel=None,
     column : str, optional
         Column of a plain CSV file (a header name, or an index from 0).
     variable : str, optional
-        Variable of a generic ``.mat`` file.
+        Variable of a generic ``.mat`` file (default: its only variable).
     channel : str or int, optional
         The one channel to keep: a channel name of a signal file, an index (from 0) of
         a WAV channel or an ``.npy`` row, ``"DE"``/``"FE"``/``"BA"`` of a CWRU file.
@@ -340,20 +340,25 @@ def _read_mat(path: Path, fs, variable, channel, mat_channel: str) -> Recording:
     from .mfpt import MfptRecord
     from .real import _loadmat, _mat_variables, read_mat
 
+    names = _mat_variables(path)
     if variable is None:
         try:
             rec = read_mat(path, channel=str(channel or mat_channel).upper(), fs=fs)
         except ValueError as exc:
             if "neither a CWRU recording" in str(exc):
-                raise RecordingMismatch(f"{exc}; name the signal's variable (--variable / "
-                                        "variable)") from None
-            if " has no " in str(exc) and "channel" in str(exc):
+                if names is not None and len(names) == 1:
+                    variable = names[0]  # a logger's file with one signal: take it
+                else:
+                    raise RecordingMismatch(f"{exc}; name the signal's variable "
+                                            "(--variable / variable)") from None
+            elif " has no " in str(exc) and "channel" in str(exc):
                 raise RecordingMismatch(str(exc)) from None
-            raise
-        if isinstance(rec, MfptRecord):
-            _check_rate(path, fs, rec.fs)  # its struct states the rate
-        return from_real(rec)
-    names = _mat_variables(path)
+            else:
+                raise
+        else:
+            if isinstance(rec, MfptRecord):
+                _check_rate(path, fs, rec.fs)  # its struct states the rate
+            return from_real(rec)
     if names is not None and variable not in names:
         held = ", ".join(names[:8]) + (", ..." if len(names) > 8 else "") or "nothing"
         raise RecordingMismatch(f"{path.name}: no variable {variable!r}; it holds {held}")
