@@ -166,6 +166,8 @@ def test_a_missing_required_column_is_named(folder):
     ({"path": "rec.wav", "fs": 48_000}, r"row 1 \(rec.wav\): fs 48000 Hz given, but the file "
                                         "states 12000 Hz"),
     ({"path": "stereo.wav"}, r"row 1 \(stereo.wav\): holds 2 channels \(0, 1\); name one"),
+    ({"path": "cwru/12k_DE_IR007_0.mat", "channel": "FE"},
+     r"row 1 \(cwru/12k_DE_IR007_0.mat\): has no FE channel .* it has \['DE'\]"),
 ])
 def test_a_row_its_file_contradicts_is_an_error(folder, ir021, row, message):
     pd.DataFrame({"t": np.arange(10) / 12e3, "accel": np.ones(10)}).to_csv(
@@ -173,6 +175,27 @@ def test_a_row_its_file_contradicts_is_an_error(folder, ir021, row, message):
     scipy.io.wavfile.write(folder / "stereo.wav", 12_000, np.stack([ir021, ir021], axis=1))
     with pytest.raises(ValueError, match=message):
         load_manifest(_manifest(folder, [BASE | row]))
+
+
+def test_a_contradiction_is_found_before_any_recording_is_read(folder, monkeypatch):
+    """Every file's header is checked before the first recording is read: row 3's CSV
+    of two columns stops the load before rows 1-2 are read (row 1's NaN samples, which
+    only a full read sees, would warn first otherwise)."""
+    import ballpass.datasets.manifest as manifest
+
+    np.save(folder / "nan.npy", np.full(24_000, np.nan))
+    pd.DataFrame({"t": np.arange(10) / 12e3, "accel": np.ones(10)}).to_csv(
+        folder / "two.csv", index=False)
+    read, original = [], manifest.read_recording
+    monkeypatch.setattr(manifest, "read_recording",
+                        lambda path, **kw: read.append(path) or original(path, **kw))
+    path = _manifest(folder, [BASE | {"path": "nan.npy"}, BASE | {"path": "rec.wav"},
+                              BASE | {"path": "two.csv"}])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(ValueError, match=r"row 3 \(two.csv\): 2 numeric columns"):
+            load_manifest(path)
+    assert read == []
 
 
 def test_the_named_column_or_channel_is_the_one_read(folder, ir021):
