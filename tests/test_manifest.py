@@ -248,6 +248,20 @@ def test_plain_files_need_a_rate_and_mismatches_are_their_own_error(folder):
         read_recording(folder / "rec.wav", fs=11_025)
 
 
+def test_spreadsheet_csv_files_with_a_byte_order_mark(folder, ir021):
+    """Excel writes UTF-8 CSV files with a byte-order mark: the manifest's `path` column
+    and a headerless data file's first sample must survive it (a first row mistaken for
+    a header would drop a sample)."""
+    bare = folder / "excel.csv"
+    bare.write_text("\n".join(f"{v:.9g}" for v in ir021), encoding="utf-8-sig")
+    path = folder / "excel_manifest.csv"
+    pd.DataFrame([BASE | {"path": "excel.csv"}]).to_csv(path, index=False,
+                                                        encoding="utf-8-sig")
+    assert is_manifest(path)
+    X, _ = load_manifest(path)
+    np.testing.assert_array_equal(X[0], ir021[:12_000])
+
+
 def test_a_manifest_is_told_from_a_signal_table(folder):
     path = _manifest(folder, [BASE | {"path": "rec.npy"}])
     assert is_manifest(path)

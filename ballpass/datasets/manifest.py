@@ -87,7 +87,7 @@ def is_manifest(path) -> bool:
         return False
     try:
         if path.suffix.lower() == ".csv":
-            with open(path, newline="") as fh:
+            with open(path, newline="", encoding="utf-8-sig") as fh:
                 first = next((line for line in fh if not line.startswith("#")), "")
             return "path" in (name.strip().strip('"') for name in first.split(","))
         import pyarrow.parquet as pq
@@ -180,7 +180,8 @@ def read_manifest(manifest, *, require_label: bool = False):
             raise ValueError(f"{path.name}: a manifest must be a .csv or .parquet table")
         try:
             table = (pd.read_parquet(path) if path.suffix.lower() == ".parquet"
-                     else pd.read_csv(path, comment="#", dtype=str, skipinitialspace=True))
+                     else pd.read_csv(path, comment="#", dtype=str, skipinitialspace=True,
+                                      encoding="utf-8-sig"))
         except (ValueError, OSError) as exc:
             reason = str(exc).splitlines()[0][:120] if str(exc) else type(exc).__name__
             raise ValueError(f"{path.name}: not a readable manifest table ({reason})") from None

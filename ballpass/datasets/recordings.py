@@ -300,7 +300,7 @@ def _read_signal_file(path: Path, fs, channel) -> list[Recording]:
 def _is_signal_csv(path: Path) -> bool:
     """A CSV written by :mod:`ballpass.signalio`: ``# fs=`` comment or ``t_s`` column."""
     try:
-        with open(path, newline="") as fh:
+        with open(path, newline="", encoding="utf-8-sig") as fh:
             for line in fh:
                 if not line.startswith("#"):
                     return line.strip().split(",")[0] == "t_s"
@@ -317,7 +317,7 @@ def _read_plain_csv(path: Path, fs, column, nrows: int | None = None) -> Recordi
     import pandas as pd
 
     try:
-        with open(path, newline="") as fh:
+        with open(path, newline="", encoding="utf-8-sig") as fh:
             first = next((line for line in fh if line.strip() and not line.startswith("#")), "")
     except (OSError, UnicodeDecodeError) as exc:
         raise ValueError(f"{path.name}: not a readable text file ({exc})") from None
@@ -326,7 +326,8 @@ def _read_plain_csv(path: Path, fs, column, nrows: int | None = None) -> Recordi
     sep = next((d for d in _DELIMITERS if d in first), ",")
     header = None if all(_is_number(v) for v in first.strip().split(sep)) else 0
     try:
-        frame = pd.read_csv(path, sep=sep, header=header, comment="#", nrows=nrows)
+        frame = pd.read_csv(path, sep=sep, header=header, comment="#", nrows=nrows,
+                            encoding="utf-8-sig")
     except (ValueError, OSError) as exc:
         reason = str(exc).splitlines()[0][:120]
         raise ValueError(f"{path.name}: not a readable CSV file ({reason})") from None
