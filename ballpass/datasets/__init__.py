@@ -18,6 +18,9 @@ load_cwru_mat one CWRU .mat recording
 load_mfpt     the MFPT (Society for Machinery Failure Prevention Technology) bearing data
 load_manifest recordings of any rig listed in a table (CSV or Parquet), one row each
 smith_randall_grades  Smith & Randall's (2015) grade of each CWRU 12 kHz drive-end record
+fetch_cwru    download CWRU records by number into a local cache, checked
+fetch_mfpt    download and unpack the MFPT data sets into a local cache
+fetch         any file, once, into the cache (SHA-256 checked, atomic)
 
 Importing this package loads numpy only; numba, pyarrow and pandas load on first use.
 """
@@ -49,12 +52,17 @@ __all__ = [
     "load_mfpt",
     "load_manifest",
     "smith_randall_grades",
+    "fetch",
+    "fetch_cwru",
+    "fetch_mfpt",
 ]
 
 
 def __getattr__(name: str):
     if name in ("load_cwru", "load_cwru_mat"):  # scipy.io loads only for real recordings
         return getattr(importlib.import_module(".real", __name__), name)
+    if name in ("fetch", "fetch_cwru", "fetch_mfpt"):
+        return getattr(importlib.import_module(".download", __name__), name)
     if name == "load_mfpt":
         return getattr(importlib.import_module(".mfpt", __name__), name)
     if name == "load_manifest":
