@@ -14,6 +14,7 @@ Run::
 
     PYTHONPATH=. python benchmarks/smith_randall.py --cwru ../shared/data/cwru
     PYTHONPATH=. python benchmarks/smith_randall.py --cwru path/to/all/cwru --out docs
+    PYTHONPATH=. python benchmarks/smith_randall.py --fetch     # all 60, downloaded once
 
 Writes ``OUT/smith_randall.md`` (the tables), ``OUT/smith_randall.csv`` (one row per
 record found) and ``OUT/smith_randall.png`` (records named per grade and fault).
@@ -30,7 +31,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ballpass.datasets import smith_randall_grades
+from ballpass.datasets import fetch_cwru, smith_randall_grades
 from ballpass.datasets.real import load_cwru_mat, mat_paths
 from ballpass.diagnose import EnvelopeDiagnoser
 from ballpass.signalio import atomic_write
@@ -168,21 +169,29 @@ def report(table: pd.DataFrame, counts: pd.DataFrame, n_files: int, seconds: flo
 def main(argv=None) -> None:
     doc = __doc__.splitlines()
     parser = argparse.ArgumentParser(description=doc[0] + " " + doc[1])
-    parser.add_argument("--cwru", type=Path, nargs="+",
-                        default=[ROOT.parent / "shared" / "data" / "cwru"],
-                        help="folders or .mat files of CWRU recordings (any names)")
+    parser.add_argument("--cwru", type=Path, nargs="+", default=[],
+                        help="folders or .mat files of CWRU recordings (any names; default "
+                        "../shared/data/cwru unless --fetch)")
+    parser.add_argument("--fetch", action="store_true",
+                        help="download the graded records from the CWRU Bearing Data Center "
+                        "into ballpass's cache first (ballpass.datasets.fetch_cwru)")
     parser.add_argument("--out", type=Path, default=ROOT / "docs", help="output folder")
     args = parser.parse_args(argv)
     start = time.perf_counter()
     grades = smith_randall_grades()
-    found = find_records(args.cwru, grades)
+    sources = list(args.cwru)
+    if args.fetch:
+        sources += fetch_cwru(list(grades["record"]))
+    elif not sources:
+        sources = [ROOT.parent / "shared" / "data" / "cwru"]
+    found = find_records(sources, grades)
     print(f"{len(found)} of the {len(grades)} graded records found", file=sys.stderr)
     table = diagnose(found, grades)
     counts = summary(table, grades)
     args.out.mkdir(parents=True, exist_ok=True)
     table.to_csv(args.out / "smith_randall.csv", index=False)
     plot(counts, args.out / "smith_randall.png")
-    text = report(table, counts, len(mat_paths(args.cwru)), time.perf_counter() - start)
+    text = report(table, counts, len(mat_paths(sources)), time.perf_counter() - start)
     atomic_write(args.out / "smith_randall.md",
                  lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
     print(counts.to_string(index=False))

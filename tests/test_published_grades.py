@@ -58,3 +58,18 @@ def test_the_benchmark_finds_a_record_by_its_number_and_scores_it(tmp_path):
     assert counts.loc[("Y", "all"), ["graded", "found", "named"]].tolist() == [44, 1, 1]
     text = bench.report(table, bench.summary(table, grades), 2, 1.0)
     assert "named: 1 of the 1 found (44 graded" in text
+
+
+def test_the_benchmark_fetches_what_it_scores(tmp_path, monkeypatch):
+    """--fetch asks the data centre for exactly the 60 graded records, then scores what
+    came (here a stand-in download of record 105), writing the table and the figure."""
+    with np.load(ROOT / "tests" / "data" / "cwru_12k_DE_IR007_0_DE_crop.npz") as d:
+        scipy.io.savemat(tmp_path / "105.mat", {"X105_DE_time": d["accel_g"][:, None],
+                                                "X105RPM": float(d["rpm"])})
+    asked = []
+    monkeypatch.setattr(bench, "fetch_cwru",
+                        lambda records: asked.extend(records) or [tmp_path / "105.mat"])
+    bench.main(["--fetch", "--out", str(tmp_path / "out")])
+    assert sorted(asked) == sorted(smith_randall_grades()["record"])
+    assert (tmp_path / "out" / "smith_randall.png").stat().st_size > 0
+    assert "named: 1 of the 1 found" in (tmp_path / "out" / "smith_randall.md").read_text()
