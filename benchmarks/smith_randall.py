@@ -139,7 +139,9 @@ def report(table: pd.DataFrame, counts: pd.DataFrame, n_files: int, seconds: flo
         "`ballpass/datasets/data/README.md`). Below, the default `EnvelopeDiagnoser` "
         "(nothing fitted) on every graded record found among the files given: whole "
         "records, drive-end channel, the speed the file states (the nominal speed of "
-        "the load for the 0.028 in records, which store none).",
+        "the load for the 0.028 in records, which store none). `--fetch` downloads all 60 "
+        "records from the data centre first (`ballpass.datasets.fetch_cwru`) and scores "
+        "them all.",
         "",
         f"**Clearly diagnosable (`Y`) records named: {y['named']} of the {y['found']} "
         f"found ({y['graded']} graded; the published methods name all {y['graded']}).** "
