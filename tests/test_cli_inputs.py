@@ -43,8 +43,9 @@ def recordings(tmp_path):
 
 
 @pytest.mark.parametrize("extra", [["inner.csv", "--column", "de_g"], ["inner.npy"],
-                                   ["inner.wav"], ["inner.mat", "--variable", "acc"]],
-                         ids=["csv", "npy", "wav", "mat"])
+                                   ["inner.wav"], ["inner.mat", "--variable", "acc"],
+                                   ["inner.mat"]],
+                         ids=["csv", "npy", "wav", "mat", "mat-one-variable"])
 def test_diagnose_a_plain_recording(recordings, capsys, monkeypatch, extra):
     """A real inner-race recording in each plain format: the same verdict and evidence
     (the diagnoser sees the same samples whatever the container)."""
@@ -59,6 +60,7 @@ def test_diagnose_a_plain_recording(recordings, capsys, monkeypatch, extra):
 
 def test_plain_recordings_say_what_they_lack(recordings, capsys, monkeypatch):
     monkeypatch.chdir(recordings)
+    scipy.io.savemat("two.mat", {"acc": np.zeros(10), "tacho": np.ones(10)})
     cases = [
         (["inner.npy", "--rpm", "1797", "--bearing", "6205"],
          "inner.npy: a .npy file does not state its sampling rate; give fs (Hz)"),
@@ -66,7 +68,7 @@ def test_plain_recordings_say_what_they_lack(recordings, capsys, monkeypatch):
          "inner.wav: fs 48000 Hz given, but the file states 12000 Hz"),
         (["inner.csv", *PLAIN[:2]],
          "inner.csv: 2 numeric columns (time_s, de_g); name the signal's column (--column"),
-        (["inner.mat", *PLAIN], "inner.mat is neither a CWRU recording"),
+        (["two.mat", *PLAIN], "two.mat is neither a CWRU recording (variables "),
         (["inner.mat", "--variable", "x", *PLAIN], "inner.mat: no variable 'x'; it holds acc"),
         (["inner.npy", "--fs", "12000"], "inner: the input does not give the bearing "
                                          "(--bearing) or shaft speed (--rpm)"),

@@ -60,14 +60,15 @@ def test_generate_takes_a_bare_name_from_another_folder(tmp_path, monkeypatch, c
 
 def test_every_shipped_file_is_in_the_wheel():
     """setuptools puts in the wheel the package data that pyproject's globs name: every
-    file under ballpass/examples must match one (a new data folder without a glob would
-    be missing after `pip install .`)."""
+    file of the package that is not Python must match one (a new data file without a
+    glob would be missing after `pip install .`)."""
     config = tomllib.loads((ROOT / "pyproject.toml").read_text())
     globs = config["tool"]["setuptools"]["package-data"]["ballpass"]
     package = ROOT / "ballpass"
-    files = [p.relative_to(package).as_posix()
-             for p in (package / "examples").rglob("*") if p.is_file()]
-    assert any(f.endswith(".toml") for f in files) and any(f.endswith(".npz") for f in files)
+    files = [p.relative_to(package).as_posix() for p in package.rglob("*")
+             if p.is_file() and p.suffix != ".py" and "__pycache__" not in p.parts]
+    assert {"examples/quick.toml", "examples/data/cwru_12k_DE_IR007_0_DE_crop.npz",
+            "datasets/data/smith_randall_2015_de12k.csv"} <= set(files)
     missing = [f for f in files if not any(fnmatch.fnmatch(f, g) for g in globs)]
     assert not missing
 

@@ -38,6 +38,7 @@ def folder(tmp_path, ir021):
     np.save(tmp_path / "rec.npy", ir021)
     scipy.io.wavfile.write(tmp_path / "rec.wav", 12_000, ir021)
     scipy.io.savemat(tmp_path / "logger.mat", {"vib": ir021[:, None], "other": np.ones(3)})
+    scipy.io.savemat(tmp_path / "one.mat", {"inside2d_1200_1": ir021})
     (tmp_path / "cwru").mkdir()
     (tmp_path / "cwru" / "12k_DE_IR007_0.mat").write_bytes(
         (DATA / "cwru_mat" / "12k_DE_IR007_0.mat").read_bytes())
@@ -58,21 +59,24 @@ BASE = {"fs": 12_000, "rpm": 1797, "bearing": "6205", "label": "inner"}
 
 
 def test_every_format_reads_the_same_samples(folder, ir021):
-    """.csv (header or not), .npy, .wav and a generic .mat variable all give back the
-    stored samples, in order, cut into 1 s segments at the stated rate. Catches a
-    reader that drops the first row as a header, transposes, or rescales a float WAV."""
+    """.csv (header or not), .npy, .wav, a generic .mat variable and a .mat file's only
+    variable all give back the stored samples, in order, cut into 1 s segments at the
+    stated rate. Catches a reader that drops the first row as a header, transposes, or
+    rescales a float WAV."""
     rows = [{"path": "rec.csv"}, {"path": "bare.csv"}, {"path": "rec.npy"},
-            {"path": "rec.wav"}, {"path": "logger.mat", "variable": "vib"}]
+            {"path": "rec.wav"}, {"path": "logger.mat", "variable": "vib"},
+            {"path": "one.mat"}]
     X, meta = load_manifest(_manifest(folder, [BASE | r for r in rows]))
-    assert X.shape == (10, 12_000)  # 5 recordings x two 1 s segments of 2 s
-    for k in range(5):
+    assert X.shape == (12, 12_000)  # 6 recordings x two 1 s segments of 2 s
+    for k in range(6):
         # float32 in, float32 out (CSV written with 9 significant digits: exact)
         np.testing.assert_array_equal(X[2 * k], ir021[:12_000])
         np.testing.assert_array_equal(X[2 * k + 1], ir021[12_000:])
     assert meta["group"].tolist() == ["rec", "rec", "bare", "bare", "rec", "rec", "rec", "rec",
-                                      "logger", "logger"]
+                                      "logger", "logger", "one", "one"]
     assert set(meta["label"]) == {"inner"} and set(meta["rpm_source"]) == {"manifest"}
-    assert meta["manifest_row"].tolist() == [1, 1, 2, 2, 3, 3, 4, 4, 5, 5]
+    assert meta["manifest_row"].tolist() == [1, 1, 2, 2, 3, 3, 4, 4, 5, 5, 6, 6]
+    assert meta["channel"].tolist()[-1] == "inside2d_1200_1"
     assert meta["start_s"].tolist()[:2] == [0.0, 1.0]
 
 
@@ -162,6 +166,8 @@ def test_a_missing_required_column_is_named(folder):
     ({"path": "rec.wav", "fs": 48_000}, r"row 1 \(rec.wav\): fs 48000 Hz given, but the file "
                                         "states 12000 Hz"),
     ({"path": "stereo.wav"}, r"row 1 \(stereo.wav\): holds 2 channels \(0, 1\); name one"),
+    ({"path": "cwru/12k_DE_IR007_0.mat", "channel": "FE"},
+     r"row 1 \(cwru/12k_DE_IR007_0.mat\): has no FE channel .* it has \['DE'\]"),
 ])
 def test_a_row_its_file_contradicts_is_an_error(folder, ir021, row, message):
     pd.DataFrame({"t": np.arange(10) / 12e3, "accel": np.ones(10)}).to_csv(
@@ -169,6 +175,27 @@ def test_a_row_its_file_contradicts_is_an_error(folder, ir021, row, message):
     scipy.io.wavfile.write(folder / "stereo.wav", 12_000, np.stack([ir021, ir021], axis=1))
     with pytest.raises(ValueError, match=message):
         load_manifest(_manifest(folder, [BASE | row]))
+
+
+def test_a_contradiction_is_found_before_any_recording_is_read(folder, monkeypatch):
+    """Every file's header is checked before the first recording is read: row 3's CSV
+    of two columns stops the load before rows 1-2 are read (row 1's NaN samples, which
+    only a full read sees, would warn first otherwise)."""
+    import ballpass.datasets.manifest as manifest
+
+    np.save(folder / "nan.npy", np.full(24_000, np.nan))
+    pd.DataFrame({"t": np.arange(10) / 12e3, "accel": np.ones(10)}).to_csv(
+        folder / "two.csv", index=False)
+    read, original = [], manifest.read_recording
+    monkeypatch.setattr(manifest, "read_recording",
+                        lambda path, **kw: read.append(path) or original(path, **kw))
+    path = _manifest(folder, [BASE | {"path": "nan.npy"}, BASE | {"path": "rec.wav"},
+                              BASE | {"path": "two.csv"}])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(ValueError, match=r"row 3 \(two.csv\): 2 numeric columns"):
+            load_manifest(path)
+    assert read == []
 
 
 def test_the_named_column_or_channel_is_the_one_read(folder, ir021):
@@ -219,6 +246,20 @@ def test_plain_files_need_a_rate_and_mismatches_are_their_own_error(folder):
         read_recording(folder / "rec.npy")
     with pytest.raises(RecordingMismatch):
         read_recording(folder / "rec.wav", fs=11_025)
+
+
+def test_spreadsheet_csv_files_with_a_byte_order_mark(folder, ir021):
+    """Excel writes UTF-8 CSV files with a byte-order mark: the manifest's `path` column
+    and a headerless data file's first sample must survive it (a first row mistaken for
+    a header would drop a sample)."""
+    bare = folder / "excel.csv"
+    bare.write_text("\n".join(f"{v:.9g}" for v in ir021), encoding="utf-8-sig")
+    path = folder / "excel_manifest.csv"
+    pd.DataFrame([BASE | {"path": "excel.csv"}]).to_csv(path, index=False,
+                                                        encoding="utf-8-sig")
+    assert is_manifest(path)
+    X, _ = load_manifest(path)
+    np.testing.assert_array_equal(X[0], ir021[:12_000])
 
 
 def test_a_manifest_is_told_from_a_signal_table(folder):

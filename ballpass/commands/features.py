@@ -32,7 +32,8 @@ inputs:
                       comes from the file, else from the motor load (rpm_source says
                       which); the bearing defaults to the rig's (DE: 6205, FE: 6203).
                       MFPT: fs, rpm and load from the file's `bearing` struct; bearing
-                      MFPT-NICE. Any other .mat file: --variable NAME and --fs.
+                      MFPT-NICE. Any other .mat file: --fs, and --variable NAME
+                      unless the file holds one variable.
   MANIFEST            a .csv/.parquet table listing recordings of any rig, one row each:
                       path (relative to the table's folder), fs, rpm, bearing; optional
                       label, variable, column, channel, group, load (docs/datasets.md).
@@ -101,7 +102,8 @@ def add_input_arguments(p: argparse.ArgumentParser,
         "--variable",
         default=None,
         metavar="NAME",
-        help="the signal's variable in a .mat file that is not a CWRU or MFPT recording",
+        help="the signal's variable in a .mat file that is not a CWRU or MFPT recording "
+        "(default: its only variable)",
     )
     p.add_argument(
         "--bearing", default=None, help="bearing for the fault frequencies (default: from the file)"

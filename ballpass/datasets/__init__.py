@@ -17,6 +17,7 @@ load_cwru     Case Western Reserve University bearing data (.mat) in the same sh
 load_cwru_mat one CWRU .mat recording
 load_mfpt     the MFPT (Society for Machinery Failure Prevention Technology) bearing data
 load_manifest recordings of any rig listed in a table (CSV or Parquet), one row each
+smith_randall_grades  Smith & Randall's (2015) grade of each CWRU 12 kHz drive-end record
 fetch_cwru    download CWRU records by number into a local cache, checked
 fetch_mfpt    download and unpack the MFPT data sets into a local cache
 fetch         any file, once, into the cache (SHA-256 checked, atomic)
@@ -50,6 +51,7 @@ __all__ = [
     "load_cwru_mat",
     "load_mfpt",
     "load_manifest",
+    "smith_randall_grades",
     "fetch",
     "fetch_cwru",
     "fetch_mfpt",
@@ -65,6 +67,8 @@ def __getattr__(name: str):
         return getattr(importlib.import_module(".mfpt", __name__), name)
     if name == "load_manifest":
         return getattr(importlib.import_module(".manifest", __name__), name)
+    if name == "smith_randall_grades":
+        return getattr(importlib.import_module(".published", __name__), name)
     raise AttributeError(f"module 'ballpass.datasets' has no attribute {name!r}")
 
 

@@ -13,7 +13,8 @@ column        needed    meaning
 ``bearing``   yes       catalogue name (``ballpass bearings`` lists them)
 ``label``     scoring   ``healthy``, ``inner``, ``outer`` or ``ball``: required where
                         results are scored (``require_label=True``), optional elsewhere
-``variable``  no        the signal's variable in a generic ``.mat`` file
+``variable``  no        the signal's variable in a generic ``.mat`` file (default:
+                        its only variable)
 ``column``    no        the signal's column in a plain ``.csv`` file
 ``channel``   no        the channel of a file that holds several (a name, an index from
                         0, or ``DE``/``FE``/``BA`` of a CWRU file)
@@ -24,11 +25,13 @@ column        needed    meaning
 
 What the table states wins over what a file implies (a CWRU file's name); a
 sampling rate the file itself states (WAV header, signal file, MFPT struct) must agree.
-The table is checked whole before any file is read: a missing column, an empty or
+The table is checked whole before any file is opened: a missing column, an empty or
 invalid value, an unknown bearing or label is a ``ValueError`` naming the row (rows
-count from 1, the header not included). Then each file is read: a row whose ``column``,
-``variable`` or ``channel`` the file lacks, or whose ``fs`` it contradicts, is a
-``ValueError`` too (the table is wrong); a file that cannot be read at all (missing,
+count from 1, the header not included). Then every file's header is checked before any
+recording is read (:func:`ballpass.datasets.recordings.check_recording`): a row whose
+``column``, ``variable`` or ``channel`` the file lacks, or whose ``fs`` it contradicts,
+is a ``ValueError`` too (the table is wrong; ballpass and MFPT files, whose headers are
+not read apart, are checked when read). A file that cannot be read at all (missing,
 corrupt, NaN samples) is skipped with a warning naming the row and the reason, and the
 other rows go on.
 
@@ -53,7 +56,7 @@ from pathlib import Path
 
 from .._validation import check_segment
 from ..features._validation import check_fs
-from .recordings import Recording, RecordingMismatch, read_recording
+from .recordings import Recording, RecordingMismatch, check_recording, read_recording
 
 __all__ = ["LABELS", "REQUIRED", "OPTIONAL", "is_manifest", "read_manifest",
            "manifest_records", "load_manifest", "read_recordings"]
@@ -84,7 +87,7 @@ def is_manifest(path) -> bool:
         return False
     try:
         if path.suffix.lower() == ".csv":
-            with open(path, newline="") as fh:
+            with open(path, newline="", encoding="utf-8-sig") as fh:
                 first = next((line for line in fh if not line.startswith("#")), "")
             return "path" in (name.strip().strip('"') for name in first.split(","))
         import pyarrow.parquet as pq
@@ -177,7 +180,8 @@ def read_manifest(manifest, *, require_label: bool = False):
             raise ValueError(f"{path.name}: a manifest must be a .csv or .parquet table")
         try:
             table = (pd.read_parquet(path) if path.suffix.lower() == ".parquet"
-                     else pd.read_csv(path, comment="#", dtype=str, skipinitialspace=True))
+                     else pd.read_csv(path, comment="#", dtype=str, skipinitialspace=True,
+                                      encoding="utf-8-sig"))
         except (ValueError, OSError) as exc:
             reason = str(exc).splitlines()[0][:120] if str(exc) else type(exc).__name__
             raise ValueError(f"{path.name}: not a readable manifest table ({reason})") from None
@@ -219,19 +223,28 @@ def read_manifest(manifest, *, require_label: bool = False):
     return rows
 
 
+def _one_channel(row: dict, channels) -> None:
+    """A row must name one recording: a file of several channels needs ``channel``."""
+    if channels is not None and len(channels) > 1:
+        raise RecordingMismatch(f"{row['path'].name} holds {len(channels)} channels "
+                                f"({', '.join(channels)}); name one in the manifest's "
+                                "channel column")
+
+
+def _file(row: dict, read) -> list:
+    """``read`` (read_recording or check_recording) applied to a checked row's file."""
+    channel = row["channel"]
+    mat = row["path"].suffix.lower() == ".mat" and row["variable"] is None
+    return read(row["path"], fs=row["fs"], column=row["column"], variable=row["variable"],
+                channel=channel, mat_channel=(channel or "DE").upper() if mat else "DE")
+
+
 def _record(row: dict) -> Recording:
     """The one recording a checked manifest row names, with the row's statements."""
     from dataclasses import replace
 
-    channel = row["channel"]
-    mat = row["path"].suffix.lower() == ".mat" and row["variable"] is None
-    found = read_recording(row["path"], fs=row["fs"], column=row["column"],
-                           variable=row["variable"], channel=channel,
-                           mat_channel=(channel or "DE").upper() if mat else "DE")
-    if len(found) > 1:
-        raise RecordingMismatch(f"{row['path'].name} holds {len(found)} channels "
-                                f"({', '.join(r.channel for r in found)}); name one in the "
-                                "manifest's channel column")
+    found = _file(row, read_recording)
+    _one_channel(row, [r.channel for r in found])
     rec = found[0]
     stated = {"manifest_row": row["row"], "group": row["group"] or rec.name,
               "dataset": rec.info.get("dataset", "manifest")}
@@ -245,8 +258,9 @@ def _record(row: dict) -> Recording:
 def manifest_records(manifest, *, require_label: bool = False) -> list[tuple[Path, Recording]]:
     """``[(path, Recording)]`` for the rows of a manifest, whole and at their own rates.
 
-    The table is checked whole first (:func:`read_manifest`); then each row's file is
-    read. Its ``rpm``, ``bearing``, ``label`` (when given) and ``group`` are the row's.
+    The table is checked whole first (:func:`read_manifest`), then every row's file
+    header, then each row's file is read. Its ``rpm``, ``bearing``, ``label`` (when
+    given) and ``group`` are the row's.
 
     Parameters
     ----------
@@ -282,19 +296,30 @@ def manifest_records(manifest, *, require_label: bool = False) -> list[tuple[Pat
     (['a'], True)
     """
     rows = read_manifest(manifest, require_label=require_label)
-    out = []
-    for row in rows:
-        try:
-            out.append((row["path"], _record(row)))
-        except RecordingMismatch as exc:
-            raise ValueError(f"{row['where']}: {_reason(exc, row['path'])}") from None
-        except (ValueError, OSError) as exc:
-            warnings.warn(f"skipped {row['where']}: {_reason(exc, row['path'])}",
-                          stacklevel=2)
+    readable = [row for row in rows if _attempt(row, _check) is not None]  # headers first
+    out = [(row["path"], rec) for row in readable if (rec := _attempt(row, _record))]
     if not out:
         raise ValueError("no recording of the manifest could be read (see the warnings "
                          "above)")
     return out
+
+
+def _check(row: dict) -> bool:
+    """What a row's file header contradicts (:func:`check_recording`); True if none."""
+    _one_channel(row, _file(row, check_recording))
+    return True
+
+
+def _attempt(row: dict, step):
+    """``step(row)``; a contradiction is an error naming the row, an unreadable file a
+    warning naming it (and None)."""
+    try:
+        return step(row)
+    except RecordingMismatch as exc:
+        raise ValueError(f"{row['where']}: {_reason(exc, row['path'])}") from None
+    except (ValueError, OSError) as exc:
+        warnings.warn(f"skipped {row['where']}: {_reason(exc, row['path'])}", stacklevel=4)
+        return None
 
 
 def _reason(exc: BaseException, path: Path) -> str:

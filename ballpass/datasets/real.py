@@ -593,11 +593,15 @@ def read_mat(path, channel: str = "DE", fs: float | None = None):
 
         return load_mfpt_mat(path)
     if names is not None and not any(_VARIABLE.fullmatch(name) for name in names):
-        held = ", ".join(names[:5]) + (", ..." if len(names) > 5 else "") or "nothing"
-        raise ValueError(f"{path.name} is neither a CWRU recording (variables X<number>_DE_time, "
-                         f"_FE_time, _BA_time) nor an MFPT one (a struct `bearing`); it holds "
-                         f"{held}")
+        raise ValueError(not_cwru_nor_mfpt(path, names))
     return load_cwru_mat(path, channel=channel, fs=fs)
+
+
+def not_cwru_nor_mfpt(path: Path, names: list[str]) -> str:
+    """The message for a .mat file whose variables are neither CWRU's nor MFPT's."""
+    held = ", ".join(names[:5]) + (", ..." if len(names) > 5 else "") or "nothing"
+    return (f"{path.name} is neither a CWRU recording (variables X<number>_DE_time, "
+            f"_FE_time, _BA_time) nor an MFPT one (a struct `bearing`); it holds {held}")
 
 
 def load_real(paths, fs: float, segment_s: float = 1.0, channel: str = "DE"):

@@ -19,8 +19,8 @@ Formats, chosen by the file extension:
     fractions of full scale; the sensor's calibration is not in the file.
 ``.mat``
     A CWRU Bearing Data Center or MFPT recording (told apart by content, see
-    :mod:`ballpass.datasets.real`), or any MATLAB (v5-v7) file with ``variable``
-    naming a signal vector (then ``fs`` must be given).
+    :mod:`ballpass.datasets.real`), or any MATLAB (v5-v7) file: its only variable, or
+    the one ``variable`` names (then ``fs`` must be given).
 
 Samples are taken in the units stored (m/s^2 for ballpass files, converted from g for
 CWRU and MFPT files, as stored otherwise): the envelope diagnoser's evidence is a ratio
@@ -57,11 +57,14 @@ import numpy as np
 from ..features._validation import check_fs
 from .real import _samples
 
-__all__ = ["RECORDING_SUFFIXES", "Recording", "RecordingMismatch", "from_real", "read_recording"]
+__all__ = ["RECORDING_SUFFIXES", "Recording", "RecordingMismatch", "check_recording",
+           "from_real", "read_recording"]
 
 #: File extensions :func:`read_recording` reads.
 RECORDING_SUFFIXES = (".npz", ".parquet", ".csv", ".npy", ".wav", ".mat")
 _DELIMITERS = (",", ";", "\t")
+#: Rows of a plain CSV file that :func:`check_recording` reads.
+_PROBE_ROWS = 16
 
 
 class RecordingMismatch(ValueError):
@@ -131,7 +134,7 @@ def read_recording(path, *, fs=None, column=None, variable=None, channel=None,
     column : str, optional
         Column of a plain CSV file (a header name, or an index from 0).
     variable : str, optional
-        Variable of a generic ``.mat`` file.
+        Variable of a generic ``.mat`` file (default: its only variable).
     channel : str or int, optional
         The one channel to keep: a channel name of a signal file, an index (from 0) of
         a WAV channel or an ``.npy`` row, ``"DE"``/``"FE"``/``"BA"`` of a CWRU file.
@@ -168,7 +171,52 @@ def read_recording(path, *, fs=None, column=None, variable=None, channel=None,
         ...
     ValueError: rec.npy: a .npy file does not state its sampling rate; give fs (Hz)
     """
-    path = Path(path)
+    return _recordings(Path(path), fs, column, variable, channel, mat_channel, probe=False)
+
+
+def check_recording(path, *, fs=None, column=None, variable=None, channel=None,
+                    mat_channel: str = "DE") -> list[str] | None:
+    """What :func:`read_recording` would refuse in a file, found from its header only.
+
+    Reads what a file says about itself without its samples where that is cheap
+    (the columns and first rows of a plain CSV, the shape of a ``.npy`` array, a WAV
+    header, the variable names of a ``.mat`` file), so that a table of many recordings
+    can be checked whole before any of them is read. Signal files written by ballpass
+    and MFPT files are left to :func:`read_recording`.
+
+    Parameters
+    ----------
+    path, fs, column, variable, channel, mat_channel
+        As for :func:`read_recording`.
+
+    Returns
+    -------
+    list of str or None
+        The names of the channels the file would give, when the header tells them.
+
+    Raises
+    ------
+    RecordingMismatch, ValueError, FileNotFoundError
+        As :func:`read_recording` would for the same file.
+
+    Examples
+    --------
+    >>> import numpy as np, tempfile, pathlib
+    >>> from ballpass.datasets.recordings import check_recording
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "rec.npy"
+    >>> np.save(path, np.ones((3, 50)))
+    >>> check_recording(path, fs=1000.0)
+    ['0', '1', '2']
+    >>> check_recording(path, fs=1000.0, channel=5)
+    Traceback (most recent call last):
+        ...
+    ballpass.datasets.recordings.RecordingMismatch: rec.npy: no channel '5'; it has 0, 1, 2
+    """
+    return _recordings(Path(path), fs, column, variable, channel, mat_channel, probe=True)
+
+
+def _recordings(path: Path, fs, column, variable, channel, mat_channel: str, probe: bool):
+    """:func:`read_recording` (``probe`` False) or :func:`check_recording` (True)."""
     suffix = path.suffix.lower()
     if suffix not in RECORDING_SUFFIXES:
         raise ValueError(f"{path.name}: a recording must be a "
@@ -179,13 +227,20 @@ def read_recording(path, *, fs=None, column=None, variable=None, channel=None,
     if fs is not None:
         fs = check_fs(fs)
     if suffix == ".mat":
-        return [_read_mat(path, fs, variable, channel, mat_channel)]
+        found = _read_mat(path, fs, variable, channel, mat_channel, probe)
+        return found if probe else [found]
     if suffix == ".csv" and not _is_signal_csv(path):
-        return [_read_plain_csv(path, fs, column)]
+        found = _read_plain_csv(path, fs, column, nrows=_PROBE_ROWS if probe else None)
+        return [found.channel] if probe else [found]
     if suffix == ".npy":
-        names, rows, stated = _read_npy(path)
+        names, rows, stated = _read_npy(path, mmap=probe)
     elif suffix == ".wav":
-        names, rows, stated = _read_wav(path)
+        header = _read_wav(path, mmap=probe)
+        if header is None:  # a WAV that cannot be mapped: read_recording decides
+            return None
+        names, rows, stated = header
+    elif probe:
+        return None  # ballpass signal files: read_recording decides
     else:
         return _read_signal_file(path, fs, channel)
     if stated is None:
@@ -194,9 +249,12 @@ def read_recording(path, *, fs=None, column=None, variable=None, channel=None,
                              "rate; give fs (Hz)")
         stated = fs
     _check_rate(path, fs, stated)
+    picked = _pick(path, names, rows, channel)
+    if probe:
+        return [name for name, _ in picked]
     return [Recording(_samples(row, f"{path.name}: channel {name}"), float(stated), path.stem,
                       name)
-            for name, row in _pick(path, names, rows, channel)]
+            for name, row in picked]
 
 
 def from_real(rec) -> Recording:
@@ -242,7 +300,7 @@ def _read_signal_file(path: Path, fs, channel) -> list[Recording]:
 def _is_signal_csv(path: Path) -> bool:
     """A CSV written by :mod:`ballpass.signalio`: ``# fs=`` comment or ``t_s`` column."""
     try:
-        with open(path, newline="") as fh:
+        with open(path, newline="", encoding="utf-8-sig") as fh:
             for line in fh:
                 if not line.startswith("#"):
                     return line.strip().split(",")[0] == "t_s"
@@ -253,12 +311,13 @@ def _is_signal_csv(path: Path) -> bool:
     return False
 
 
-def _read_plain_csv(path: Path, fs, column) -> Recording:
-    """One numeric column of a plain CSV file (see :func:`read_recording`)."""
+def _read_plain_csv(path: Path, fs, column, nrows: int | None = None) -> Recording:
+    """One numeric column of a plain CSV file (see :func:`read_recording`); its first
+    ``nrows`` rows only when given."""
     import pandas as pd
 
     try:
-        with open(path, newline="") as fh:
+        with open(path, newline="", encoding="utf-8-sig") as fh:
             first = next((line for line in fh if line.strip() and not line.startswith("#")), "")
     except (OSError, UnicodeDecodeError) as exc:
         raise ValueError(f"{path.name}: not a readable text file ({exc})") from None
@@ -267,7 +326,8 @@ def _read_plain_csv(path: Path, fs, column) -> Recording:
     sep = next((d for d in _DELIMITERS if d in first), ",")
     header = None if all(_is_number(v) for v in first.strip().split(sep)) else 0
     try:
-        frame = pd.read_csv(path, sep=sep, header=header, comment="#")
+        frame = pd.read_csv(path, sep=sep, header=header, comment="#", nrows=nrows,
+                            encoding="utf-8-sig")
     except (ValueError, OSError) as exc:
         reason = str(exc).splitlines()[0][:120]
         raise ValueError(f"{path.name}: not a readable CSV file ({reason})") from None
@@ -301,9 +361,11 @@ def _is_number(text: str) -> bool:
     return True
 
 
-def _read_npy(path: Path):
+def _read_npy(path: Path, mmap: bool = False):
+    """Channel names, rows and stated rate (None) of a .npy file; ``mmap``: the array
+    memory-mapped, its samples not read."""
     try:
-        arr = np.load(path, allow_pickle=False)
+        arr = np.load(path, allow_pickle=False, mmap_mode="r" if mmap else None)
     except (ValueError, OSError, EOFError) as exc:
         reason = str(exc).splitlines()[0][:120] if str(exc) else type(exc).__name__
         raise ValueError(f"{path.name}: not a readable .npy file ({reason})") from None
@@ -317,17 +379,21 @@ def _read_npy(path: Path):
     return [str(i) for i in range(len(arr))], arr, None
 
 
-def _read_wav(path: Path):
+def _read_wav(path: Path, mmap: bool = False):
+    """Channel names, rows and rate of a WAV file; ``mmap``: the samples memory-mapped
+    and not scaled (None when the format cannot be mapped, as 24-bit PCM)."""
     import scipy.io.wavfile
 
     try:
         with warnings.catch_warnings():  # unknown chunks (cue points, metadata) are fine
             warnings.simplefilter("ignore", scipy.io.wavfile.WavFileWarning)
-            rate, data = scipy.io.wavfile.read(path)
+            rate, data = scipy.io.wavfile.read(path, mmap=mmap)
     except (ValueError, OSError, EOFError, struct.error) as exc:
+        if mmap and "mmap" in str(exc):
+            return None
         reason = str(exc).splitlines()[0][:120] if str(exc) else type(exc).__name__
         raise ValueError(f"{path.name}: not a readable WAV file ({reason})") from None
-    if data.dtype.kind in "iu":
+    if data.dtype.kind in "iu" and not mmap:
         info = np.iinfo(data.dtype)
         mid = (int(info.max) + int(info.min) + 1) / 2.0  # 8-bit WAV is unsigned, centred on 128
         data = (data.astype(np.float64) - mid) / (int(info.max) + 1 - mid)
@@ -335,25 +401,33 @@ def _read_wav(path: Path):
     return [str(i) for i in range(len(rows))], rows, float(rate)
 
 
-def _read_mat(path: Path, fs, variable, channel, mat_channel: str) -> Recording:
-    """A CWRU or MFPT recording, or the named ``variable`` of any .mat file."""
+def _read_mat(path: Path, fs, variable, channel, mat_channel: str, probe: bool = False):
+    """A CWRU or MFPT recording, or the named ``variable`` of any .mat file; ``probe``:
+    only what the variable names tell (see :func:`check_recording`)."""
     from .mfpt import MfptRecord
     from .real import _loadmat, _mat_variables, read_mat
 
+    names = _mat_variables(path)
+    if probe:
+        return _probe_mat(path, names, fs, variable, str(channel or mat_channel).upper())
     if variable is None:
         try:
             rec = read_mat(path, channel=str(channel or mat_channel).upper(), fs=fs)
         except ValueError as exc:
             if "neither a CWRU recording" in str(exc):
-                raise RecordingMismatch(f"{exc}; name the signal's variable (--variable / "
-                                        "variable)") from None
-            if " has no " in str(exc) and "channel" in str(exc):
+                if names is not None and len(names) == 1:
+                    variable = names[0]  # a logger's file with one signal: take it
+                else:
+                    raise RecordingMismatch(f"{exc}; name the signal's variable "
+                                            "(--variable / variable)") from None
+            elif " has no " in str(exc) and "channel" in str(exc):
                 raise RecordingMismatch(str(exc)) from None
-            raise
-        if isinstance(rec, MfptRecord):
-            _check_rate(path, fs, rec.fs)  # its struct states the rate
-        return from_real(rec)
-    names = _mat_variables(path)
+            else:
+                raise
+        else:
+            if isinstance(rec, MfptRecord):
+                _check_rate(path, fs, rec.fs)  # its struct states the rate
+            return from_real(rec)
     if names is not None and variable not in names:
         held = ", ".join(names[:8]) + (", ..." if len(names) > 8 else "") or "nothing"
         raise RecordingMismatch(f"{path.name}: no variable {variable!r}; it holds {held}")
@@ -365,3 +439,29 @@ def _read_mat(path: Path, fs, variable, channel, mat_channel: str) -> Recording:
                          "rate; give fs (Hz)")
     return Recording(_samples(data[variable], f"{path.name}: {variable}"), fs, path.stem,
                      str(variable))
+
+
+def _probe_mat(path: Path, names, fs, variable, channel: str) -> list[str] | None:
+    """:func:`check_recording` of a .mat file from its variable names."""
+    from .real import _VARIABLE, not_cwru_nor_mfpt
+
+    if names is None:
+        raise ValueError(f"{path.name}: not a readable MATLAB .mat file")
+    if variable is None:
+        cwru = {m[2] for name in names if (m := _VARIABLE.fullmatch(name))}
+        if cwru and channel not in cwru:
+            raise RecordingMismatch(f"{path.name} has no {channel} channel (variables "
+                                    f"X<number>_{channel}_time); it has {sorted(cwru)}")
+        if cwru or "bearing" in names:
+            return [channel] if cwru else None
+        if len(names) != 1:
+            raise RecordingMismatch(f"{not_cwru_nor_mfpt(path, names)}; name the signal's "
+                                    "variable (--variable / variable)")
+        variable = names[0]
+    if variable not in names:
+        held = ", ".join(names[:8]) + (", ..." if len(names) > 8 else "") or "nothing"
+        raise RecordingMismatch(f"{path.name}: no variable {variable!r}; it holds {held}")
+    if fs is None:
+        raise ValueError(f"{path.name}: a generic .mat variable does not state its sampling "
+                         "rate; give fs (Hz)")
+    return [str(variable)]
