@@ -165,3 +165,45 @@ def test_snr_is_relative_to_the_rms_of_a_signal_with_a_mean(slope_db_oct):
                      snr_db=6.0, noise_slope_db_oct=slope_db_oct)
     noise = add_noise(scene, clean) - clean
     assert np.sqrt(np.mean(noise**2)) == pytest.approx(np.sqrt(1.5) * 10 ** (-6 / 20), rel=0.02)
+
+
+@pytest.mark.parametrize("changes", [
+    {"fault": bp.Fault("outer", width_mm=1.0)},
+    {"fault": bp.Fault("inner", width_mm=1.0, edge="blunt")},
+    {"fault": bp.Fault("ball", width_mm=1.0)},
+    {"waviness": bp.Waviness("outer", (3, 10), (0.5, 0.2))},
+    {"waviness": bp.Waviness("inner", (3, 10), (0.5, 0.2))},
+    {"waviness": bp.Waviness("ball", (3, 10), (0.5, 0.2))},
+], ids=["outer", "inner-blunt", "ball", "wavy-outer", "wavy-inner", "wavy-ball"])
+def test_kinematic_rates_are_the_derivatives_of_the_angles_and_depths(changes):
+    """The contact damping is fed the rate of each element's defect depth, and the
+    cage speed drives the ball-spin and housing terms: each must be the time derivative
+    of the depth and angle the kernel computes (central difference, h = 10 ns), during
+    a speed ramp with 2 % slip, at 20 instants where some depth is changing (on a ramp
+    or a wavy race). The fastest change, a 0.2 mm ramp crossed in ~50 us, leaves
+    (pi h / 50 us)^2 = 4e-7 of truncation (measured <= 2e-8): rtol 1e-6. A rate of the
+    wrong sign (inner race: cage minus shaft speed) or missing a factor is off by O(1)."""
+    from ballpass.simulate import _kernels as K
+    from ballpass.simulate.sr5 import build_model
+
+    sc = bp.Scene("6205", rpm=(1700.0, 1900.0), duration_s=0.2, fs=FS, resonance_hz=3000.0,
+                  slip=0.02, **changes)
+    bm = build_model(sc)
+    z = sc.bearing.n_elements
+    kin = K.kinematics_scratch(z)
+
+    def at(t):
+        cage_rate = K.element_angles(t, bm.p, bm.walk, kin)
+        K.fault_depths(t, bm.p, bm.faults, kin, cage_rate, True)
+        return (cage_rate, kin[K.K_PSI, 0], kin[K.K_DEPTH, :z].copy(),
+                kin[K.K_DDEPTH, :z].copy())
+
+    changing = [t for t in np.linspace(0.001, 0.199, 4000) if np.any(at(t)[3] != 0.0)]
+    assert len(changing) > 40
+    h = 1e-8
+    for t in np.random.default_rng(0).choice(changing, 20, replace=False):
+        cage_rate, _, _, depth_rate = at(t)
+        (_, psi_lo, depth_lo, _), (_, psi_hi, depth_hi, _) = at(t - h), at(t + h)
+        assert cage_rate == pytest.approx((psi_hi - psi_lo) / (2 * h), rel=1e-6)
+        np.testing.assert_allclose(depth_rate, (depth_hi - depth_lo) / (2 * h), rtol=0,
+                                   atol=1e-6 * np.max(np.abs(depth_rate)))
