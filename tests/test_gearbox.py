@@ -413,3 +413,17 @@ def test_mesh_damper_sees_the_rate_of_the_deflection_the_spring_sees(preset):
         deflection = [n / k for n, k in (force(t, t_c, elastic) for t in (t_c - h, t_c + h))]
         rate = (force(t_c, t_c, gm.g)[0] - force(t_c, t_c, elastic)[0]) / gm.g[G.G_CM]
         assert rate == pytest.approx((deflection[1] - deflection[0]) / (2 * h), rel=1e-5)
+
+
+def test_the_gearbox_bearing_slips_as_sr5s():
+    """The gearbox's bearing is sr5's: the same seed draws the same slip walk, so the
+    defect entries (pure kinematics, whatever the mesh force does to the loads) are
+    those of sr5 for the scene without gears, bit for bit; Scene.slip's spread is tested
+    on sr5 (test_simulate_physics)."""
+    scene = bp.Scene(bearing="6208", rpm=RPM, duration_s=0.2, fs=FS, resonance_hz=3000.0,
+                     slip=0.02, seed=5, fault=bp.Fault("outer", angle_deg=10.0),
+                     gears=bp.GearPair.preset("seed004"))
+    gear = bp.simulate(scene).truth.fault_crossings.entries()
+    alone = bp.simulate(scene.replace(gears=None), model="sr5").truth.fault_crossings.entries()
+    assert len(gear) == 21
+    np.testing.assert_array_equal(gear, alone)
