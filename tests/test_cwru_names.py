@@ -68,6 +68,7 @@ def test_every_fault_record_name_parses_to_the_table(tmp_path):
             assert got == (test.kind, pytest.approx(test.size_in), test.clock, test.load_hp,
                            test.fs), name
             assert rec.rpm_source == "nominal" and rec.record == 999
+            assert rec.columns()["fault_size_in"] == pytest.approx(test.size_in)
             if test.kind == "outer":
                 assert rec.fault_angle_deg == _CLOCK_DEG[test.clock], name
             else:
@@ -103,10 +104,16 @@ MFPT_NAMES = {**{f"baseline_{i}": "healthy" for i in range(1, 4)},
 
 
 def test_every_mfpt_file_name_gives_its_label(tmp_path):
-    """Renamed case (``outerracefault_3``) included; the label comes from the name."""
+    """Renamed case (``outerracefault_3``) included; the label comes from the name. The
+    units: shaft rate 25 Hz is 1500 rpm, 270 lbs of load is 270 x 0.45359237 kg x
+    9.80665 m/s^2 (the definition of the pound-force) = 1201.0 N."""
     bearing = {"gs": _SIGNAL, "sr": np.array([[48828.0]]), "rate": np.array([[25.0]]),
-               "load": np.array([[0.0]])}
+               "load": np.array([[270.0]])}
     assert len(MFPT_NAMES) == 20
     for name, label in {**MFPT_NAMES, "outerracefault_3": "outer"}.items():
         scipy.io.savemat(tmp_path / f"{name}.mat", {"bearing": bearing})
-        assert load_mfpt_mat(tmp_path / f"{name}.mat").label == label, name
+        rec = load_mfpt_mat(tmp_path / f"{name}.mat")
+        assert rec.label == label, name
+    assert (rec.rpm, rec.fs, rec.load_lbs) == (1500.0, 48828.0, 270.0)
+    assert rec.columns()["radial_load_n"] == pytest.approx(270.0 * 0.45359237 * 9.80665,
+                                                           rel=1e-12)
