@@ -207,3 +207,50 @@ def test_kinematic_rates_are_the_derivatives_of_the_angles_and_depths(changes):
         assert cage_rate == pytest.approx((psi_hi - psi_lo) / (2 * h), rel=1e-6)
         np.testing.assert_allclose(depth_rate, (depth_hi - depth_lo) / (2 * h), rtol=0,
                                    atol=1e-6 * np.max(np.abs(depth_rate)))
+
+
+@pytest.mark.parametrize("kind", ["outer", "inner", "ball"])
+def test_contact_damping_sees_the_rate_of_the_deflection_the_hertz_law_sees(kind):
+    """Hunt-Crossley contacts carry Q = K delta^n (1 + alpha d(delta)/dt): the rate must
+    be the time derivative of the deflection the Hertz law is fed (ring velocities, the
+    cage carrying the element round, the depth of a defect ramp). Both are read from
+    the kernel's own loads: with alpha = 0, delta = (Q / K)^(1/n); with alpha, the rate
+    is (Q_alpha / Q - 1) / alpha. Along rings moving at constant velocity during a speed
+    ramp with slip, at 10 instants where a loaded element is on a defect ramp and 10
+    anywhere, it must equal a central difference of delta (h = 10 ns; truncation as in
+    the kinematic rates above, measured <= 2e-8 of the largest rate): rtol 1e-6."""
+    from ballpass.simulate import _kernels as K
+    from ballpass.simulate.sr5 import SR5Parameters, build_model
+
+    sc = bp.Scene("6205", rpm=(1700.0, 1900.0), duration_s=0.2, fs=FS, resonance_hz=3000.0,
+                  slip=0.02, fault=bp.Fault(kind, width_mm=1.0))
+    bm = build_model(sc, SR5Parameters(contact_damping=1e-4))
+    elastic = bm.p.copy()
+    elastic[K.P_CD] = 0.0
+    z = sc.bearing.n_elements
+    kin = K.kinematics_scratch(z)
+    rng = np.random.default_rng(0)
+    velocity = rng.normal(size=4) * 1e-3  # u_s, v_s, u_p, v_p rates, m/s
+
+    def loads(t, t_c, p):
+        """Contact loads at t of rings at the static state at t_c, moving at velocity."""
+        K.fault_depths(t, bm.p, bm.faults, kin, K.element_angles(t, bm.p, bm.walk, kin), True)
+        u_s, v_s, u_p, v_p = bm.y0[:4] + (t - t_c) * velocity
+        return np.array([K.contact_load(j, u_s - u_p, v_s - v_p, velocity[0] - velocity[2],
+                                        velocity[1] - velocity[3], p, kin) for j in range(z)])
+
+    def on_ramp(t):
+        loaded = loads(t, t, elastic) > 0.0
+        return np.any(loaded & (kin[K.K_DDEPTH, :z] != 0.0))
+
+    ramps = [t for t in np.linspace(0.001, 0.199, 4000) if on_ramp(t)]
+    assert len(ramps) >= 10
+    h = 1e-8
+    for t_c in np.concatenate((rng.choice(ramps, 10, replace=False), rng.uniform(0.01, 0.19, 10))):
+        hertz = loads(t_c, t_c, elastic)
+        on = hertz > 0.0
+        rate = (loads(t_c, t_c, bm.p)[on] / hertz[on] - 1.0) / bm.p[K.P_CD]
+        delta = [(loads(t, t_c, elastic) / bm.p[K.P_KH]) ** (1 / bm.p[K.P_NH])
+                 for t in (t_c - h, t_c + h)]
+        expected = ((delta[1] - delta[0]) / (2 * h))[on]
+        np.testing.assert_allclose(rate, expected, rtol=0, atol=1e-6 * np.max(np.abs(expected)))
