@@ -81,6 +81,17 @@ def test_every_fault_record_name_parses_to_the_table(tmp_path):
                 assert any("which bearing" in str(w.message) for w in caught), name
 
 
+def test_every_normal_baseline_name_parses_to_healthy_48k_at_its_load(tmp_path):
+    """The normal baseline (records 97-100, 0-3 hp) is sampled at 48 kHz, which its
+    download names do not say (``Normal_0``, ``Normal_Normal_0``, ``Normal_0_48k``)."""
+    for load in range(4):
+        for name in (f"Normal_{load}", f"Normal_Normal_{load}", f"Normal_{load}_48k"):
+            rec = load_cwru_mat(_write(tmp_path, name, 999))
+            assert (rec.label, rec.fs, rec.load_hp, rec.fault_end, rec.bearing) == (
+                "healthy", 48_000.0, load, None, "6205"), name
+            assert math.isnan(rec.fault_width_mm) and rec.fault_clock is None
+
+
 def test_every_fault_record_under_its_own_number_agrees_with_its_name(tmp_path):
     """With the record's own number the name and the table agree: no warning, the same
     label; a name contradicting the table on the kind keeps the name's (and warns)."""
