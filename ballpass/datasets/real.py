@@ -106,8 +106,9 @@ class CwruRecord:
         Catalogue name of the bearing the label is about: for a fault file the faulty
         bearing (``"6205"`` at the drive end, ``"6203"`` at the fan end) whichever
         accelerometer heard it, whose fault lines a diagnosis must look for; otherwise
-        the bearing at that accelerometer (``"6205"`` at DE, ``"6203"`` at FE, None for
-        the base).
+        (also for a fault file whose name and record number do not say the end, e.g. a
+        renamed ``IR007_0.mat``, with a warning) the bearing at that accelerometer
+        (``"6205"`` at DE, ``"6203"`` at FE, None for the base).
     label : str
         ``"healthy"``, ``"inner"``, ``"outer"``, ``"ball"``, or ``"unknown"`` when
         neither the name nor the record number tells.
@@ -373,12 +374,17 @@ def load_cwru_mat(path, channel: str = "DE", fs: float | None = None) -> CwruRec
                       "kept, flagged in rpm_mismatch", stacklevel=2)
     kind = info["kind"] or "unknown"
     faulty = kind in _KINDS.values()
+    if faulty and info["end"] is None:
+        warnings.warn(f"{path.name}: neither the name nor the record number {record} says "
+                      "which bearing (drive or fan end) is faulty; the fault is read as the "
+                      f"{channel} accelerometer's bearing's", stacklevel=2)
     return CwruRecord(
         accel=accel,
         fs=float(fs),
         rpm=float(rpm),
         channel=channel,
-        bearing=CWRU_BEARINGS[info["end"]] if faulty else CWRU_BEARINGS.get(channel),
+        bearing=(CWRU_BEARINGS[info["end"]] if faulty and info["end"] is not None
+                 else CWRU_BEARINGS.get(channel)),
         label=kind,
         fault_end=info["end"] if faulty else None,
         fault_width_mm=info["size_in"] * 25.4 if faulty else math.nan,
