@@ -501,6 +501,21 @@ def _check_existing(folder: Path, grid: Grid, fingerprint: dict) -> dict | None:
                 f"one dataset. {untouched} Finish it with the installation that started "
                 "it, or generate into a new --out folder (or delete this one to start "
                 "over).")
+        layout = ("index", "file", "runs", "n_rows")
+        for stored_shard, planned in zip(manifest["shards"], _planned_shards(grid),
+                                         strict=False):
+            if [stored_shard.get(k) for k in layout] != [planned[k] for k in layout]:
+                raise ValueError(
+                    f"{folder}: the manifest's shard entry {stored_shard.get('index')} "
+                    f"({', '.join(f'{k} {stored_shard.get(k)!r}' for k in layout)}) is not "
+                    f"what its grid plans ({', '.join(f'{k} {planned[k]!r}' for k in layout)})"
+                    f": the manifest was altered. {untouched} Generate into a new --out "
+                    "folder.")
+        if len(manifest["shards"]) != grid.n_shards:
+            raise ValueError(
+                f"{folder}: the manifest lists {len(manifest['shards'])} shards where its "
+                f"grid plans {grid.n_shards}: the manifest was altered. {untouched} Generate "
+                "into a new --out folder.")
     elif folder.exists() and (not folder.is_dir() or any(  # a kill can leave these behind
             not (is_temporary(p) or p.name == LOCK_FILE) for p in folder.iterdir())):
         raise FileExistsError(f"{folder} exists and is not an empty folder or a ballpass "
@@ -590,16 +605,21 @@ def check_resources(grid: Grid, folder, n_workers: int = 1, rows_done: int = 0,
     return out
 
 
-def _new_manifest(grid: Grid, fingerprint: dict) -> dict:
-    from .. import __version__
-
-    rows_per_run = grid.rows_per_run
+def _planned_shards(grid: Grid) -> list[dict]:
+    """The shard entries of a new manifest of ``grid`` (none complete)."""
     shards = []
     for i in range(grid.n_shards):
         runs = grid.shard_runs(i)
         shards.append({"index": i, "file": shard_name(i), "runs": [runs.start, runs.stop],
-                       "n_rows": len(runs) * rows_per_run, "complete": False,
+                       "n_rows": len(runs) * grid.rows_per_run, "complete": False,
                        "features_complete": False, "bytes": 0})
+    return shards
+
+
+def _new_manifest(grid: Grid, fingerprint: dict) -> dict:
+    from .. import __version__
+
+    shards = _planned_shards(grid)
     return {
         "format": "ballpass-dataset", "format_version": FORMAT_VERSION,
         "ballpass_version": __version__, "fingerprint": fingerprint,
@@ -615,7 +635,8 @@ def _verify(folder: Path, shard: dict, key: str) -> bool:
     complete and intact? A damaged one is deleted (with a warning) to be made again.
 
     A file renamed into place just before a kill, with no checksum in the manifest yet,
-    is accepted if it reads with its page CRCs verified; its checksum is then recorded.
+    is accepted if it reads with its page CRCs verified and holds this shard's runs (a
+    stray copy of another shard does not); its checksum is then recorded.
     """
     import pyarrow.parquet as pq
 
@@ -627,10 +648,13 @@ def _verify(folder: Path, shard: dict, key: str) -> bool:
         problem = shard_problem(path, shard, key)
     else:
         try:
-            pq.read_table(path, page_checksum_verification=True)
-            problem = None
-        except (OSError, ValueError) as exc:
-            problem = f"fails its page checksums ({exc})"
+            run_ids = pq.read_table(path, page_checksum_verification=True).column("run_id")
+            start, stop = shard["runs"]
+            problem = None if all(start <= r < stop for r in run_ids.to_pylist()) else (
+                f"holds rows of runs outside this shard's runs {start} to {stop - 1} (a "
+                "copy of another shard?)")
+        except (OSError, ValueError, KeyError) as exc:
+            problem = f"fails its page checksums or has no run_id column ({exc})"
         if problem is None:
             size, shard[key] = path.stat().st_size, file_sha256(path)
             shard["features_bytes" if key == "features_sha256" else "bytes"] = size
