@@ -393,7 +393,7 @@ def signal_writer(path, accel, fs: float, *, channels=None, meta=None):
             columns.update({name: pa.array(row) for name, row in zip(channels, data, strict=True)})
             info = json.dumps({"fs": fs, "channels": channels, "meta": json.loads(meta_json)})
             table = pa.table(columns).replace_schema_metadata({_ARROW_KEY: info.encode()})
-            pq.write_table(table, tmp)
+            pq.write_table(table, tmp, write_page_checksum=True)
 
     return write
 
@@ -495,7 +495,8 @@ def _read(path: Path, suffix: str) -> SignalFile:
     else:
         import pyarrow.parquet as pq
 
-        table = pq.read_table(path)
+        # page CRCs (which write_signal writes) are checked: flipped bytes are refused
+        table = pq.read_table(path, page_checksum_verification=True)
         info = json.loads((table.schema.metadata or {}).get(_ARROW_KEY, b"{}"))
         meta = info.get("meta", {})
         fs = info.get("fs")

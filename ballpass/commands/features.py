@@ -248,6 +248,7 @@ def load_records(args) -> list[Signal]:
     signals: list[Signal] = []
     for raw in args.inputs:
         path = Path(raw)
+        before = len(signals)
         if path.is_dir() and any((path / name).is_file()
                                  for name in ("_manifest.json", "manifest.json")):
             signals += _from_dataset(path, args)
@@ -264,7 +265,33 @@ def load_records(args) -> list[Signal]:
                 f"{path.name}: INPUT must be a {', '.join(SUFFIXES)} or .mat file "
                 "or a dataset folder"
             )
+        check_analysable(signals[before:], path)
     return signals
+
+
+#: Fewest samples a signal needs for ``features``, ``plot`` and ``diagnose``: the fast
+#: kurtogram's first band split (:func:`~ballpass.features.kurtogram._default_nlevel`
+#: keeps about 64 envelope samples in its finest band), below which no band is chosen.
+MIN_SAMPLES = 256
+
+
+def check_analysable(signals: list[Signal], source) -> None:
+    """Refuse, naming ``source`` (the input file or folder), a signal with NaN or inf
+    samples or fewer than :data:`MIN_SAMPLES` samples."""
+    import numpy as np
+
+    for sig in signals:
+        where = f"{source}" + (f" ({sig.name})" if len(signals) > 1 else "")
+        x = np.asarray(sig.x)
+        if len(x) < MIN_SAMPLES:
+            raise ValueError(f"{where}: {len(x)} samples, too short to analyse: features, "
+                             f"plot and diagnose need at least {MIN_SAMPLES} samples "
+                             f"({MIN_SAMPLES / sig.fs:.3g} s at {sig.fs:g} Hz)")
+        bad = np.flatnonzero(~np.isfinite(x))
+        if bad.size:
+            raise ValueError(f"{where}: {bad.size} NaN or inf sample(s), the first at sample "
+                             f"{bad[0]} ({bad[0] / sig.fs:.6g} s); clean or interpolate the "
+                             "signal first")
 
 
 def segment_signals(signals: list[Signal], seconds: float) -> list[Signal]:
@@ -280,6 +307,9 @@ def segment_signals(signals: list[Signal], seconds: float) -> list[Signal]:
         n = len(sig.x) // length
         if n == 0:
             raise ValueError(f"{sig.name}: shorter than one --segment of {seconds} s")
+        if length < MIN_SAMPLES:
+            raise ValueError(f"--segment {seconds} s is {length} samples at {sig.fs:g} Hz; "
+                             f"features, plot and diagnose need at least {MIN_SAMPLES}")
         for k, piece in enumerate(np.reshape(sig.x[: n * length], (n, length))):
             columns = sig.columns | {"segment": k, "start_s": k * length / sig.fs}
             out.append(

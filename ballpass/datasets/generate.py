@@ -332,6 +332,10 @@ def _die_with_parent(parent_pid: int) -> None:
         threading.Thread(target=watch, daemon=True).start()
     if os.getppid() != parent_pid:  # the parent died before the signal was armed
         os._exit(1)
+    # Ctrl-C reaches the whole process group: the parent alone handles it (and stops
+    # the workers with SIGTERM, whose handler the fork copied from the CLI: default here)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
 
 
 _PR_SET_PDEATHSIG = 1  # from <linux/prctl.h>
@@ -364,6 +368,16 @@ def _pool(n_workers: int) -> cf.ProcessPoolExecutor:
                                   initializer=_die_with_parent, initargs=(os.getpid(),))
 
 
+def _stop_workers(executor: cf.ProcessPoolExecutor) -> None:
+    """End the pool's worker processes at once (SIGTERM, then wait for them): their
+    unfinished shards are only temporary files, removed by the caller."""
+    processes = list((getattr(executor, "_processes", None) or {}).values())
+    for process in processes:
+        process.terminate()
+    for process in processes:
+        process.join(timeout=10)
+
+
 def _dispatch(specs: list[ShardSpec], n_workers: int, executor):
     """Run the shards; yield their reports as they complete."""
     if executor is None and n_workers == 1:
@@ -373,17 +387,23 @@ def _dispatch(specs: list[ShardSpec], n_workers: int, executor):
     if own:
         executor = _pool(n_workers)
     futures = [executor.submit(run_shard, s) for s in specs]
+    finished = False
     try:
         for fut in cf.as_completed(futures):
             yield fut.result()
+        finished = True
     except BrokenProcessPool:
         raise RuntimeError("a worker process died (killed, or out of memory?); complete "
                            "shards are kept, run generate again to resume") from None
     finally:
-        for fut in futures:
-            fut.cancel()
-        if own:
-            executor.shutdown(wait=True, cancel_futures=True)
+        if own and not finished:   # an error, Ctrl-C or SIGTERM: stop the workers now;
+            _stop_workers(executor)  # the pool then fails the futures left (cancelling
+            executor.shutdown(wait=True)  # them too would race it)
+        else:
+            for fut in futures:
+                fut.cancel()
+            if own:
+                executor.shutdown(wait=True, cancel_futures=True)
 
 
 # ----------------------------------------------------------------------------- planning
@@ -905,8 +925,15 @@ def generate(grid, out_dir, n_jobs: int = 1, executor: cf.Executor | None = None
         if any(s.simulate for s in specs):
             _warm_up({m: run for m, run in reversed(models)}, grid.dataset["solver"])
         n_workers = 1 if executor is not None else _n_workers(n_jobs, len(specs))
-        rows_written, done_models = _run(specs, folder, manifest, n_workers, executor,
-                                         progress)
+        try:
+            rows_written, done_models = _run(specs, folder, manifest, n_workers, executor,
+                                             progress)
+        except KeyboardInterrupt as exc:   # the manifest lists every shard finished
+            remove_temporaries(folder)
+            done = sum(s["complete"] for s in manifest["shards"])
+            exc.add_note(f"{done} of {len(manifest['shards'])} shards written, rerun to "
+                         "resume")
+            raise
         complete = all(s["complete"] and (s["features_complete"] or not features)
                        for s in manifest["shards"])
         manifest["status"] = "complete" if complete else "running"
