@@ -465,6 +465,11 @@ def spectral_kurtosis(
     if noverlap >= nperseg:
         raise ValueError(f"noverlap must be < nperseg = {nperseg}, got {noverlap}")
     n = x.shape[-1]
+    if nperseg > n:  # before the window is built: nperseg = 10**9 would allocate 8 GB
+        raise ValueError(
+            f"x must span at least two full segments of nperseg = {nperseg} samples "
+            f"(hop {nperseg - noverlap}), got {n} samples"
+        )
     if isinstance(window, (str, tuple)):
         win = scipy.signal.get_window(window, nperseg)
     else:
