@@ -411,8 +411,7 @@ def _resolved_models(grid: Grid) -> list[tuple[str, Run]]:
     """(resolved model, first run) per grid point, in order; unknown models and solvers,
     and a model that would ignore what a scene's fields ask for (``fault_engagement < 1``
     needs ``intermittent_faults``), raise here: its rows' parameter columns would lie."""
-    from ..phenomena import DEFAULT_NEEDS
-    from ..simulate import MODELS, SOLVERS, resolve_model, scene_needs
+    from ..simulate import MODELS, SOLVERS, resolve_model, unrepresented
 
     if grid.dataset["solver"] not in ("auto", *SOLVERS):
         raise ValueError(f"dataset.solver must be 'auto' or one of {sorted(SOLVERS)}, "
@@ -422,12 +421,11 @@ def _resolved_models(grid: Grid) -> list[tuple[str, Run]]:
     out = []
     for run in grid.runs[::repeats]:
         scene = run.build_scene()
-        try:
-            model = resolve_model(scene, run.model)
+        try:   # what the model leaves out is refused below, in the grid's terms
+            model = resolve_model(scene, run.model, allow_unrepresented=True)
         except (TypeError, ValueError) as exc:
             raise ValueError(f"model {run.model!r} (run {run.run_id}): {exc}") from None
-        from_fields = scene_needs(scene) - set(scene.needs or DEFAULT_NEEDS)
-        ignored = from_fields - MODELS[model].represents
+        ignored = unrepresented(scene, model)
         if ignored:
             able = [m.name for m in MODELS.values() if ignored <= m.represents]
             raise ValueError(
