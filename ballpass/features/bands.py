@@ -16,7 +16,14 @@ import math
 import numpy as np
 
 from ..bearing import Bearing
-from ._validation import check_fs, check_nonnegative, check_positive_int, check_rpm
+from ._validation import (
+    check_fs,
+    check_nonnegative,
+    check_positive_int,
+    check_rpm,
+    check_signal,
+    to_unit_scale,
+)
 from .envelope import envelope_spectrum
 from .shaft import without_shaft_lines
 
@@ -306,18 +313,18 @@ def fault_band_features(
     >>> bool(feats["bpfo_1"] > 10 > feats["bpfi_1"])
     True
     """
-    try:                  # the SES of n samples has n // 2 + 1 bins
-        n_bins = np.shape(x)[axis] // 2 + 1
-    except (IndexError, TypeError):
-        n_bins = 0        # envelope_spectrum says what is wrong with x or axis
+    xv = check_signal(x, axis)
     _check_reach(check_positive_int("harmonics", harmonics, 1),
                  check_nonnegative("tolerance", tolerance),
                  check_nonnegative("background_hz", background_hz), as_bearing(bearing), rpm,
-                 check_fs(fs) / 2.0, n_bins)
-    freqs, ses = envelope_spectrum(x, fs, band, squared=True, prewhiten=prewhiten, axis=axis)
+                 check_fs(fs) / 2.0, xv.shape[-1] // 2 + 1)   # the SES's bins
+    # the levels are ratios: computed on a copy scaled exactly to unit peak, whose SES
+    # neither overflows (1e200 m/s^2) nor underflows (1e-300)
+    freqs, ses = envelope_spectrum(to_unit_scale(xv)[0], fs, band, squared=True,
+                                   prewhiten=prewhiten)
     return fault_band_levels(
         freqs,
-        np.moveaxis(ses, axis, -1),
+        ses,
         bearing,
         rpm,
         harmonics=harmonics,

@@ -28,7 +28,13 @@ import numpy as np
 import scipy.fft
 import scipy.signal
 
-from ._validation import check_fs, check_nonnegative, check_positive_int, check_signal
+from ._validation import (
+    check_fs,
+    check_nonnegative,
+    check_positive_int,
+    check_signal,
+    to_unit_scale,
+)
 
 __all__ = ["KurtogramResult", "fast_kurtogram", "spectral_kurtosis"]
 
@@ -332,7 +338,8 @@ def fast_kurtogram(
     if not math.isfinite(floor_db):
         raise ValueError(f"floor_db must be a finite number of dB, got {floor_db!r}")
 
-    return _kurtogram(x, fs, nlevel, min_bandwidth, float(floor_db))[0]
+    # scale-free: computed on a copy scaled exactly to unit peak (1e200 would overflow)
+    return _kurtogram(to_unit_scale(x)[0], fs, nlevel, min_bandwidth, float(floor_db))[0]
 
 
 def _kurtogram(
