@@ -159,3 +159,62 @@ def test_output_cut_short_by_its_reader_ends_quietly(tmp_path):
         stderr = proc.stderr.read()
         assert proc.wait(timeout=60) == EXIT_BROKEN_PIPE, stderr
         assert stderr == ""                     # no "Broken pipe", no traceback
+
+
+# ----------------------------------------------------------------------------- messages
+@pytest.mark.parametrize("command", ["features", "plot", "diagnose"])
+def test_bad_rpm_is_named_as_the_user_typed_it(tmp_path, capsys, command):
+    path = write_signal(tmp_path / "s.npz", noise(4096), FS, meta={"bearing": "6205"})
+    extra = ["--out", str(tmp_path / "p.png")] if command == "plot" else []
+    assert main([command, str(path), "--rpm", "-1", *extra]) == 2
+    err = capsys.readouterr().err
+    assert "--rpm must be a finite speed > 0 rev/min, got -1" in err and "shaft_hz" not in err
+
+
+def test_rpm_stored_in_a_file_is_named_with_the_file(tmp_path, capsys):
+    path = write_signal(tmp_path / "s.npz", noise(4096), FS, meta={"rpm": -5.0})
+    assert main(["features", str(path)]) == 2
+    assert f"{path}: its rpm, -5.0, is not a speed > 0" in capsys.readouterr().err
+
+
+def test_binary_grid_file_is_not_a_toml_text_file(tmp_path, capsys):
+    grid = tmp_path / "grid.toml"
+    grid.write_bytes(bytes(range(200, 256)) * 4)
+    assert main(["generate", str(grid), "--out", str(tmp_path / "ds")]) == 2
+    err = capsys.readouterr().err
+    assert f"{grid}: not a TOML text file (byte 0xc8 at position 0 is not UTF-8)" in err
+    assert "codec" not in err
+
+
+def test_full_disk_names_the_file(tmp_path, capsys, monkeypatch):
+    import errno
+
+    import pandas as pd
+
+    def full(self, *args, **kwargs):
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))   # as write(2) says it
+
+    monkeypatch.setattr(pd.DataFrame, "to_csv", full)
+    path = write_signal(tmp_path / "s.npz", noise(4096), FS)
+    out = tmp_path / "table.csv"
+    assert main(["features", str(path), "--out", str(out)]) == 2
+    assert capsys.readouterr().err == (f"ballpass features: error: {out}: No space left on "
+                                       "device\n")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["s.npz"]   # nothing half-written
+
+
+def test_benchmark_split_that_cannot_be_formed_is_one_line(tmp_path, capsys):
+    from ballpass.datasets import generate
+
+    grid = {"dataset": {"duration_s": 0.25, "fs": 12000, "seed": 3, "repeats": 4,
+                        "model": "impulse"},
+            "grid": {"bearing": ["6205"], "fault": ["healthy", "outer", "inner"],
+                     "rpm": [1797], "resonance_hz": [3000]}}
+    generate(grid, tmp_path / "ds", progress=False)
+    out = tmp_path / "report"
+    assert main(["benchmark", str(tmp_path / "ds"), "--splits", "speed", "--out", str(out),
+                 "--quiet"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "Traceback" not in err
+    assert "no split could be formed" in err and "speed: the dataset has a single value" in err
+    assert not out.exists()

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import numbers
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -245,6 +246,8 @@ def load_records(args) -> list[Signal]:
     """Every signal of ``args.inputs``, whole, in input order."""
     from ..signalio import SUFFIXES
 
+    if args.rpm is not None and not (math.isfinite(args.rpm) and args.rpm > 0):
+        raise ValueError(f"--rpm must be a finite speed > 0 rev/min, got {args.rpm:g}")
     signals: list[Signal] = []
     for raw in args.inputs:
         path = Path(raw)
@@ -277,7 +280,7 @@ MIN_SAMPLES = 256
 
 def check_analysable(signals: list[Signal], source) -> None:
     """Refuse, naming ``source`` (the input file or folder), a signal with NaN or inf
-    samples or fewer than :data:`MIN_SAMPLES` samples."""
+    samples, fewer than :data:`MIN_SAMPLES` samples or a stated speed that is not > 0."""
     import numpy as np
 
     for sig in signals:
@@ -287,6 +290,10 @@ def check_analysable(signals: list[Signal], source) -> None:
             raise ValueError(f"{where}: {len(x)} samples, too short to analyse: features, "
                              f"plot and diagnose need at least {MIN_SAMPLES} samples "
                              f"({MIN_SAMPLES / sig.fs:.3g} s at {sig.fs:g} Hz)")
+        if (isinstance(sig.rpm, numbers.Real) and is_known(sig.rpm)
+                and not (math.isfinite(sig.rpm) and sig.rpm > 0)):
+            raise ValueError(f"{where}: its rpm, {sig.rpm!r}, is not a speed > 0 rev/min; "
+                             "give the right one with --rpm")
         bad = np.flatnonzero(~np.isfinite(x))
         if bad.size:
             raise ValueError(f"{where}: {bad.size} NaN or inf sample(s), the first at sample "

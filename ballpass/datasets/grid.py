@@ -426,6 +426,10 @@ def _load_source(source) -> dict:
                 return tomllib.load(fh)
         except tomllib.TOMLDecodeError as exc:
             raise ValueError(f"{path}: not a valid TOML grid file: {exc}") from None
+        except UnicodeDecodeError as exc:   # a binary file (or another encoding)
+            raise ValueError(f"{path}: not a TOML text file (byte {exc.object[exc.start]:#04x} "
+                             f"at position {exc.start} is not UTF-8); give the grid's .toml "
+                             "file") from None
     raise TypeError(f"grid must be a TOML file path, a dict or a Grid, got {type(source).__name__}")
 
 
