@@ -126,6 +126,10 @@ def run(args) -> int:
     result = run_benchmark(X, meta, real=real, splits=args.splits, models=args.models,
                            features=args.features, n_splits=args.folds,
                            random_state=args.seed, progress=show_progress(args))
+    if result.table.empty:   # every split asked for was skipped: nothing to report
+        why = "; ".join(f"{split}: {reason}" for split, reason in result.skipped.items())
+        raise ValueError(f"no split could be formed on {args.dataset} ({why}); choose "
+                         "others with --splits (run keeps runs together on any dataset)")
     paths = write_report(result, args.out)
     with pd.option_context("display.width", 140, "display.max_rows", 200):
         print(result.table.drop(columns="optimistic").round(3).to_string(index=False))

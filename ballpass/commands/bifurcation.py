@@ -86,8 +86,9 @@ def run(args: argparse.Namespace) -> int:
                                                             suffixes=FIGURE_SUFFIXES)
     if args.range is not None:
         start, stop, num = args.range
-        if num != int(num) or num < 1:
-            raise ValueError(f"--range NUM must be a whole number >= 1, got {num:g}")
+        if num != int(num) or not 1 <= num <= bp.dynamics.MAX_VALUES:
+            raise ValueError(f"--range NUM must be a whole number from 1 to "
+                             f"{bp.dynamics.MAX_VALUES:,} (one simulation each), got {num:g}")
         values = np.linspace(start, stop, int(num))
     else:
         values = np.asarray(args.values)

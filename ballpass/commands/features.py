@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import numbers
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -238,9 +239,12 @@ def load_inputs(args) -> list[Signal]:
 
 def load_records(args) -> list[Signal]:
     """Every signal of ``args.inputs``, whole, in input order."""
+    if args.rpm is not None and not (math.isfinite(args.rpm) and args.rpm > 0):
+        raise ValueError(f"--rpm must be a finite speed > 0 rev/min, got {args.rpm:g}")
     signals: list[Signal] = []
     for raw in args.inputs:
         path = Path(raw)
+        before = len(signals)
         if path.is_dir() and any((path / name).is_file()
                                  for name in ("_manifest.json", "manifest.json")):
             signals += _from_dataset(path, args)
@@ -248,7 +252,37 @@ def load_records(args) -> list[Signal]:
             raise FileNotFoundError(f"no such file or folder: {path}")
         else:
             signals += _from_recordings(path, args)
+        check_analysable(signals[before:], path)
     return signals
+
+
+#: Fewest samples a signal needs for ``features``, ``plot`` and ``diagnose``: the fast
+#: kurtogram's first band split (:func:`~ballpass.features.kurtogram._default_nlevel`
+#: keeps about 64 envelope samples in its finest band), below which no band is chosen.
+MIN_SAMPLES = 256
+
+
+def check_analysable(signals: list[Signal], source) -> None:
+    """Refuse, naming ``source`` (the input file or folder), a signal with NaN or inf
+    samples, fewer than :data:`MIN_SAMPLES` samples or a stated speed that is not > 0."""
+    import numpy as np
+
+    for sig in signals:
+        where = f"{source}" + (f" ({sig.name})" if len(signals) > 1 else "")
+        x = np.asarray(sig.x)
+        if len(x) < MIN_SAMPLES:
+            raise ValueError(f"{where}: {len(x)} samples, too short to analyse: features, "
+                             f"plot and diagnose need at least {MIN_SAMPLES} samples "
+                             f"({MIN_SAMPLES / sig.fs:.3g} s at {sig.fs:g} Hz)")
+        if (isinstance(sig.rpm, numbers.Real) and is_known(sig.rpm)
+                and not (math.isfinite(sig.rpm) and sig.rpm > 0)):
+            raise ValueError(f"{where}: its rpm, {sig.rpm!r}, is not a speed > 0 rev/min; "
+                             "give the right one with --rpm")
+        bad = np.flatnonzero(~np.isfinite(x))
+        if bad.size:
+            raise ValueError(f"{where}: {bad.size} NaN or inf sample(s), the first at sample "
+                             f"{bad[0]} ({bad[0] / sig.fs:.6g} s); clean or interpolate the "
+                             "signal first")
 
 
 def segment_signals(signals: list[Signal], seconds: float) -> list[Signal]:
@@ -264,6 +298,9 @@ def segment_signals(signals: list[Signal], seconds: float) -> list[Signal]:
         n = len(sig.x) // length
         if n == 0:
             raise ValueError(f"{sig.name}: shorter than one --segment of {seconds} s")
+        if length < MIN_SAMPLES:
+            raise ValueError(f"--segment {seconds} s is {length} samples at {sig.fs:g} Hz; "
+                             f"features, plot and diagnose need at least {MIN_SAMPLES}")
         for k, piece in enumerate(np.reshape(sig.x[: n * length], (n, length))):
             columns = sig.columns | {"segment": k, "start_s": k * length / sig.fs}
             out.append(

@@ -16,7 +16,7 @@ import numpy as np
 import scipy.fft
 import scipy.signal
 
-from ._validation import check_fs, check_rpm, check_signal
+from ._validation import check_fs, check_rpm, check_signal, from_unit_scale, to_unit_scale
 from .bands import as_bearing, fault_band_levels, highest_fault_line
 from .envelope import _amplitude_spectrum, _sos
 from .indicators import _indicators
@@ -264,7 +264,8 @@ def envelope_analysis(x, fs: float, *, rpm=None, bearing=None, axis: int = -1):
 
     n = xv.shape[-1]
     fault_hz = None if bearing is None else highest_fault_line(bearing, rpm, fs)
-    kurt, spectrum = _kurtogram(xv, fs, _default_nlevel(n), MIN_BANDWIDTH_HZ, FLOOR_DB,
+    scaled, k = to_unit_scale(xv)    # exact; the SES of 1e200 m/s^2 would overflow
+    kurt, spectrum = _kurtogram(scaled, fs, _default_nlevel(n), MIN_BANDWIDTH_HZ, FLOOR_DB,
                                 fault_hz)
     bands = np.reshape(kurt.best_band, (-1, 2))
     flat = spectrum.reshape(-1, spectrum.shape[-1])
@@ -280,7 +281,7 @@ def envelope_analysis(x, fs: float, *, rpm=None, bearing=None, axis: int = -1):
         kurtogram=kurt,
         band=kurt.best_band,
         freqs=freqs,
-        ses=np.moveaxis(ses, -1, axis),
+        ses=np.moveaxis(from_unit_scale(ses, k, 2), -1, axis),
         indicators=_indicators(xv),
         fault_bands=fault_bands,
         fs=fs,

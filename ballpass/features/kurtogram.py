@@ -28,7 +28,13 @@ import numpy as np
 import scipy.fft
 import scipy.signal
 
-from ._validation import check_fs, check_nonnegative, check_positive_int, check_signal
+from ._validation import (
+    check_fs,
+    check_nonnegative,
+    check_positive_int,
+    check_signal,
+    to_unit_scale,
+)
 
 __all__ = ["KurtogramResult", "fast_kurtogram", "spectral_kurtosis"]
 
@@ -349,7 +355,9 @@ def fast_kurtogram(
         raise ValueError(f"floor_db must be a finite number of dB, got {floor_db!r}")
     fault_hz = check_fault_hz(fault_hz, x.shape[:-1], fs)
 
-    return _kurtogram(x, fs, nlevel, min_bandwidth, float(floor_db), fault_hz)[0]
+    # scale-free: computed on a copy scaled exactly to unit peak (1e200 would overflow)
+    return _kurtogram(to_unit_scale(x)[0], fs, nlevel, min_bandwidth, float(floor_db),
+                      fault_hz)[0]
 
 
 def check_fault_hz(fault_hz, batch_shape: tuple, fs: float):
@@ -514,6 +522,11 @@ def spectral_kurtosis(
     if noverlap >= nperseg:
         raise ValueError(f"noverlap must be < nperseg = {nperseg}, got {noverlap}")
     n = x.shape[-1]
+    if nperseg > n:  # before the window is built: nperseg = 10**9 would allocate 8 GB
+        raise ValueError(
+            f"x must span at least two full segments of nperseg = {nperseg} samples "
+            f"(hop {nperseg - noverlap}), got {n} samples"
+        )
     if isinstance(window, (str, tuple)):
         win = scipy.signal.get_window(window, nperseg)
     else:

@@ -43,6 +43,8 @@ import sys
 import time
 import types
 
+import numpy as np
+
 from ._cache import clear_stale_cache, has_compiled_kernels, source_fingerprint
 
 # before any kernel module is imported: numba must not load kernels compiled from
@@ -65,6 +67,7 @@ __all__ = [
     "simulate",
     "integrate",
     "scene_needs",
+    "unrepresented",
     "resolve_model",
     "model_table",
     "build",
@@ -146,10 +149,39 @@ def scene_needs(scene: Scene, *, return_forces: bool = False) -> frozenset:
     return frozenset(needs)
 
 
-def _choose(scene: Scene, model: str, return_forces: bool) -> tuple[Model, str]:
+def unrepresented(scene: Scene, model: str, *, return_forces: bool = False) -> frozenset:
+    """What the scene states that ``model`` does not represent.
+
+    The stated needs are those of the scene's fields (gears, a clearance, a speed
+    ramp, ...), of ``Scene(needs=...)`` and of ``return_forces``; not the default
+    needs of a scene that states none, which only guide ``model="auto"``. A model
+    asked for by name that leaves one out would give a signal without what its
+    scene says it has.
+
+    Examples
+    --------
+    >>> import ballpass as bp
+    >>> sorted(bp.simulate.unrepresented(bp.Scene(bearing="6205", clearance_um=5.0),
+    ...                                  "impulse"))
+    ['mounted_clearance']
+    >>> sorted(bp.simulate.unrepresented(bp.Scene(bearing="6205"), "impulse"))
+    []
+    """
+    stated = scene_needs(scene, return_forces=return_forces)
+    if not scene.needs:   # the defaults are no statement of the scene's
+        stated -= DEFAULT_NEEDS
+    return stated - MODELS[model].represents
+
+
+def _choose(scene: Scene, model: str, return_forces: bool,
+            allow_unrepresented: bool = False) -> tuple[Model, str]:
     """The model to run and the reason (for ``res.info["model_reason"]``)."""
     if not isinstance(model, str):
         raise TypeError(f"model must be a str, got {type(model).__name__}")
+    for name, flag in (("return_forces", return_forces),
+                       ("allow_unrepresented", allow_unrepresented)):
+        if not isinstance(flag, bool | np.bool_):
+            raise TypeError(f"{name} must be True or False, got {flag!r}")
     needs = scene_needs(scene, return_forces=return_forces)
     if model != "auto":
         if model not in MODELS:
@@ -158,6 +190,14 @@ def _choose(scene: Scene, model: str, return_forces: bool) -> tuple[Model, str]:
         refusal = chosen.accepts(scene)
         if refusal:
             raise ValueError(f"model {model!r} cannot take this scene: {refusal}")
+        stated = unrepresented(scene, model, return_forces=return_forces)
+        if stated and not allow_unrepresented:
+            able = [m.name for m in MODELS.values() if stated <= m.represents]
+            raise ValueError(
+                f"model {model!r} does not represent {', '.join(sorted(stated))}, which the "
+                f"scene asks for: its signal would lack it. Models that do: "
+                f"{', '.join(able) or 'none'}. Use model='auto' or one of those, or pass "
+                "allow_unrepresented=True to simulate without it.")
         missing = needs - chosen.represents
         note = (f"; it does not represent {', '.join(sorted(missing))}, which the scene "
                 "asks for" if missing else "")
@@ -178,7 +218,8 @@ def _choose(scene: Scene, model: str, return_forces: bool) -> tuple[Model, str]:
         + "; ".join(passed))
 
 
-def resolve_model(scene: Scene, model: str = "auto", *, return_forces: bool = False) -> str:
+def resolve_model(scene: Scene, model: str = "auto", *, return_forces: bool = False,
+                  allow_unrepresented: bool = False) -> str:
     """Name of the model :func:`simulate` will run for ``scene``.
 
     Parameters
@@ -189,6 +230,9 @@ def resolve_model(scene: Scene, model: str = "auto", *, return_forces: bool = Fa
         :func:`scene_needs`) or a name in :data:`MODELS`.
     return_forces : bool, optional
         Whether contact forces will be requested (they are a need of their own).
+    allow_unrepresented : bool, optional
+        Let a model named by the caller leave out what the scene states and it does
+        not represent (:func:`unrepresented`; default False: refused).
 
     Returns
     -------
@@ -197,8 +241,9 @@ def resolve_model(scene: Scene, model: str = "auto", *, return_forces: bool = Fa
     Raises
     ------
     ValueError
-        Unknown model name, a model that cannot take the scene, or (``auto``) no model
-        that covers the needs; the message says what each model lacks.
+        Unknown model name, a model that cannot take the scene or (unless
+        ``allow_unrepresented``) leaves out what it states, or (``auto``) no model that
+        covers the needs; the message says what each model lacks and which has it.
 
     Examples
     --------
@@ -206,7 +251,7 @@ def resolve_model(scene: Scene, model: str = "auto", *, return_forces: bool = Fa
     >>> bp.simulate.resolve_model(bp.Scene(bearing="6205"))
     'sr5'
     """
-    return _choose(scene, model, return_forces)[0].name
+    return _choose(scene, model, return_forces, allow_unrepresented)[0].name
 
 
 def model_table():
@@ -239,7 +284,8 @@ def model_table():
 
 def simulate(scene: Scene, model: str = "auto", solver: str = "auto", *, dt: float | None = None,
              rtol: float | None = None, atol: float | None = None, params=None,
-             return_forces: bool = False, oversample: int = OVERSAMPLE) -> SimulationResult:
+             return_forces: bool = False, oversample: int = OVERSAMPLE,
+             allow_unrepresented: bool = False) -> SimulationResult:
     """Simulate the vibration of a scene.
 
     Parameters
@@ -274,6 +320,12 @@ def simulate(scene: Scene, model: str = "auto", solver: str = "auto", *, dt: flo
     oversample : int, optional
         Internal output rate as a multiple of ``scene.fs`` before the anti-alias
         decimation (default 4).
+    allow_unrepresented : bool, optional
+        Run a ``model`` named by the caller even if it leaves out what the scene
+        states (gears with ``"impulse"``, ``needs=("ball_dynamics",)`` with ``"sr5"``):
+        :func:`unrepresented` is then dropped from the signal, and
+        ``info["model_reason"]`` says so. Default False: refused, naming what is
+        missing and which models have it.
 
     Returns
     -------
@@ -291,7 +343,8 @@ def simulate(scene: Scene, model: str = "auto", solver: str = "auto", *, dt: flo
     Raises
     ------
     ValueError
-        Bad arguments (before any work), or no model covers the scene's needs.
+        Bad arguments (before any work), a named model that leaves out what the scene
+        states, or no model covers the scene's needs.
     SimulationUnstableError
         The integration diverged; the message names the scene and the step size.
 
@@ -306,7 +359,7 @@ def simulate(scene: Scene, model: str = "auto", solver: str = "auto", *, dt: flo
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a ballpass.Scene, got {type(scene).__name__}")
-    chosen, reason = _choose(scene, model, return_forces)
+    chosen, reason = _choose(scene, model, return_forces, allow_unrepresented)
     check_solver_args(chosen.name, solver, chosen.solvers, chosen.fixed_step_solvers,
                       dt, rtol, atol, oversample)
     solver = chosen.default_solver if solver == "auto" else solver
