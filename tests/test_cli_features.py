@@ -101,6 +101,9 @@ def test_cwru_mat_inputs(tmp_path, capsys):
     table = pd.read_csv(io.StringIO(capsys.readouterr().out))
     assert table.label.tolist() == ["inner", "inner", "healthy"]
     assert table.fs.tolist() == [12_000.0, 12_000.0, 48_000.0]  # the 48 kHz pitfall
+    # each row says its file, and the segments of one record share a group to split by
+    assert table.file.tolist() == [ir.name, ir.name, normal.name]
+    assert table.group[0] == table.group[1] != table.group[2]
     assert (table.bearing == 6205).all()
     # g -> m/s^2: the rms of the loaded signal, not 1/9.81 of it
     np.testing.assert_allclose(

@@ -253,6 +253,9 @@ def load_records(args) -> list[Signal]:
         else:
             signals += _from_recordings(path, args)
         check_analysable(signals[before:], path)
+        for sig in signals[before:]:  # which file, and which record (split by it)
+            sig.columns.setdefault("file", path.name)
+            sig.columns.setdefault("group", sig.name)
     return signals
 
 
