@@ -44,4 +44,7 @@ def run(args) -> int:
         print("\nrows per condition and label")
         with pd.option_context("display.max_rows", 200, "display.width", 120):
             print(d["conditions"].to_string())
+            if d.get("fault_sizes") is not None:
+                print("\nfaulty rows per fault size (mm) and label")
+                print(d["fault_sizes"].to_string())
     return 0

@@ -489,6 +489,8 @@ def _live_status(folder: Path, manifest: dict) -> str:
 
 #: columns whose distinct combinations form an operating condition in :func:`info`
 CONDITION_COLUMNS = ("bearing", "rpm", "radial_load_n", "sensor")
+#: Fault-size columns that ``info`` breaks the faulty rows down by (mm).
+SIZE_COLUMNS = ("fault_width_mm", "fault_depth_mm")
 
 
 def info(path) -> dict:
@@ -508,7 +510,10 @@ def info(path) -> dict:
         ``fs`` (Hz), ``duration_s`` (s per row), ``signal_length``, ``size_bytes`` (on
         disk), ``ballpass_version``, ``labels`` (pandas Series: rows per label) and
         ``conditions`` (DataFrame: rows per label for each condition, columns
-        ``bearing, rpm, radial_load_n, sensor``).
+        ``bearing, rpm, radial_load_n, sensor``) and ``fault_sizes`` (DataFrame: faulty
+        rows per fault width and depth, mm, and label; for sizes drawn from a
+        distribution, their count, minimum, median and maximum per label; None without
+        faulty rows).
 
     Raises
     ------
@@ -539,8 +544,13 @@ def info(path) -> dict:
     has_features = any(s.get("features_complete") for s in manifest["shards"])
     if has_features:
         _shard_paths(path, features=True, warn=False)     # verify the feature table too
-    meta = (_read(files, ["label", *CONDITION_COLUMNS, "run_id"], None).to_pandas()
-            if files else None)
+    meta = None
+    if files:
+        import pyarrow.parquet as pq
+
+        present = set(pq.read_schema(files[0]).names)
+        meta = _read(files, ["label", *CONDITION_COLUMNS, "run_id",
+                             *(c for c in SIZE_COLUMNS if c in present)], None).to_pandas()
     size = sum(f.stat().st_size for f in path.rglob("*") if f.is_file())
     out = {
         "path": str(path),
@@ -561,4 +571,18 @@ def info(path) -> dict:
         out["labels"] = meta["label"].value_counts().sort_index()
         out["conditions"] = (meta.groupby([*CONDITION_COLUMNS, "label"]).size()
                              .unstack("label", fill_value=0))
+        out["fault_sizes"] = _fault_sizes(meta)
     return out
+
+
+def _fault_sizes(meta):
+    """Faulty rows per fault size and label: a count per (width, depth) when the sizes are
+    a few listed values, else (sizes drawn from a distribution) the range of each."""
+    sizes = [c for c in SIZE_COLUMNS if c in meta.columns]
+    faulty = meta[meta["label"] != "healthy"]
+    if not sizes or faulty.empty:
+        return None
+    if faulty[sizes].drop_duplicates().shape[0] <= 24:
+        return faulty.groupby([*sizes, "label"]).size().unstack("label", fill_value=0)
+    return faulty.groupby("label")[sizes].describe().loc[
+        :, (slice(None), ["count", "min", "50%", "max"])]
