@@ -263,6 +263,33 @@ def passages(res, sc, width_mm, ball=None):
     return np.array(rows).reshape(-1, 5)
 
 
+def severity_figure(found, cf):
+    """Impact against the level (multibody medians, reduced model) and the closing
+    speed of the trailing corner in closed form."""
+    x = np.arange(len(LEVELS))
+    fig, axs = plt.subplots(1, 2, figsize=(11, 4))
+    curves = (("outer race", "outer", 0, "C0"), ("inner race", "inner", 0, "C3"),
+              ("ball at the outer race", "ball", 0, "C2"),
+              ("ball at the inner race", "ball", 1, "C1"))
+    for label, kind, i, colour in curves:
+        axs[0].plot(x, [found[kind, lv]["median"][i] for lv in LEVELS], "o-", color=colour,
+                    label=f"{label}, multibody")
+        axs[0].plot(x, [found[kind, lv]["reduced"][i] for lv in LEVELS], "x--",
+                    color=colour, label=f"{label}, reduced model")
+    for kind, colour in (("outer", "C0"), ("inner", "C3")):
+        axs[1].plot(x, [cf[kind, lv]["speed"] for lv in LEVELS], "o-", color=colour,
+                    label=f"{kind} race")
+    axs[0].set_ylabel("8-30 kHz peak per load-zone passage, m/s^2")
+    axs[1].set_ylabel("closing speed of the trailing corner, m/s")
+    axs[1].set_ylim(bottom=0.0)
+    for ax in axs:
+        ax.set_xticks(x, [f"{lv}\n{w}x{h} mm" for lv, (w, h) in LEVELS.items()])
+        ax.legend(fontsize=7)
+    fig.suptitle("impact against the fault level (ER-16K, 35 Hz, 110 N)")
+    fig.tight_layout()
+    save(fig, "seed000_severity.png")
+
+
 def severity(md):
     from _notch_impact import closed_form, reduced_impact
     rows, found, cf = [], {}, {}
@@ -309,6 +336,7 @@ def severity(md):
                     + " | ".join(f"{p:.2f}" for p in peaks) + " |")
         found["inner_dt", dt] = peaks
     FOUND["severity"] = found
+    severity_figure(found, cf)
     o1, o3, i1 = cf["outer", "I"], cf["outer", "III"], cf["inner", "I"]
     levels = list(LEVELS)
 
@@ -336,6 +364,7 @@ def severity(md):
            "step; single passages move by up to 15 % with the step (the pocket contacts "
            "make the run sensitive to rounding, see the physics page).", "",
            "| RK4 step us | I | II | III |", "|---|---|---|---|", *conv, "",
+           "![severity](seed000_severity.png)", "",
            f"**Why the inner race does not follow the outer race.** A notch passes the "
            f"contact at the rolling speed u (the inner race relative to the cage, "
            f"(omega_i - Omega) R_i = {i1['u']:.3f} m/s, and the cage relative to the outer "
