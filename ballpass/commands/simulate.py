@@ -157,7 +157,8 @@ def run(args) -> int:
                  f"{scene.radial_load_n:g} N")
         fig = signal_overview(res.accel, res.fs, bearing=scene.bearing,
                               shaft_hz=scene.shaft_hz, channels=list(res.sensor_names),
-                              title=title, band=scene.demodulation_band)
+                              title=title, band=scene.demodulation_band,
+                              band_source="the sensor resonance's band")
         writes.append((plot, figure_writer(fig, plot)))
     atomic_write_many(writes)
     info = res.info
