@@ -30,7 +30,7 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     from ..gears import GEAR_PRESETS
 
     p.add_argument("--gears", choices=sorted(GEAR_PRESETS), default=None,
-                   help="a gear pair whose pinion sits on the bearing's shaft (seed 004 "
+                   help="a gear pair whose pinion sits on the bearing's shaft (Tran, Furch & Cu "
                    "Table 1 presets); runs the gearbox model")
     p.add_argument("--torque", type=float, default=None,
                    help="input torque of the gear pair, N m (default: the preset's, 50)")
