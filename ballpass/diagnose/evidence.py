@@ -58,7 +58,6 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.fft
 
-from ..features import envelope_spectrum
 from ..features._validation import (
     check_band,
     check_fs,
@@ -68,6 +67,7 @@ from ..features._validation import (
     check_signal,
 )
 from ..features.bands import as_bearing
+from ..features.demodulate import BandDemodulator
 from ..features.kurtogram import FLOOR_DB
 from ..features.shaft import SHAFT_GUARD_BINS, SHAFT_GUARD_RELATIVE, shaft_line_bins
 from .speed import estimate_shaft_speed
@@ -236,7 +236,8 @@ class EnvelopeEvidence:
     duration_s: float
 
 
-def candidate_bands(x: np.ndarray, fs: float, lowest_hz: float, *, max_level: float = 5.0):
+def candidate_bands(x: np.ndarray, fs: float, lowest_hz: float, *, max_level: float = 5.0,
+                    power=None):
     """Bands of Antoni's 1/3-binary tree fit to demodulate, and which rows hold signal.
 
     A band qualifies when it is at least ``lowest_hz`` wide (its squared envelope
@@ -257,6 +258,8 @@ def candidate_bands(x: np.ndarray, fs: float, lowest_hz: float, *, max_level: fl
         Highest fault line the SES must carry, Hz.
     max_level : float, optional
         Finest tree level considered (default 5).
+    power : ndarray, shape (n_signals, n_samples // 2 + 1), optional
+        Power spectrum of the mean-removed ``x`` if already computed.
 
     Returns
     -------
@@ -273,7 +276,8 @@ def candidate_bands(x: np.ndarray, fs: float, lowest_hz: float, *, max_level: fl
     >>> bands[:3].tolist(), bool(ok.all())
     ([[2000.0, 4000.0], [1500.0, 3000.0], [3000.0, 4500.0]], True)
     """
-    power = np.abs(scipy.fft.rfft(x - x.mean(axis=-1, keepdims=True), axis=-1)) ** 2
+    if power is None:
+        power = np.abs(scipy.fft.rfft(x - x.mean(axis=-1, keepdims=True), axis=-1)) ** 2
     df = fs / x.shape[-1]
     mean = power.mean(axis=-1) + 1e-300
     bands, ok = [], []
@@ -331,10 +335,7 @@ def _family_scores(ses, notch, df, shaft_hz, orders, fault, harmonics, slip, bac
     hi = np.rint(nominal * (1 + UPWARD * slip) / df).astype(np.int64) + half
     valid = (idx >= 1) & (idx < n_bins) & (idx <= hi[..., None])
     rows2 = np.arange(n)[:, None, None]
-    window_bg = np.where(valid, ses[rows2, np.clip(idx, 0, n_bins - 1)], np.nan)
-    with np.errstate(all="ignore"):
-        background = np.nanmedian(window_bg, axis=-1)  # (n, L)
-    background = np.where(np.isfinite(background), background, np.inf)
+    background = _masked_median(ses[rows2, np.clip(idx, 0, n_bins - 1)], valid)  # (n, L)
 
     rows = np.arange(n)[:, None, None]
     c = np.clip(centre, 1, n_bins - 2)
@@ -364,6 +365,17 @@ def _family_scores(ses, notch, df, shaft_hz, orders, fault, harmonics, slip, bac
     i = np.arange(n)
     on_shaft = usable & notch[rows, c]
     return score[i, j], level[i, j], (c[i, j] + best[i, j]) * df, scales[j], on_shaft[i, j]
+
+
+def _masked_median(values: np.ndarray, valid: np.ndarray) -> np.ndarray:
+    """Median over the last axis of the ``valid`` entries (``inf`` where none):
+    ``np.nanmedian`` without its masked-array path, which costs ten times more."""
+    ordered = np.sort(np.where(valid, values, np.inf), axis=-1)
+    count = valid.sum(axis=-1)
+    lower = np.take_along_axis(ordered, np.maximum(count - 1, 0)[..., None] // 2, -1)[..., 0]
+    upper = np.take_along_axis(ordered, (count // 2)[..., None], -1)[..., 0]
+    with np.errstate(invalid="ignore"):
+        return np.where(count > 0, 0.5 * (lower + upper), np.inf)
 
 
 def shaft_resolving_length(freq_hz, shaft_hz: float):
@@ -436,7 +448,9 @@ def envelope_evidence(
     """Evidence of each fault family in the squared envelope spectrum, dB.
 
     For each signal and each candidate band (:func:`candidate_bands`, or ``band``): the
-    SES (:func:`ballpass.features.envelope_spectrum`); for each family and each common
+    SES (:func:`ballpass.features.envelope_spectrum`'s, computed from the band's own bins
+    by :class:`ballpass.features.demodulate.BandDemodulator`, so a band costs in
+    proportion to its width); for each family and each common
     scale ``s`` of its kinematic frequencies in ``[1 - slip, 1 + slip / 2]`` (slip
     slows the cage; steps of half a bin at the highest harmonic) the level of each
     usable line (see the module notes for the lines left out):
@@ -590,8 +604,13 @@ def _best_bands(xv, shaft_hz, *, fs, orders, harmonics, slip, background_hz, pre
     shared = _shared_carriers(orders, harmonics, slip)
     top = float(np.max(shaft_hz)) * (harmonics * max(orders[c] for c, _, _ in
                                                      FAULT_FAMILIES.values()) + 1.0)
+    # The SES is needed up to the highest line's slip search and background, and one
+    # shaft harmonic beyond (the shaft guard's nearest harmonic).
+    reach = (top * (1.0 + slip) + float(np.max(shaft_hz)) + background_hz
+             + 10.0 * fs / xv.shape[-1])
+    demodulator = BandDemodulator(xv, fs, max_hz=reach, prewhiten=prewhiten)
     if bands is None:
-        bands, has_signal = candidate_bands(xv, fs, top)
+        bands, has_signal = candidate_bands(xv, fs, top, power=demodulator.power)
     else:
         has_signal = np.ones((len(xv), 1), bool)
     n = len(xv)
@@ -611,7 +630,7 @@ def _best_bands(xv, shaft_hz, *, fs, orders, harmonics, slip, background_hz, pre
     for k, b in enumerate(bands):
         if not has_signal[:, k].any():
             continue
-        freqs, ses = envelope_spectrum(xv, fs, tuple(b), prewhiten=prewhiten)
+        freqs, ses = demodulator.ses(tuple(b))
         df = freqs[1]
         notch = shaft_line_bins(freqs, ses, shaft_hz, background_hz)
         for fault in FAULT_FAMILIES:
