@@ -146,6 +146,8 @@ MIN_CARRIERS = 2
 #: lowers them, the margin absorbs the speed's own uncertainty once it has been checked
 #: against the shaft-harmonic comb (about 0.2 %).
 UPWARD = 0.25
+#: Rows (signals x bands) scored in one vectorised pass; bounds the memory of a batch.
+ROWS_PER_BATCH = 256
 _SYMBOL = {"bpfo": "BPFO", "bpfi": "BPFI", "ball_defect": "2xBSF", "shaft": "fr", "ftf": "FTF"}
 
 
@@ -741,22 +743,28 @@ def _best_bands(xv, shaft_hz, *, fs, orders, harmonics, slip, background_hz, pre
         )
         for f in FAULT_FAMILIES
     }
-    for k, b in enumerate(bands):
-        if not has_signal[:, k].any():
-            continue
-        freqs, ses = demodulator.ses(tuple(b))
-        df = freqs[1]
-        notch = shaft_line_bins(freqs, ses, shaft_hz, background_hz)
+    searched = np.flatnonzero(has_signal.any(axis=0))
+    # Bands are scored together, stacked as extra rows (the line layout is the same in
+    # every band), a few at a time so that a batch of many signals stays small.
+    per_batch = max(1, ROWS_PER_BATCH // n)
+    for start in range(0, searched.size, per_batch):
+        chunk = searched[start : start + per_batch]
+        spectra = [demodulator.ses(tuple(bands[k])) for k in chunk]
+        df = spectra[0][0][1]
+        ses = np.concatenate([s for _, s in spectra])  # (len(chunk) * n, n_bins)
+        speeds = np.tile(shaft_hz, len(chunk))
+        notch = shaft_line_bins(spectra[0][0], ses, speeds, background_hz)
         for fault in FAULT_FAMILIES:
-            ev, level, found, scale, on_shaft = _family_scores(
-                ses, notch, df, shaft_hz, orders, fault, harmonics, slip, background_hz,
-                shared[fault], resolved)
-            better = has_signal[:, k] & (ev > best[fault]["evidence"])
+            scored = _family_scores(ses, notch, df, speeds, orders, fault, harmonics, slip,
+                                    background_hz, shared[fault], np.tile(resolved, len(chunk)))
             rec = best[fault]
-            rec["evidence"] = np.where(better, ev, rec["evidence"])
-            rec["level"] = np.where(better[:, None], level, rec["level"])
-            rec["found"] = np.where(better[:, None], found, rec["found"])
-            rec["on_shaft"] = np.where(better[:, None], on_shaft, rec["on_shaft"])
-            rec["scale"] = np.where(better, scale, rec["scale"])
-            rec["band"] = np.where(better[:, None], b, rec["band"])
+            for i, k in enumerate(chunk):
+                ev, level, found, scale, on_shaft = (v[i * n : (i + 1) * n] for v in scored)
+                better = has_signal[:, k] & (ev > rec["evidence"])
+                rec["evidence"] = np.where(better, ev, rec["evidence"])
+                rec["level"] = np.where(better[:, None], level, rec["level"])
+                rec["found"] = np.where(better[:, None], found, rec["found"])
+                rec["on_shaft"] = np.where(better[:, None], on_shaft, rec["on_shaft"])
+                rec["scale"] = np.where(better, scale, rec["scale"])
+                rec["band"] = np.where(better[:, None], bands[k], rec["band"])
     return best, has_signal.sum(axis=1)
