@@ -122,7 +122,10 @@ class BandDemodulator:
         weight[(np.arange(a, b) == 0) | (2 * np.arange(a, b) == self.n)] *= 0.5  # as hilbert
         reach = b - a  # the squared envelope's spectrum spans +-reach bins
         n_bins = reach + 1 if self.max_hz is None else int(self.max_hz / self.df) + 1
-        m = scipy.fft.next_fast_len(2 * reach + 4)  # +-reach, and the Hann window's +-1 bin
+        # Samples: the squared envelope's spectrum spans +-reach bins; on m samples a
+        # line at f > m/2 folds to m - f, so bins up to n_bins stay clean for
+        # m > reach + n_bins (and the Hann window's +-1 bin).
+        m = scipy.fft.next_fast_len(reach + min(n_bins, reach + 1) + 4)
         z = scipy.fft.ifft(self._spectrum[:, a:b] * weight, n=m, axis=-1) * (m / self.n)
         e = z.real**2 + z.imag**2
         w = _window("hann", m)
