@@ -57,6 +57,7 @@ def diagnose(folder: Path) -> pd.DataFrame:
             "grade": why.grade, "strongest": top,
             "evidence_db": round(why.evidence_db[top], 1),
             "band_hz": "{:.0f}-{:.0f}".format(*why.band_hz[top]),
+            "noise_probability": float(f"{why.noise_probability:.2g}"),
             "seconds_named": int(np.sum(seg == truth)), "seconds": len(seg),
             "seconds_faulty": int(np.sum(seg != "healthy")),
         })
@@ -75,12 +76,14 @@ def markdown(table: pd.DataFrame) -> str:
         f"{len(faults)}; fault seconds named: {int(faults.seconds_named.sum())} of "
         f"{int(faults.seconds.sum())}",
         "",
-        "| record | truth | verdict (grade) | strongest family, dB, band Hz | 1 s named |",
-        "|---|---|---|---|---|",
+        "| record | truth | verdict (grade) | strongest family, dB, band Hz | noise alone "
+        "reads it | 1 s named |",
+        "|---|---|---|---|---|---|",
     ]
     for r in table.itertuples():
         lines.append(f"| {r.record} | {r.truth} | {r.prediction} ({r.grade}) | {r.strongest} "
-                     f"{r.evidence_db}, {r.band_hz} | {r.seconds_named}/{r.seconds} |")
+                     f"{r.evidence_db}, {r.band_hz} | {r.noise_probability:.2g} | "
+                     f"{r.seconds_named}/{r.seconds} |")
     return "\n".join(lines)
 
 
@@ -93,6 +96,10 @@ their five one-second segments by the default `EnvelopeDiagnoser` (thresholds fr
 noise statistics, nothing fitted on any recording).
 
 {table}
+
+"Noise alone reads it" is the probability that a record of noise reads the strongest
+evidence or more (`Explanation.noise_probability`): the healthy recording at 1200 rpm
+is no accident of the search, its lines are the machine's.
 
 The healthy recording at 1200 rpm is the false alarm: its outer-race evidence is a
 BPFO comb (1x and 2x, 11-12 dB, at the kinematic frequency, no +-FTF sidebands) read in
