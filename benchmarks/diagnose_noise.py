@@ -111,16 +111,23 @@ the search itself (bands, slip scales, families).
 """
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def run_study(doc: str, stem: str, measure, markdown, page: str) -> None:
+    """Command line of a seeded false-alarm study: ``--out`` folder and ``--seed``;
+    writes ``<out>/<stem>.csv`` and ``<out>/<stem>.md`` (``page`` with ``{n}`` records
+    and the ``{table}``) and prints the page."""
+    parser = argparse.ArgumentParser(description=doc.splitlines()[0])
     parser.add_argument("--out", type=Path, default=Path("docs"))
     parser.add_argument("--seed", type=int, default=0)
     args = parser.parse_args()
     table = measure(args.seed)
-    atomic_write(args.out / "diagnosis_noise.csv", lambda tmp: table.to_csv(tmp, index=False))
-    page = PAGE.format(n=len(table), table=markdown(table))
-    atomic_write(args.out / "diagnosis_noise.md", lambda tmp: tmp.write_text(page))
-    print(page)
+    atomic_write(args.out / f"{stem}.csv", lambda tmp: table.to_csv(tmp, index=False))
+    text = page.format(n=len(table), table=markdown(table))
+    atomic_write(args.out / f"{stem}.md", lambda tmp: tmp.write_text(text))
+    print(text)
+
+
+def main() -> None:
+    run_study(__doc__, "diagnosis_noise", measure, markdown, PAGE)
 
 
 if __name__ == "__main__":
