@@ -544,6 +544,7 @@ def signal_overview(
     *,
     channels=None,
     band=None,
+    band_source: str = "given",
     harmonics: int = 3,
     title: str | None = None,
     dpi: int = 120,
@@ -573,6 +574,9 @@ def signal_overview(
         Channel names.
     band : (float, float), optional
         Demodulation band, Hz, for every channel.
+    band_source : str, optional
+        Where a given ``band`` comes from, for the spectrum's title (default
+        ``"given"``; ``ballpass simulate`` says "the sensor resonance's band").
     harmonics : int, optional
         Harmonics of each fault line to mark (default 3).
     title : str, optional
@@ -619,7 +623,7 @@ def signal_overview(
         result = features.envelope_analysis(data[0], fs, **lines).kurtogram
         bands = [tuple(map(float, band))] * len(data)
         spectra = [features.envelope_spectrum(row, fs, band) for row in data]
-        rule = "given"
+        rule = band_source
 
     fig = Figure(figsize=(12, 7.5), layout="constrained")
     grid = fig.add_gridspec(2, 2, height_ratios=(1, 1.35), width_ratios=(1.5, 1))

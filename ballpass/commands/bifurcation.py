@@ -26,8 +26,8 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     p = subparsers.add_parser(
         "bifurcation",
         help="bifurcation diagram of the rotor (Poincare sections over a parameter)",
-        description="Simulate the rotor (model rotor2, seed 003) for each value of one "
-        "parameter, strobe its displacement once per shaft (or cage) revolution after "
+        description="Simulate the rotor (model rotor2, the NJ 305 rotor paper) for each value "
+        "of one parameter, strobe its displacement once per shaft (or cage) revolution after "
         "the transient, and write the points (parameter, point, x_m, y_m; m) as CSV. "
         "Parameters: any numeric scene field (rpm, radial_load_n, ...) or "
         "radial_clearance_mm of the bearing.",

@@ -34,6 +34,19 @@ Three traps make a naive family score fail on real machines, and each has a rule
    sidebands come within :data:`OUTER_SIDEBAND_MARGIN_DB` of its carriers, so the
    sidebands of real outer-race faults do not refute them.
 
+The evidence is built in stages, each a function that can be read and tested alone:
+
+1. **candidate bands** (:func:`candidate_bands`): the bands of the 1/3-binary tree that
+   can carry the lines, hold signal, and end below the anti-aliasing roll-off
+   (:data:`ALIAS_FREE_FRACTION`); each is demodulated from its own bins
+   (:class:`ballpass.features.demodulate.BandDemodulator`);
+2. **line readings** (:func:`line_readings`): each family's lines, carriers and
+   sidebands, read over the band's SES background at every common slip scale;
+3. **family scores** (:func:`family_scores`): one score per family and scale from its
+   readings (the rules below), the scale fitted on the carriers, the best band kept
+   (:func:`envelope_evidence`, which also checks the speed);
+4. **thresholds and verdict**: :class:`ballpass.diagnose.EnvelopeDiagnoser`.
+
 The demodulation band is chosen *by fault evidence* (the idea of the IESFOgram of
 Mauricio et al. [3]_ and of pybearing's harmonic-energy band search): every band of
 Antoni's 1/3-binary tree wide enough to carry the family's lines, above the
@@ -58,7 +71,6 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.fft
 
-from ..features import envelope_spectrum
 from ..features._validation import (
     check_band,
     check_fs,
@@ -68,17 +80,22 @@ from ..features._validation import (
     check_signal,
 )
 from ..features.bands import as_bearing
+from ..features.demodulate import BandDemodulator
 from ..features.kurtogram import FLOOR_DB
 from ..features.shaft import SHAFT_GUARD_BINS, SHAFT_GUARD_RELATIVE, shaft_line_bins
 from .speed import estimate_shaft_speed
 
 __all__ = [
+    "ALIAS_FREE_FRACTION",
     "FAULT_FAMILIES",
     "OUTER_SIDEBAND_MARGIN_DB",
     "EnvelopeEvidence",
+    "LineReadings",
     "candidate_bands",
     "envelope_evidence",
     "family_lines",
+    "family_scores",
+    "line_readings",
     "shaft_resolving_length",
 ]
 
@@ -117,12 +134,20 @@ SPEED_CHECK_S = 2.0
 #: ball family (told by its +-FTF sidebands) is not judged, and the outer race, which
 #: only needs them to be told from a ball comb, is judged on its carriers alone.
 FTF_RESOLVED_CAGE_PERIODS = 4.0
+#: Highest frequency a demodulation band may reach, as a fraction of the sampling rate:
+#: the alias-free bandwidth of a vibration analyser is fs / 2.56 (51.2 kHz for 20 kHz,
+#: the convention of acquisition hardware, whose anti-aliasing filter rolls off between
+#: there and fs/2). Above it the signal is the filter's transition band, attenuated and
+#: possibly aliased: a band there carries no evidence of the machine.
+ALIAS_FREE_FRACTION = 1.0 / 2.56
 #: Fewest unshared carriers a family needs to be judged.
 MIN_CARRIERS = 2
 #: The scale search reaches ``UPWARD * slip`` above the kinematic frequencies: slip only
 #: lowers them, the margin absorbs the speed's own uncertainty once it has been checked
 #: against the shaft-harmonic comb (about 0.2 %).
 UPWARD = 0.25
+#: Rows (signals x bands) scored in one vectorised pass; bounds the memory of a batch.
+ROWS_PER_BATCH = 256
 _SYMBOL = {"bpfo": "BPFO", "bpfi": "BPFI", "ball_defect": "2xBSF", "shaft": "fr", "ftf": "FTF"}
 
 
@@ -236,15 +261,17 @@ class EnvelopeEvidence:
     duration_s: float
 
 
-def candidate_bands(x: np.ndarray, fs: float, lowest_hz: float, *, max_level: float = 5.0):
+def candidate_bands(x: np.ndarray, fs: float, lowest_hz: float, *, max_level: float = 5.0,
+                    power=None):
     """Bands of Antoni's 1/3-binary tree fit to demodulate, and which rows hold signal.
 
     A band qualifies when it is at least ``lowest_hz`` wide (its squared envelope
     holds the fault lines up to that frequency), starts at or above ``lowest_hz``
     (above the fault lines' own low-frequency harmonics and the shaft harmonics, whose
     beats would otherwise write their spacing into the SES: a healthy bearing's
-    varying-compliance vibration at BPFO has no high-frequency carrier) and does not
-    reach ``fs/2`` (the anti-aliasing filter's transition band). It holds signal in a
+    varying-compliance vibration at BPFO has no high-frequency carrier) and ends at or
+    below :data:`ALIAS_FREE_FRACTION` ``fs`` (``fs / 2.56``: above it lies the
+    anti-aliasing filter's roll-off, which carries no evidence). It holds signal in a
     row when its mean power density is no more than -:data:`FLOOR_DB` dB below the
     row's average density (the kurtogram's content floor).
 
@@ -257,6 +284,8 @@ def candidate_bands(x: np.ndarray, fs: float, lowest_hz: float, *, max_level: fl
         Highest fault line the SES must carry, Hz.
     max_level : float, optional
         Finest tree level considered (default 5).
+    power : ndarray, shape (n_signals, n_samples // 2 + 1), optional
+        Power spectrum of the mean-removed ``x`` if already computed.
 
     Returns
     -------
@@ -273,7 +302,8 @@ def candidate_bands(x: np.ndarray, fs: float, lowest_hz: float, *, max_level: fl
     >>> bands[:3].tolist(), bool(ok.all())
     ([[2000.0, 4000.0], [1500.0, 3000.0], [3000.0, 4500.0]], True)
     """
-    power = np.abs(scipy.fft.rfft(x - x.mean(axis=-1, keepdims=True), axis=-1)) ** 2
+    if power is None:
+        power = np.abs(scipy.fft.rfft(x - x.mean(axis=-1, keepdims=True), axis=-1)) ** 2
     df = fs / x.shape[-1]
     mean = power.mean(axis=-1) + 1e-300
     bands, ok = [], []
@@ -285,9 +315,9 @@ def candidate_bands(x: np.ndarray, fs: float, lowest_hz: float, *, max_level: fl
         width = 0.5 * fs / n_bands
         if width < lowest_hz:
             continue
-        for j in range(n_bands - 1):  # not the band that reaches fs/2
+        for j in range(n_bands):
             lo, hi = j * width, (j + 1) * width
-            if lo < lowest_hz:
+            if lo < lowest_hz or hi > ALIAS_FREE_FRACTION * fs:
                 continue
             dens = power[:, int(lo / df) : int(hi / df) + 1].mean(axis=-1)
             bands.append((lo, hi))
@@ -297,19 +327,71 @@ def candidate_bands(x: np.ndarray, fs: float, lowest_hz: float, *, max_level: fl
     return bands, has_signal
 
 
-def _family_scores(ses, notch, df, shaft_hz, orders, fault, harmonics, slip, background_hz,
-                   shared, resolved):
-    """Evidence of one family in SES rows ``ses`` (n, n_bins) at speeds ``shaft_hz``.
+@dataclass(frozen=True)
+class LineReadings:
+    """Stage 2 of the evidence: one family's lines read in one band's SES at every
+    common scale of its kinematic frequencies (see :func:`line_readings`).
 
-    ``notch`` (n, n_bins) marks the bins on shaft harmonics, ``resolved`` (n,) the rows
-    long enough to resolve +-FTF sidebands. Returns (evidence (n,),
-    level (n, L), found (n, L), scale (n,), on_shaft (n, L)).
+    Attributes
+    ----------
+    fault : str
+        ``"outer"``, ``"inner"`` or ``"ball"``.
+    scales : ndarray, shape (S,)
+        Ratios of measured to kinematic frequencies searched.
+    level_db : ndarray, shape (n, S, L)
+        Largest SES bin within +-1 bin of each line over its background, dB; NaN for
+        a line left out (shared, or beyond the spectrum).
+    on_bin_db : ndarray, shape (n, S, L)
+        The same for the line's nearest bin alone, dB (the scale fit's sharpness).
+    found_hz : ndarray, shape (n, S, L)
+        Frequency of the bin that carried each line, Hz.
+    on_shaft : ndarray of bool, shape (n, S, L)
+        Lines that fell on a shaft harmonic standing out of the SES.
+    side : ndarray, shape (L,)
+        -1, 0, +1: lower sideband, carrier, upper sideband.
+    n_carriers : int
+        Carriers not shared with another family.
     """
-    carrier, modulation, support = FAULT_FAMILIES[fault]
+
+    fault: str
+    scales: np.ndarray
+    level_db: np.ndarray
+    on_bin_db: np.ndarray
+    found_hz: np.ndarray
+    on_shaft: np.ndarray
+    side: np.ndarray
+    n_carriers: int
+
+
+def line_readings(ses, notch, df, shaft_hz, orders, fault, harmonics, slip, background_hz,
+                  shared) -> LineReadings:
+    """Read one family's lines in SES rows ``ses`` (n, n_bins) at speeds ``shaft_hz`` (Hz).
+
+    For each common scale ``s`` in ``[1 - slip, 1 + UPWARD slip]`` (steps of half a bin
+    at the highest harmonic) and each line of :func:`family_lines`: ``10 log10(max SES
+    within +-1 bin / background)``, the background the median SES over the line's slip
+    search +- ``background_hz``. Bins on a shaft harmonic that stands out (``notch``,
+    (n, n_bins) bool) read as background (0 dB); ``shared`` (H,) marks carriers another
+    family explains, left out with their sidebands.
+
+    Examples
+    --------
+    A flat SES with one line at 1xBPFO of a 6205 at 30 Hz shaft speed:
+
+    >>> import numpy as np
+    >>> import ballpass as bp
+    >>> from ballpass.diagnose.evidence import line_readings
+    >>> orders = bp.Bearing.catalog("6205").frequencies(1.0).as_dict()
+    >>> ses = np.ones((1, 2000)); ses[0, round(30 * orders["bpfo"] / 0.5)] = 100.0
+    >>> r = line_readings(ses, np.zeros(ses.shape, bool), 0.5, np.array([30.0]), orders,
+    ...                   "outer", 2, 0.02, 10.0, np.zeros(2, bool))
+    >>> round(float(np.nanmax(r.level_db[0, :, 0])), 1), r.n_carriers
+    (20.0, 2)
+    """
+    carrier, modulation, _ = FAULT_FAMILIES[fault]
     lines = family_lines(fault, harmonics)
     h = np.array([hh for _, hh, _ in lines], dtype=float)
     side = np.array([ss for _, _, ss in lines], dtype=float)
-    is_carrier = side == 0
     excluded = np.repeat(shared, 3)  # a shared carrier takes its sidebands with it
     n, n_bins = ses.shape
     f_c = orders[carrier] * shaft_hz
@@ -330,24 +412,49 @@ def _family_scores(ses, notch, df, shaft_hz, orders, fault, harmonics, slip, bac
     idx = lo[..., None] + np.arange(width)
     hi = np.rint(nominal * (1 + UPWARD * slip) / df).astype(np.int64) + half
     valid = (idx >= 1) & (idx < n_bins) & (idx <= hi[..., None])
-    rows2 = np.arange(n)[:, None, None]
-    window_bg = np.where(valid, ses[rows2, np.clip(idx, 0, n_bins - 1)], np.nan)
-    with np.errstate(all="ignore"):
-        background = np.nanmedian(window_bg, axis=-1)  # (n, L)
-    background = np.where(np.isfinite(background), background, np.inf)
-
     rows = np.arange(n)[:, None, None]
+    background = _masked_median(ses[rows, np.clip(idx, 0, n_bins - 1)], valid)  # (n, L)
+
     c = np.clip(centre, 1, n_bins - 2)
     tiny = np.finfo(float).tiny
     floor = background[:, None, :] + tiny
     # Bins on a shaft harmonic read as background (level 0 dB): no line there counts.
     window = np.stack([np.where(notch[rows, k], floor, ses[rows, k]) for k in (c - 1, c, c + 1)])
     best = window.argmax(axis=0) - 1
-    level = np.where(usable, 10.0 * np.log10((window.max(axis=0) + tiny) / floor), np.nan)
-    on_bin = np.where(usable, 10.0 * np.log10((window[1] + tiny) / floor), np.nan)
-    n_carriers = np.sum(~excluded & is_carrier)
+    return LineReadings(
+        fault=fault,
+        scales=scales,
+        level_db=np.where(usable, 10.0 * np.log10((window.max(axis=0) + tiny) / floor), np.nan),
+        on_bin_db=np.where(usable, 10.0 * np.log10((window[1] + tiny) / floor), np.nan),
+        found_hz=(c + best) * df,
+        on_shaft=usable & notch[rows, c],
+        side=side,
+        n_carriers=int(np.sum(~excluded & (side == 0))),
+    )
+
+
+def family_scores(readings: LineReadings, resolved) -> tuple[np.ndarray, np.ndarray]:
+    """Stage 3 of the evidence: a family's score and scale fit at every scale, dB.
+
+    With ``C`` the mean level of the usable carriers and ``S`` the mean over harmonics
+    of the stronger sideband: ``(C + S) / 2`` for the inner race (+-fr) and the ball
+    (+-FTF); ``C - max(0, S - C + OUTER_SIDEBAND_MARGIN_DB)`` for the outer race, whose
+    +-FTF neighbours only count against it where ``resolved`` (n,) (records of at
+    least :data:`FTF_RESOLVED_CAGE_PERIODS`). The fit is the mean over carriers of the
+    window level plus the nearest bin's level. ``-inf`` where the family cannot be
+    judged (fewer than :data:`MIN_CARRIERS` unshared carriers; the ball where the FTF
+    sidebands are not resolved).
+
+    Returns
+    -------
+    score, fit : ndarray, shape (n, S)
+    """
+    _, modulation, support = FAULT_FAMILIES[readings.fault]
+    level, side = readings.level_db, readings.side
+    is_carrier = side == 0
+    resolved = np.asarray(resolved, dtype=bool)
     with np.errstate(all="ignore"), _quiet():
-        fit = np.nanmean(np.where(is_carrier, level + on_bin, np.nan), axis=-1)
+        fit = np.nanmean(np.where(is_carrier, level + readings.on_bin_db, np.nan), axis=-1)
         carriers = np.nanmean(np.where(is_carrier, level, np.nan), axis=-1)
         sidebands = np.nanmean(np.fmax(level[..., side == -1], level[..., side == +1]), axis=-1)
     sidebands = np.where(np.isnan(sidebands), 0.0, sidebands)
@@ -356,14 +463,35 @@ def _family_scores(ses, notch, df, shaft_hz, orders, fault, harmonics, slip, bac
     else:
         shortfall = np.maximum(0.0, sidebands - carriers + OUTER_SIDEBAND_MARGIN_DB)
         score = carriers - np.where(resolved[:, None], shortfall, 0.0)
-    judged = (n_carriers >= MIN_CARRIERS) & (resolved[:, None] | (modulation != "ftf")
-                                             | (support < 0))
+    judged = (readings.n_carriers >= MIN_CARRIERS) & (resolved[:, None] | (modulation != "ftf")
+                                                      | (support < 0))
     score = np.where(judged & np.isfinite(score), score, -np.inf)
     fit = np.where(judged & np.isfinite(fit), fit, -np.inf)
+    return score, fit
+
+
+def _family_scores(ses, notch, df, shaft_hz, orders, fault, harmonics, slip, background_hz,
+                   shared, resolved):
+    """Stages 2 and 3 in one band, at the best-fitting scale of each row: (evidence
+    (n,), level (n, L), found (n, L), scale (n,), on_shaft (n, L))."""
+    readings = line_readings(ses, notch, df, shaft_hz, orders, fault, harmonics, slip,
+                             background_hz, shared)
+    score, fit = family_scores(readings, resolved)
     j = fit.argmax(axis=1)
-    i = np.arange(n)
-    on_shaft = usable & notch[rows, c]
-    return score[i, j], level[i, j], (c[i, j] + best[i, j]) * df, scales[j], on_shaft[i, j]
+    i = np.arange(len(ses))
+    return (score[i, j], readings.level_db[i, j], readings.found_hz[i, j],
+            readings.scales[j], readings.on_shaft[i, j])
+
+
+def _masked_median(values: np.ndarray, valid: np.ndarray) -> np.ndarray:
+    """Median over the last axis of the ``valid`` entries (``inf`` where none):
+    ``np.nanmedian`` without its masked-array path, which costs ten times more."""
+    ordered = np.sort(np.where(valid, values, np.inf), axis=-1)
+    count = valid.sum(axis=-1)
+    lower = np.take_along_axis(ordered, np.maximum(count - 1, 0)[..., None] // 2, -1)[..., 0]
+    upper = np.take_along_axis(ordered, (count // 2)[..., None], -1)[..., 0]
+    with np.errstate(invalid="ignore"):
+        return np.where(count > 0, 0.5 * (lower + upper), np.inf)
 
 
 def shaft_resolving_length(freq_hz, shaft_hz: float):
@@ -436,7 +564,9 @@ def envelope_evidence(
     """Evidence of each fault family in the squared envelope spectrum, dB.
 
     For each signal and each candidate band (:func:`candidate_bands`, or ``band``): the
-    SES (:func:`ballpass.features.envelope_spectrum`); for each family and each common
+    SES (:func:`ballpass.features.envelope_spectrum`'s, computed from the band's own bins
+    by :class:`ballpass.features.demodulate.BandDemodulator`, so a band costs in
+    proportion to its width); for each family and each common
     scale ``s`` of its kinematic frequencies in ``[1 - slip, 1 + slip / 2]`` (slip
     slows the cage; steps of half a bin at the highest harmonic) the level of each
     usable line (see the module notes for the lines left out):
@@ -590,8 +720,13 @@ def _best_bands(xv, shaft_hz, *, fs, orders, harmonics, slip, background_hz, pre
     shared = _shared_carriers(orders, harmonics, slip)
     top = float(np.max(shaft_hz)) * (harmonics * max(orders[c] for c, _, _ in
                                                      FAULT_FAMILIES.values()) + 1.0)
+    # The SES is needed up to the highest line's slip search and background, and one
+    # shaft harmonic beyond (the shaft guard's nearest harmonic).
+    reach = (top * (1.0 + slip) + float(np.max(shaft_hz)) + background_hz
+             + 10.0 * fs / xv.shape[-1])
+    demodulator = BandDemodulator(xv, fs, max_hz=reach, prewhiten=prewhiten)
     if bands is None:
-        bands, has_signal = candidate_bands(xv, fs, top)
+        bands, has_signal = candidate_bands(xv, fs, top, power=demodulator.power)
     else:
         has_signal = np.ones((len(xv), 1), bool)
     n = len(xv)
@@ -608,22 +743,28 @@ def _best_bands(xv, shaft_hz, *, fs, orders, harmonics, slip, background_hz, pre
         )
         for f in FAULT_FAMILIES
     }
-    for k, b in enumerate(bands):
-        if not has_signal[:, k].any():
-            continue
-        freqs, ses = envelope_spectrum(xv, fs, tuple(b), prewhiten=prewhiten)
-        df = freqs[1]
-        notch = shaft_line_bins(freqs, ses, shaft_hz, background_hz)
+    searched = np.flatnonzero(has_signal.any(axis=0))
+    # Bands are scored together, stacked as extra rows (the line layout is the same in
+    # every band), a few at a time so that a batch of many signals stays small.
+    per_batch = max(1, ROWS_PER_BATCH // n)
+    for start in range(0, searched.size, per_batch):
+        chunk = searched[start : start + per_batch]
+        spectra = [demodulator.ses(tuple(bands[k])) for k in chunk]
+        df = spectra[0][0][1]
+        ses = np.concatenate([s for _, s in spectra])  # (len(chunk) * n, n_bins)
+        speeds = np.tile(shaft_hz, len(chunk))
+        notch = shaft_line_bins(spectra[0][0], ses, speeds, background_hz)
         for fault in FAULT_FAMILIES:
-            ev, level, found, scale, on_shaft = _family_scores(
-                ses, notch, df, shaft_hz, orders, fault, harmonics, slip, background_hz,
-                shared[fault], resolved)
-            better = has_signal[:, k] & (ev > best[fault]["evidence"])
+            scored = _family_scores(ses, notch, df, speeds, orders, fault, harmonics, slip,
+                                    background_hz, shared[fault], np.tile(resolved, len(chunk)))
             rec = best[fault]
-            rec["evidence"] = np.where(better, ev, rec["evidence"])
-            rec["level"] = np.where(better[:, None], level, rec["level"])
-            rec["found"] = np.where(better[:, None], found, rec["found"])
-            rec["on_shaft"] = np.where(better[:, None], on_shaft, rec["on_shaft"])
-            rec["scale"] = np.where(better, scale, rec["scale"])
-            rec["band"] = np.where(better[:, None], b, rec["band"])
+            for i, k in enumerate(chunk):
+                ev, level, found, scale, on_shaft = (v[i * n : (i + 1) * n] for v in scored)
+                better = has_signal[:, k] & (ev > rec["evidence"])
+                rec["evidence"] = np.where(better, ev, rec["evidence"])
+                rec["level"] = np.where(better[:, None], level, rec["level"])
+                rec["found"] = np.where(better[:, None], found, rec["found"])
+                rec["on_shaft"] = np.where(better[:, None], on_shaft, rec["on_shaft"])
+                rec["scale"] = np.where(better, scale, rec["scale"])
+                rec["band"] = np.where(better[:, None], bands[k], rec["band"])
     return best, has_signal.sum(axis=1)

@@ -19,6 +19,7 @@ References
 
 from __future__ import annotations
 
+import math
 import numbers
 from dataclasses import dataclass
 
@@ -47,7 +48,9 @@ __all__ = [
     "Explanation",
     "envelope_evidence",
     "DEFAULT_THRESHOLD_DB",
+    "NOISE_EVIDENCE_GUMBEL",
     "EnvelopeDiagnoser",
+    "noise_probability",
 ]
 
 #: Shortest record, in cage periods (1 / FTF): the load-zone and cage modulations need
@@ -64,6 +67,36 @@ GRADE_MARGIN_DB = 3.0
 #: threshold adds about 2 dB (a factor 1.6 in SES power) for the non-Gaussian
 #: background of real machines. Set from noise statistics, not from any recording.
 DEFAULT_THRESHOLD_DB = 6.0
+
+
+#: Gumbel law (location, scale), dB, of a noise record's strongest family evidence:
+#: fitted on 100 white and pink noise records, 12-51.2 kHz, 1-10 s, 6205 and 6203 at
+#: 600-1800 rpm (``benchmarks/diagnose_noise.py``, docs/diagnosis_noise.md). The
+#: strongest evidence is a maximum over many readings (bands, slip scales, families), the
+#: case of the Gumbel law; the fitted law barely depends on the rate or the length (means
+#: 3.4-3.9 dB over all of them). Noise reaches the default threshold with probability
+#: about 7e-5 per record.
+NOISE_EVIDENCE_GUMBEL = (3.48, 0.262)
+
+
+def noise_probability(evidence_db: float) -> float:
+    """Probability that a record of noise alone reads a family evidence of at least
+    ``evidence_db`` (dB), from :data:`NOISE_EVIDENCE_GUMBEL`.
+
+    A statement about the search, not about the machine: a healthy machine's own lines
+    (shaft, supply, a varying-compliance line imprinted on a band) are not noise, and a
+    low probability does not rule them out.
+
+    Examples
+    --------
+    >>> from ballpass.diagnose.rules import noise_probability
+    >>> f"{noise_probability(6.0):.0e}", noise_probability(float("-inf"))
+    ('7e-05', 1.0)
+    """
+    if not math.isfinite(evidence_db):
+        return 1.0 if evidence_db < 0 else 0.0
+    loc, scale = NOISE_EVIDENCE_GUMBEL
+    return float(-math.expm1(-math.exp(-(evidence_db - loc) / scale)))
 
 
 @dataclass(frozen=True)
@@ -95,6 +128,10 @@ class Explanation:
         Shaft speed used, rev/min.
     rpm_stated : float
         Shaft speed given, rev/min.
+    noise_probability : float
+        Probability that noise alone reads the record's strongest family evidence or
+        more (:func:`noise_probability`): the false-alarm rate of a threshold set there,
+        on a machine with no lines of its own.
     lines : pandas.DataFrame
         One row per line of every family: ``fault``, ``line`` (e.g. ``"1xBPFI+fr"``),
         ``harmonic``, ``role`` (``"carrier"``, ``"sideband"``, or ``"refuting
@@ -134,6 +171,7 @@ class Explanation:
     rpm: float
     rpm_stated: float
     lines: object
+    noise_probability: float = float("nan")
 
     def __str__(self) -> str:
         head = (
@@ -144,6 +182,9 @@ class Explanation:
             )
         )
         parts = [head, *(f"  note: {n}" for n in self.notes)]
+        if math.isfinite(self.noise_probability):
+            parts.append(f"  noise alone reads the strongest evidence with probability "
+                         f"{self.noise_probability:.2g}")
         if self.label != "healthy":
             lo, hi = self.band_hz[self.label]
             decisive = self.lines[self.lines["decisive"] & ~self.lines["shared"]]
@@ -597,5 +638,6 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
                 rpm=float(ev.rpm[i]),
                 rpm_stated=float(ev.rpm_stated[i]),
                 lines=pd.concat(frames, ignore_index=True),
+                noise_probability=noise_probability(max(evidence.values())),
             ))
         return out

@@ -4,7 +4,7 @@ The time-domain statistics vibration engineers trend: level (RMS, peak,
 peak-to-peak) and shape (crest factor, kurtosis, skewness, shape, impulse and
 clearance factors). Kurtosis is Pearson's (3 for Gaussian noise, 1.5 for a sine), as
 condition monitoring uses it, i.e. ``scipy.stats.kurtosis(fisher=False)``. The
-faulty/healthy ratio of each indicator is the statistic of seed 001 (an MSC-ADAMS
+faulty/healthy ratio of each indicator is the statistic of Nabhan & Rashed (2020) (an MSC-ADAMS
 inner-race study, figs. 11-12): RMS ratios rise with speed and fault size, crest-factor
 ratios may miss the fault.
 """
@@ -129,9 +129,9 @@ def _indicators(x: np.ndarray) -> dict[str, np.ndarray]:
 
 
 def indicator_ratios(faulty, healthy, *, axis: int = -1) -> dict[str, np.ndarray]:
-    """Faulty/healthy ratio of each indicator (seed 001's detection statistic).
+    """Faulty/healthy ratio of each indicator (Nabhan & Rashed's detection statistic).
 
-    A ratio well above 1 flags the fault; seed 001 finds the RMS ratio the most
+    A ratio well above 1 flags the fault; Nabhan & Rashed (2020) finds the RMS ratio the most
     reliable, the crest-factor ratio unreliable. Skewness is near 0 for a healthy
     bearing, so its ratio is unstable; it is returned for completeness.
 

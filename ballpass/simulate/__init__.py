@@ -21,16 +21,17 @@ Models (the table behind ``auto``: ``python -m ballpass bearings`` lists bearing
 ``sr4``
     The same without the resonator: the sensors read the housing acceleration.
 ``rotor2``
-    Seed 003's rigid rotor on a cylindrical roller bearing (Palmgren line contacts,
+    The NJ 305 rotor paper's rigid rotor on a cylindrical roller bearing (Palmgren line contacts,
     clearance, unbalance, defects), Newmark-beta by default (see :mod:`.rotor2`): the
     non-linear rotor dynamics for Poincare sections and bifurcation diagrams
     (:mod:`ballpass.dynamics`).
 ``multibody``
-    Nakhaeinejad & Bryant (2011, seed 000): every ball a body with traction, slip and
+    Nakhaeinejad & Bryant (2011, Nakhaeinejad & Bryant (2011)): every ball a body with traction,
+    slip and
     centrifugal load (see :mod:`.multibody`). What scenes that need ``ball_dynamics``
     run.
 ``gearbox``
-    A gear pair (seed 004) whose pinion sits on the bearing's shaft, coupled to the sr5
+    A gear pair (Tran, Furch & Cu) whose pinion sits on the bearing's shaft, coupled to the sr5
     bearing-pedestal model (see :mod:`.gearbox`); what a scene with ``gears`` runs.
 
 A new model is one file that builds a :class:`Model` and one line in :data:`MODELS`.
