@@ -214,3 +214,27 @@ def _expected_failures(pipe):
                          expected_failed_checks=_expected_failures)
 def test_pipelines_pass_sklearn_checks(estimator, check):
     check(estimator)
+
+
+def test_fold_spread_and_few_groups_are_reported(dataset, tmp_path):
+    """Each score carries its spread over the folds, and a class with fewer than five
+    groups is warned about (the report says so too)."""
+    _, X, meta = dataset
+    healthy = meta.loc[meta.label == "healthy", "group"].unique()
+    keep = ~meta.group.isin(healthy[3:]).to_numpy()          # 3 healthy runs left
+    X, meta = X[keep], meta[keep].reset_index(drop=True)
+    with pytest.warns(UserWarning, match="fewer than 5 groups") as caught:
+        result = run_benchmark(X, meta, splits=["run"], models=["envelope"], n_splits=3)
+    few = result.info["few_groups"]
+    assert few == {"healthy": 3}
+    assert not run_benchmark(X[meta.label != "healthy"], meta[meta.label != "healthy"],
+                             splits=["run"], models=["envelope"], n_splits=3).info["few_groups"]
+    assert any(str(few) in str(w.message) for w in caught)
+    row = result.table.iloc[0]
+    pred = result.predictions
+    per_fold = (pred.y_true == pred.y_pred).groupby(pred.fold).mean()
+    # the pooled accuracy lies within the spread of the per-fold accuracies
+    assert row.accuracy_fold_min == per_fold.min() <= row.accuracy <= per_fold.max()
+    assert row.accuracy_fold_max == per_fold.max()
+    text = write_report(result, tmp_path)["markdown"].read_text()
+    assert "**Warning:** classes with fewer than 5 groups" in text and "accuracy_fold_min" in text

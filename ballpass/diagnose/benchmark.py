@@ -30,6 +30,7 @@ healthy training rows of each fold (:meth:`~ballpass.diagnose.EnvelopeDiagnoser.
 from __future__ import annotations
 
 import sys
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -58,7 +59,8 @@ class BenchmarkResult:
     table : pandas.DataFrame
         One row per (split, model): ``split``, ``model``, ``optimistic``, ``folds``,
         ``n_test``, ``accuracy``, ``macro_f1`` (over the classes present in the test
-        rows) and ``recall_<label>`` for each of :data:`~ballpass.diagnose.LABELS`
+        rows), ``accuracy_fold_min`` and ``accuracy_fold_max`` (the spread over the
+        folds) and ``recall_<label>`` for each of :data:`~ballpass.diagnose.LABELS`
         (NaN when the class is absent from the test rows). Scores pool the
         out-of-fold predictions of all folds.
     confusion : dict of (str, str) to ndarray of int, shape (4, 4)
@@ -243,6 +245,30 @@ def _scores(y_true, y_pred) -> dict:
     return row
 
 
+#: Fewer independent groups (runs or recordings) than this in a class make its recall a
+#: matter of a handful of cases: the report warns.
+MIN_GROUPS_PER_CLASS = 5
+
+
+def _few_groups(meta: pd.DataFrame) -> dict:
+    """``{label: groups}`` of the classes with fewer than :data:`MIN_GROUPS_PER_CLASS`
+    groups, with a warning naming them."""
+    counts = meta.groupby("label")["group"].nunique()
+    few = {str(k): int(v) for k, v in counts.items() if v < MIN_GROUPS_PER_CLASS}
+    if few:
+        warnings.warn(f"classes with fewer than {MIN_GROUPS_PER_CLASS} groups (runs or "
+                      f"recordings): {few}; their recall rests on a handful of cases",
+                      stacklevel=3)
+    return few
+
+
+def _fold_spread(pred: pd.DataFrame) -> dict:
+    """Lowest and highest accuracy over the folds of one (split, model)."""
+    per_fold = (pred["y_true"] == pred["y_pred"]).groupby(pred["fold"]).mean()
+    return {"accuracy_fold_min": float(per_fold.min()),
+            "accuracy_fold_max": float(per_fold.max())}
+
+
 def _single(meta: pd.DataFrame, column: str, name: str):
     values = meta[column].dropna().unique() if column in meta else []
     if len(values) != 1:
@@ -412,11 +438,14 @@ def run_benchmark(
             confusion[split, model] = confusion_matrix(pred["y_true"], pred["y_pred"],
                                                        labels=list(LABELS))
             rows.append({"split": split, "model": model, "optimistic": split in _OPTIMISTIC,
-                         "folds": len(folds), **_scores(pred["y_true"], pred["y_pred"])})
+                         "folds": len(folds), **_scores(pred["y_true"], pred["y_pred"]),
+                         **_fold_spread(pred)})
             bar.update()
     bar.close()
+    few = _few_groups(meta)
     info = {
         "rows": len(X), "groups": int(meta["group"].nunique()), "bearing": bearing, "fs": fs,
+        "few_groups": few,
         "samples_per_row": int(X.shape[1]), "features": features, "n_splits": n_splits,
         "labels": meta["label"].value_counts().to_dict(),
     }

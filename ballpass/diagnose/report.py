@@ -12,11 +12,12 @@ from pathlib import Path
 import numpy as np
 
 from ._names import LABELS, MODELS, SPLITS
-from .benchmark import BenchmarkResult
+from .benchmark import MIN_GROUPS_PER_CLASS, BenchmarkResult
 
 __all__ = ["plot_confusion", "markdown_table", "write_report"]
 
-_COLUMNS = ["split", "model", "folds", "n_test", "accuracy", "macro_f1",
+_COLUMNS = ["split", "model", "folds", "n_test", "accuracy", "accuracy_fold_min",
+            "accuracy_fold_max", "macro_f1",
             *(f"recall_{c}" for c in LABELS)]
 
 
@@ -156,7 +157,12 @@ def write_report(result: BenchmarkResult, out_dir, *, title: str = "Classifier b
     if "real_rows" in info:
         lines.append(f"Real recordings: {info['real_rows']} rows in {info['real_groups']} "
                      "groups (test set of `sim2real` only).")
-    lines += ["", "Scores pool the out-of-fold predictions of all folds; macro F1 averages "
+    if info.get("few_groups"):
+        lines += ["", f"**Warning:** classes with fewer than {MIN_GROUPS_PER_CLASS} groups "
+                  f"(runs or recordings): {info['few_groups']}. Their recall rests on a "
+                  "handful of cases; add runs (`repeats`) before trusting it."]
+    lines += ["", "Scores pool the out-of-fold predictions of all folds (`accuracy_fold_min` "
+              "and `accuracy_fold_max`: the spread over the folds); macro F1 averages "
               "over the classes present in the test rows; recall is NaN (–) for an absent "
               "class. Groups never straddle train and test, except in the `random` split, "
               "which is **optimistic** (segments of one run on both sides) and shown only "
