@@ -72,6 +72,7 @@ none of their papers was at hand to check details against).
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 from dataclasses import dataclass, replace
@@ -80,13 +81,14 @@ import numpy as np
 from numba import njit
 
 from .._validation import check_number
+from ..bearing import Bearing, LoadDistribution
 from ..scene import STANDARD_GRAVITY, Scene
 from . import _kernels as K
 from ._registry import Model
 from ._shared import OVERSAMPLE, add_noise, check_finite
 from ._sr5_driver import _edge_names, _events
 from .result import FaultCrossings, GroundTruth, SimulationResult
-from .sr5 import SR5Parameters, build_model
+from .sr5 import SR5Parameters, _check_elastic, build_model
 
 __all__ = ["ImpulseParameters", "IMPULSE", "impact_amplitudes"]
 
@@ -130,6 +132,11 @@ class ImpulseParameters:
             check_number("contact_stiffness", self.contact_stiffness, 0.0, lo_open=True)
 
 
+#: K of a bearing (two Hertz contacts in series, elliptic integrals): computed once per
+#: bearing in a process, as a dataset holds a few bearings and many runs of each
+_hertz_stiffness = functools.lru_cache(maxsize=64)(Bearing.hertz_stiffness)
+
+
 def impact_amplitudes(scene: Scene, psi: np.ndarray, depth_m: np.ndarray,
                       params: ImpulseParameters | None = None) -> np.ndarray:
     """Force released by an element at angle ``psi`` dropping into a defect, N.
@@ -163,10 +170,26 @@ def impact_amplitudes(scene: Scene, psi: np.ndarray, depth_m: np.ndarray,
     (True, 0.0)
     """
     params = params or ImpulseParameters()
-    b = scene.bearing
-    kh = params.contact_stiffness or b.hertz_stiffness()
+    kh = params.contact_stiffness or _hertz_stiffness(scene.bearing)
+    return _released_force(scene, _load_zone(scene, params, kh), kh, psi, depth_m)
+
+
+def _load_zone(scene: Scene, params: ImpulseParameters, kh: float) -> LoadDistribution:
+    """The Stribeck equilibrium under the scene's radial load (plus the shaft weight
+    with ``gravity``), refused beyond the elastic limit sr5 refuses (its largest
+    contact deflection above 1 % of the element diameter)."""
     load = scene.radial_load_n + (params.shaft_mass * STANDARD_GRAVITY if scene.gravity else 0.0)
-    ld = b.load_distribution(load, stiffness=kh)
+    ld = scene.bearing.load_distribution(load, stiffness=kh)
+    b = scene.bearing
+    _check_elastic(scene, (ld.deflection_m - b.radial_clearance_m) * math.cos(b.contact_angle_rad),
+                   load)
+    return ld
+
+
+def _released_force(scene: Scene, ld: LoadDistribution, kh: float, psi: np.ndarray,
+                    depth_m: np.ndarray) -> np.ndarray:
+    """dQ of :func:`impact_amplitudes` on the load zone ``ld``, N."""
+    b = scene.bearing
     n = b.load_exponent
     delta = (ld.deflection_m * np.cos(psi) + ld.lateral_deflection_m * np.sin(psi)
              - b.radial_clearance_m) * math.cos(b.contact_angle_rad)
@@ -260,12 +283,14 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
     t_wall = time.perf_counter()
     params = params or ImpulseParameters()
     if params.contact_stiffness is None:  # derived once, for the kinematics and the loads
-        params = replace(params, contact_stiffness=scene.bearing.hertz_stiffness())
+        params = replace(params, contact_stiffness=_hertz_stiffness(scene.bearing))
+    kh = params.contact_stiffness
+    load_zone = _load_zone(scene, params, kh)  # refuses a load beyond the elastic limit
     # the sr5 kinematics of this scene: parameter vector, slip walk and fault table from
-    # the scene's own seed (the sr4 binding: no resonator state is needed)
-    bm = build_model(scene, SR5Parameters(shaft_mass=params.shaft_mass,
-                                          contact_stiffness=params.contact_stiffness),
-                     resonator=False)
+    # the scene's own seed (the sr4 binding without its static equilibrium: no state is
+    # integrated)
+    bm = build_model(scene, SR5Parameters(shaft_mass=params.shaft_mass, contact_stiffness=kh),
+                     resonator=False, equilibrium=False)
     n_samples = scene.n_samples
     # sr5's event horizon (the end of its internal grid), so both list the same entries
     # and exits; the ends of the edge ramps (columns 1, 2 of the levels) are sr5's
@@ -285,8 +310,7 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
                        bm.faults[f_hit, K.F_ELEM].astype(np.int64), e_hit)
     psi = K.element_angles_many(t_hit, bm.p, bm.walk, z)[np.arange(t_hit.size), carrier]
     depth = np.array([f.effective_depth_mm(scene.bearing) * 1e-3 for f in scene.faults])
-    dq = impact_amplitudes(scene, psi, depth[f_hit] if depth.size else psi * 0.0,
-                                       params)
+    dq = _released_force(scene, load_zone, kh, psi, depth[f_hit] if depth.size else psi * 0.0)
     theta = np.array([math.radians(s.angle_deg) for s in scene.sensors])[:, None]
     kappa = np.array([s.attenuation for s in scene.sensors])[:, None]
     cos_rel = np.cos(psi[None, :] - theta)
