@@ -38,7 +38,7 @@ def test_every_crossing_found_and_bracketed_to_adjacent_floats(name):
     assert before.size > 10
     # adjacent floating-point numbers: nothing lies between the two sides
     np.testing.assert_array_equal(after, np.nextafter(before, np.inf))
-    for t0, t1, i, j, lv in zip(before, after, fault, path, level):
+    for t0, t1, i, j, lv in zip(before, after, fault, path, level, strict=True):
         edge = bm.levels[i, lv]
         assert (_offset(bm, t0, i, j) >= edge) != (_offset(bm, t1, i, j) >= edge)
     # the count of every (fault, path, level) against a dense scan of the offsets: a
