@@ -75,7 +75,7 @@ from __future__ import annotations
 import functools
 import math
 import time
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 from numba import njit
@@ -132,9 +132,14 @@ class ImpulseParameters:
             check_number("contact_stiffness", self.contact_stiffness, 0.0, lo_open=True)
 
 
-#: K of a bearing (two Hertz contacts in series, elliptic integrals): computed once per
-#: bearing in a process, as a dataset holds a few bearings and many runs of each
-_hertz_stiffness = functools.lru_cache(maxsize=64)(Bearing.hertz_stiffness)
+@functools.lru_cache(maxsize=256)
+def _stiffness_and_load_zone(bearing: Bearing, load_n: float,
+                             stiffness: float | None) -> tuple[float, LoadDistribution]:
+    """K (``stiffness``, or the bearing's two Hertz contacts in series) and the Stribeck
+    equilibrium under ``load_n``: computed once per bearing, load and stiffness in a
+    process, as a dataset holds a few of each and many runs (read-only results)."""
+    kh = stiffness or bearing.hertz_stiffness()
+    return kh, bearing.load_distribution(load_n, stiffness=kh)
 
 
 def impact_amplitudes(scene: Scene, psi: np.ndarray, depth_m: np.ndarray,
@@ -169,21 +174,20 @@ def impact_amplitudes(scene: Scene, psi: np.ndarray, depth_m: np.ndarray,
     >>> bool(dq[0] > dq[1] > 0.0), float(dq[2])   # deep defect: the whole load, 0 opposite
     (True, 0.0)
     """
-    params = params or ImpulseParameters()
-    kh = params.contact_stiffness or _hertz_stiffness(scene.bearing)
-    return _released_force(scene, _load_zone(scene, params, kh), kh, psi, depth_m)
+    kh, load_zone = _load_zone(scene, params or ImpulseParameters())
+    return _released_force(scene, load_zone, kh, psi, depth_m)
 
 
-def _load_zone(scene: Scene, params: ImpulseParameters, kh: float) -> LoadDistribution:
-    """The Stribeck equilibrium under the scene's radial load (plus the shaft weight
-    with ``gravity``), refused beyond the elastic limit sr5 refuses (its largest
+def _load_zone(scene: Scene, params: ImpulseParameters) -> tuple[float, LoadDistribution]:
+    """K and the Stribeck equilibrium under the scene's radial load (plus the shaft
+    weight with ``gravity``), refused beyond the elastic limit sr5 refuses (its largest
     contact deflection above 1 % of the element diameter)."""
     load = scene.radial_load_n + (params.shaft_mass * STANDARD_GRAVITY if scene.gravity else 0.0)
-    ld = scene.bearing.load_distribution(load, stiffness=kh)
     b = scene.bearing
+    kh, ld = _stiffness_and_load_zone(b, load, params.contact_stiffness)
     _check_elastic(scene, (ld.deflection_m - b.radial_clearance_m) * math.cos(b.contact_angle_rad),
                    load)
-    return ld
+    return kh, ld
 
 
 def _released_force(scene: Scene, ld: LoadDistribution, kh: float, psi: np.ndarray,
@@ -282,10 +286,8 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
                          "contact_forces; use model='sr5' (or model='auto')")
     t_wall = time.perf_counter()
     params = params or ImpulseParameters()
-    if params.contact_stiffness is None:  # derived once, for the kinematics and the loads
-        params = replace(params, contact_stiffness=_hertz_stiffness(scene.bearing))
-    kh = params.contact_stiffness
-    load_zone = _load_zone(scene, params, kh)  # refuses a load beyond the elastic limit
+    # K, for the kinematics and the loads; refuses a load beyond the elastic limit
+    kh, load_zone = _load_zone(scene, params)
     # the sr5 kinematics of this scene: parameter vector, slip walk and fault table from
     # the scene's own seed (the sr4 binding without its static equilibrium: no state is
     # integrated)
@@ -349,10 +351,11 @@ IMPULSE = Model(
                 "slip, Stribeck load-zone and transmission modulation, ringing the "
                 "scene's resonance; no contact dynamics",
     represents=frozenset({"envelope", "varying_speed"}),
-    # measured by benchmarks/models_cost.py (docs/models_cost.md), after sr5's mass change:
-    # 0.083 of sr5 per simulated second at 48 kHz (median of 5 interleaved rounds of 3
-    # back-to-back calls on a quiet machine, IQR 0.081-0.085), 0.081 at 12 kHz
-    relative_cost=0.083,
+    # measured by benchmarks/models_cost.py (docs/models_cost.md), 5 interleaved rounds of
+    # 3 back-to-back calls on a busy shared machine: 0.059 of sr5's CPU time per simulated
+    # second at 48 kHz (0.039 at 12 kHz); wall-time ratio 0.024 (IQR 0.024-0.029), which
+    # the busy machine flatters (sr5's longer calls wait more for a core)
+    relative_cost=0.059,
     solvers=("analytic",),
     fixed_step_solvers=(),
     reference="P. D. McFadden, J. D. Smith, J. Sound Vib. 96 (1984) 69-82; D. Ho, R. B. "
