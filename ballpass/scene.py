@@ -14,6 +14,7 @@ are the same angle.
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
@@ -361,6 +362,8 @@ class SpeedProfile:
         15.0
         """
         w0 = self.rpm_start * math.pi / 30.0
+        if self.is_constant:  # the same numbers without the vanishing quadratic term
+            return w0 * t
         w1 = self.rpm_end * math.pi / 30.0
         return w0 * t + 0.5 * (w1 - w0) * t * t / duration_s
 
@@ -621,9 +624,10 @@ class Scene:
             return (self.fault,)
         return tuple(self.fault)
 
-    @property
+    @functools.cached_property
     def speed(self) -> SpeedProfile:
-        """The speed as a :class:`SpeedProfile` (constant when ``rpm`` is a number)."""
+        """The speed as a :class:`SpeedProfile` (constant when ``rpm`` is a number;
+        built once per scene)."""
         return self.rpm if isinstance(self.rpm, SpeedProfile) else SpeedProfile(self.rpm)
 
     @property

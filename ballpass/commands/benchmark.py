@@ -15,7 +15,10 @@ examples:
 
 Writes DIR/results.md, DIR/results.csv, DIR/predictions.csv and one confusion-matrix PNG
 per split. Splits never put rows of one run (or recording) on both sides, except
-`random`, which is reported as optimistic."""
+`random`, which is reported as optimistic.
+
+Finished work is kept in DIR/_checkpoint: Ctrl-C writes the report of what is finished
+(marked partial) and exits with 130; the same command again resumes where it stopped."""
 
 
 def _names(text: str) -> list[str]:
@@ -96,7 +99,9 @@ def _same_bearing(real, bearing: str):
 
 
 def run(args) -> int:
-    """Run ``ballpass benchmark``; returns the exit code."""
+    """Run ``ballpass benchmark``; returns the exit code (130 when interrupted)."""
+    import sys
+
     import pandas as pd
 
     from .._validation import check_segment
@@ -125,13 +130,22 @@ def run(args) -> int:
         _check_real_rpm(real[1])
     result = run_benchmark(X, meta, real=real, splits=args.splits, models=args.models,
                            features=args.features, n_splits=args.folds,
-                           random_state=args.seed, progress=show_progress(args))
-    if result.table.empty:   # every split asked for was skipped: nothing to report
+                           random_state=args.seed, progress=show_progress(args),
+                           checkpoint=Path(args.out) / "_checkpoint")
+    if result.table.empty and not result.info.get("interrupted", False):
+        # every split asked for was skipped: nothing to report
         why = "; ".join(f"{split}: {reason}" for split, reason in result.skipped.items())
         raise ValueError(f"no split could be formed on {args.dataset} ({why}); choose "
                          "others with --splits (run keeps runs together on any dataset)")
     paths = write_report(result, args.out)
-    with pd.option_context("display.width", 140, "display.max_rows", 200):
-        print(result.table.drop(columns="optimistic").round(3).to_string(index=False))
+    interrupted = result.info.get("interrupted", False)
+    if not result.table.empty:
+        with pd.option_context("display.width", 140, "display.max_rows", 200):
+            print(result.table.drop(columns="optimistic").round(3).to_string(index=False))
+    if interrupted:
+        print(f"\ninterrupted: partial report of {result.info['pairs_done']} of "
+              f"{result.info['pairs_planned']} split/model pairs: {paths['markdown']}; run the "
+              "same command again to resume", file=sys.stderr)
+        return 130
     print(f"\nreport: {paths['markdown']}")
     return 0

@@ -29,9 +29,11 @@ healthy training rows of each fold (:meth:`~ballpass.diagnose.EnvelopeDiagnoser.
 
 from __future__ import annotations
 
+import hashlib
 import sys
 import warnings
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -39,9 +41,12 @@ import sklearn
 from sklearn.base import clone
 from sklearn.metrics import accuracy_score, confusion_matrix, f1_score, recall_score
 from sklearn.model_selection import StratifiedGroupKFold, StratifiedKFold
+from threadpoolctl import threadpool_limits
 from tqdm.auto import tqdm
 
+from ..signalio import atomic_write
 from ._names import LABELS, MODELS, SPLITS
+from .evidence import FAULT_FAMILIES
 from .pipelines import make_features, make_pipeline
 from .rules import EnvelopeDiagnoser
 
@@ -277,6 +282,123 @@ def _single(meta: pd.DataFrame, column: str, name: str):
     return values[0]
 
 
+def _row_batches(rpm: np.ndarray, size: int = 8):
+    """Row indices in batches of one speed each, at most ``size`` rows: a row's features
+    and diagnoser evidence are then computed among rows of its own speed only, i.e. as
+    for the row alone (the candidate bands start above the fastest row's fault lines),
+    whichever fold later holds it."""
+    for value in np.unique(rpm):
+        rows = np.flatnonzero(rpm == value)
+        for i in range(0, rows.size, size):
+            yield rows[i:i + size]
+
+
+def _union_rows(union):
+    """Per-row features of the pipelines' stateless feature step."""
+    def compute(x, rpm):
+        with sklearn.config_context(enable_metadata_routing=True):
+            return np.asarray(union.transform(x, rpm=rpm), dtype=float)
+    return compute
+
+
+def _evidence_rows(diagnoser: EnvelopeDiagnoser):
+    """Per-row evidence of each fault family, dB, columns in ``FAULT_FAMILIES`` order."""
+    def compute(x, rpm):
+        ev = diagnoser._evidence(x, rpm)[0].evidence_db
+        return np.column_stack([ev[f] for f in FAULT_FAMILIES])
+    return compute
+
+
+def _fit_predict(model, train, test, test_set, meta, rows_of, diagnoser, features,
+                 random_state):
+    """Fit ``model`` on the simulated ``train`` rows and predict the ``test`` rows of
+    ``test_set`` from the per-row work (features, diagnoser evidence) done once."""
+    y_tr = meta["label"].to_numpy()[train]
+    if model == "envelope":
+        evidence = rows_of["evidence", "sim"]
+        est = clone(diagnoser)
+        healthy = train[y_tr == "healthy"]
+        if healthy.size:  # calibrated on the fold's healthy training rows, as fit does
+            est._fit_evidence({f: evidence[healthy, i] for i, f in enumerate(FAULT_FAMILIES)})
+        test_ev = rows_of["evidence", test_set][test]
+        margins = est._decision({f: test_ev[:, i] for i, f in enumerate(FAULT_FAMILIES)})
+        return est.classes_[margins.argmax(axis=1)]
+    est = clone(make_pipeline(model, features=features, random_state=random_state)[1:])
+    classifier = est.steps[-1][1]
+    if hasattr(classifier, "n_neighbors"):  # kNN: no more neighbours than training rows
+        classifier.set_params(n_neighbors=min(classifier.n_neighbors, len(train)))
+    return est.fit(rows_of["features", "sim"][train], y_tr).predict(
+        rows_of["features", test_set][test])
+
+
+def _save_npz(path: Path, values: np.ndarray, finished: np.ndarray) -> None:
+    with path.open("wb") as fh:  # a file object: np.savez would append ".npz" to a name
+        np.savez(fh, values=values, finished=finished)
+
+
+class _Checkpoint:
+    """A benchmark's finished work in a folder, so that an interrupted run resumes.
+
+    Holds the per-row work of each dataset (``<name>_<dataset>.npz``: values and a mask
+    of finished rows, rewritten atomically after every batch) and the out-of-fold
+    predictions of every finished (split, model) pair
+    (``pairs/<split>__<model>.parquet``).
+    ``key.txt`` fingerprints the data (a BLAKE2 hash of the signals, labels, groups and
+    speeds) and the settings; a folder holding another key is emptied of these files
+    first. ``folder=None`` keeps nothing.
+    """
+
+    def __init__(self, folder, datasets: dict, settings: dict):
+        self.folder = None if folder is None else Path(folder)
+        if self.folder is None:
+            return
+        digest = hashlib.blake2b(repr(sorted(settings.items())).encode(), digest_size=16)
+        for name, (x, m) in sorted(datasets.items()):
+            digest.update(name.encode())
+            digest.update(np.ascontiguousarray(x).tobytes())
+            digest.update(m[["label", "group", "rpm"]].to_csv(index=False).encode())
+        key = digest.hexdigest()
+        stamp = self.folder / "key.txt"
+        if stamp.exists() and stamp.read_text().strip() != key:
+            for old in [*self.folder.glob("*.npz"), *self.folder.glob("pairs/*.parquet")]:
+                old.unlink()
+        self.folder.mkdir(parents=True, exist_ok=True)
+        atomic_write(stamp, lambda tmp: tmp.write_text(key + "\n"))
+
+    def per_row(self, name: str, key: str, x, rpm, compute, advance) -> np.ndarray:
+        """``compute(x[rows], rpm[rows])`` for every row batch not finished before;
+        ``advance(n)`` after each batch. Returns (n_rows, n_values)."""
+        path = None if self.folder is None else self.folder / f"{name}_{key}.npz"
+        values, finished = None, np.zeros(len(x), bool)
+        if path is not None and path.exists():
+            with np.load(path) as saved:
+                values, finished = saved["values"], saved["finished"]
+            advance(int(finished.sum()))
+        for rows in _row_batches(rpm):
+            if finished[rows].all():
+                continue
+            out = compute(x[rows], rpm[rows])
+            if values is None:
+                values = np.full((len(x), out.shape[1]), np.nan)
+            values[rows], finished[rows] = out, True
+            if path is not None:
+                atomic_write(path, lambda tmp, v=values, f=finished: _save_npz(tmp, v, f))
+            advance(len(rows))
+        return values
+
+    def predictions(self, split: str, model: str) -> pd.DataFrame | None:
+        """The saved predictions of a finished (split, model) pair, or None."""
+        path = None if self.folder is None else self.folder / "pairs" / f"{split}__{model}.parquet"
+        if path is None or not path.exists():
+            return None
+        return pd.read_parquet(path)
+
+    def save_predictions(self, split: str, model: str, pred: pd.DataFrame) -> None:
+        if self.folder is not None:
+            atomic_write(self.folder / "pairs" / f"{split}__{model}.parquet",
+                         lambda tmp: pred.to_parquet(tmp, index=False))
+
+
 def run_benchmark(
     X,
     meta: pd.DataFrame,
@@ -290,6 +412,7 @@ def run_benchmark(
     harmonics: int = 3,
     random_state=0,
     progress: bool = False,
+    checkpoint=None,
 ) -> BenchmarkResult:
     """Cross-validate the envelope diagnoser and the classifier pipelines.
 
@@ -320,12 +443,27 @@ def run_benchmark(
     random_state : int or None, optional
         Seed of the fold shuffling and the randomised classifiers (default 0).
     progress : bool, optional
-        Show a progress bar over (split, model) pairs on stderr (default False).
+        Say on stderr what work lies ahead, and show a progress bar over the rows'
+        features and diagnoser evidence, then over the folds (default False).
+    checkpoint : str or os.PathLike, optional
+        Folder that keeps the finished work (each row's features and evidence, each
+        finished split and model), so that an interrupted call resumes where it stopped
+        when called again with the same data and settings; work of other data or
+        settings found there is discarded. Default None: nothing kept.
 
     Returns
     -------
     BenchmarkResult
-        Write it out with :func:`ballpass.diagnose.write_report`.
+        Write it out with :func:`ballpass.diagnose.write_report`. Interrupted
+        (``KeyboardInterrupt``, Ctrl-C), the finished (split, model) pairs only, with
+        ``info["interrupted"]`` True.
+
+    Notes
+    -----
+    Each row's features and diagnoser evidence depend on that row alone (and its
+    speed), so they are computed once per row, in batches of rows of one speed, and
+    every fold reuses them; the diagnoser's thresholds are still calibrated per fold on
+    its healthy training rows.
 
     Raises
     ------
@@ -383,65 +521,97 @@ def run_benchmark(
                                  f"dataset {value!r}")
         datasets["real"] = (Xr, meta_r)
 
-    learned = [m for m in models if m != "envelope"]
-    feats = {}
-    if learned:
-        union = make_features(features, bearing=bearing, fs=fs, band=band, harmonics=harmonics)
-        with sklearn.config_context(enable_metadata_routing=True):
-            feats = {k: union.transform(x, rpm=m["rpm"].to_numpy(float))
-                     for k, (x, m) in datasets.items()}
-
-    def fit_predict(model, train, test, test_set):
-        x_tr, m_tr = datasets["sim"][0][train], meta.iloc[train]
-        x_te, m_te = datasets[test_set][0][test], datasets[test_set][1].iloc[test]
-        y_tr = m_tr["label"].to_numpy()
-        if model == "envelope":
-            est = EnvelopeDiagnoser(bearing, fs=fs, band=band, harmonics=harmonics)
-            if (y_tr == "healthy").any():
-                est.fit(x_tr, y_tr, rpm=m_tr["rpm"].to_numpy(float))
-            return est.predict(x_te, rpm=m_te["rpm"].to_numpy(float))
-        est = clone(make_pipeline(model, features=features, random_state=random_state)[1:])
-        classifier = est.steps[-1][1]
-        if hasattr(classifier, "n_neighbors"):  # kNN: no more neighbours than training rows
-            classifier.set_params(n_neighbors=min(classifier.n_neighbors, len(train)))
-        return est.fit(feats["sim"][train], y_tr).predict(feats[test_set][test])
-
-    rows, confusion, predictions, skipped = [], {}, [], {}
-    groups = meta["group"].to_numpy()
-    bar = tqdm(total=len(splits) * len(models), desc="benchmark", unit="fit", file=sys.stderr,
-               disable=not progress, leave=False)
+    plan = []  # (split, folds, test set)
+    skipped = {}
     for split in splits:
         if split == "sim2real":
-            folds, test_set = [(np.arange(len(X)), np.arange(len(datasets["real"][0])))], "real"
-        else:
-            folds = split_indices(meta, split, n_splits=n_splits, random_state=random_state)
-            test_set = "sim"
-            if not folds:
-                skipped[split] = "the dataset has a single value of this factor"
-                bar.update(len(models))
-                continue
-            if split not in _OPTIMISTIC and not all(_disjoint(groups, tr, te)
-                                                    for tr, te in folds):
-                raise RuntimeError(f"split {split!r} put one group on both sides")
-        test_meta = datasets[test_set][1]
+            plan.append((split, [(np.arange(len(X)), np.arange(len(datasets["real"][0])))],
+                         "real"))
+            continue
+        folds = split_indices(meta, split, n_splits=n_splits, random_state=random_state)
+        if not folds:
+            skipped[split] = "the dataset has a single value of this factor"
+            continue
+        if split not in _OPTIMISTIC and not all(_disjoint(meta["group"].to_numpy(), tr, te)
+                                                for tr, te in folds):
+            raise RuntimeError(f"split {split!r} put one group on both sides")
+        plan.append((split, folds, "sim"))
+
+    settings = {"features": features, "band": band, "harmonics": harmonics,
+                "n_splits": n_splits, "random_state": random_state}
+    state = _Checkpoint(checkpoint, datasets, settings)
+    learned = [m for m in models if m != "envelope"]
+    diagnoser = EnvelopeDiagnoser(bearing, fs=fs, band=band, harmonics=harmonics)
+    union = make_features(features, bearing=bearing, fs=fs, band=band, harmonics=harmonics)
+    per_row = []  # (name, dataset, function of (x, rpm) -> per-row values)
+    if learned:
+        per_row += [("features", k, _union_rows(union)) for k in datasets]
+    if "envelope" in models:
+        per_row += [("evidence", k, _evidence_rows(diagnoser)) for k in datasets]
+    done = {(split, model): state.predictions(split, model)
+            for split, _folds, _t in plan for model in models}
+    n_rows = sum(len(datasets[k][0]) for _n, k, _f in per_row)
+    n_fits = sum(len(folds) for _s, folds, _t in plan) * len(models)
+    n_done = sum(len(folds) for split, folds, _t in plan for model in models
+                 if done[split, model] is not None)
+    bar = tqdm(total=n_rows + n_fits, desc="benchmark", unit="step", file=sys.stderr,
+               disable=not progress, leave=False)
+    if progress:
+        tqdm.write(f"benchmark: per-row features and diagnoser evidence for {n_rows} rows "
+                   f"({', '.join(sorted({n for n, _k, _f in per_row}))}), then {n_fits} fits "
+                   f"({len(models)} models over {sum(len(f) for _s, f, _t in plan)} folds of "
+                   f"{len(plan)} splits)"
+                   + (f"; {n_done} fits resumed from {checkpoint}" if n_done else ""),
+                   file=sys.stderr)
+    interrupted, rows_of, predictions_of = False, {}, {}
+    try:
+        for name, key, compute in per_row:
+            x, m = datasets[key]
+            bar.set_description(f"{name} ({key})")
+            rows_of[name, key] = state.per_row(name, key, x, m["rpm"].to_numpy(float),
+                                               compute, bar.update)
+        for split, folds, test_set in plan:
+            test_meta = datasets[test_set][1]
+            for model in models:
+                bar.set_description(f"{split} / {model}")
+                pred = done[split, model]
+                if pred is not None:
+                    bar.update(len(folds))
+                    predictions_of[split, model] = pred
+                    continue
+                parts = []
+                for k, (train, test) in enumerate(folds):
+                    # one thread: a fit on a few hundred rows gains nothing from OpenMP's
+                    # threads, which cost gradient boosting 60x its time on a busy machine
+                    with threadpool_limits(1):
+                        y_pred = _fit_predict(model, train, test, test_set, meta, rows_of,
+                                              diagnoser, features, random_state)
+                    parts.append(pd.DataFrame({
+                        "split": split, "model": model, "fold": k, "row": test,
+                        "group": test_meta["group"].to_numpy()[test],
+                        "y_true": test_meta["label"].to_numpy()[test], "y_pred": y_pred}))
+                    bar.update()
+                predictions_of[split, model] = pd.concat(parts, ignore_index=True)
+                state.save_predictions(split, model, predictions_of[split, model])
+    except KeyboardInterrupt:  # keep what is finished: a partial report that says so
+        interrupted = True
+        for pair, pred in done.items():
+            if pred is not None:
+                predictions_of.setdefault(pair, pred)
+    finally:
+        bar.close()
+    rows, confusion, predictions = [], {}, []
+    for split, folds, _t in plan:
         for model in models:
-            parts = []
-            for k, (train, test) in enumerate(folds):
-                parts.append(pd.DataFrame({
-                    "split": split, "model": model, "fold": k, "row": test,
-                    "group": test_meta["group"].to_numpy()[test],
-                    "y_true": test_meta["label"].to_numpy()[test],
-                    "y_pred": fit_predict(model, train, test, test_set),
-                }))
-            pred = pd.concat(parts, ignore_index=True)
+            pred = predictions_of.get((split, model))
+            if pred is None:
+                continue
             predictions.append(pred)
             confusion[split, model] = confusion_matrix(pred["y_true"], pred["y_pred"],
                                                        labels=list(LABELS))
             rows.append({"split": split, "model": model, "optimistic": split in _OPTIMISTIC,
                          "folds": len(folds), **_scores(pred["y_true"], pred["y_pred"]),
                          **_fold_spread(pred)})
-            bar.update()
-    bar.close()
     few = _few_groups(meta)
     info = {
         "rows": len(X), "groups": int(meta["group"].nunique()), "bearing": bearing, "fs": fs,
@@ -449,6 +619,10 @@ def run_benchmark(
         "samples_per_row": int(X.shape[1]), "features": features, "n_splits": n_splits,
         "labels": meta["label"].value_counts().to_dict(),
     }
+    if interrupted:
+        info["interrupted"] = True
+        info["pairs_done"] = len(rows)
+        info["pairs_planned"] = len(plan) * len(models)
     if real is not None:
         info["real_rows"] = len(datasets["real"][0])
         info["real_groups"] = int(datasets["real"][1]["group"].nunique())

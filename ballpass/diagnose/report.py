@@ -149,6 +149,10 @@ def write_report(result: BenchmarkResult, out_dir, *, title: str = "Classifier b
 
     info = result.info
     lines = [f"# {title}", ""]
+    if info.get("interrupted"):
+        lines += [f"**Partial report: interrupted** after {info['pairs_done']} of "
+                  f"{info['pairs_planned']} split/model pairs; the missing ones are not "
+                  "scored. The same command again resumes where it stopped.", ""]
     lines.append(
         f"{info['rows']} rows in {info['groups']} groups (runs or recordings), bearing "
         f"{info['bearing']}, fs {info['fs']:g} Hz, {info['samples_per_row']} samples per row; "
@@ -180,6 +184,7 @@ def write_report(result: BenchmarkResult, out_dir, *, title: str = "Classifier b
         lines += ["## Splits not formed", ""]
         lines += [f"* `{s}`: {why}" for s, why in result.skipped.items()]
         lines.append("")
-    lines += ["## Models", ""] + [f"* `{m}`: {MODELS[m]}" for m in dict.fromkeys(table["model"])]
+    lines += ["## Models", ""] + [f"* `{m}`: {MODELS[m]}"
+                                  for m in dict.fromkeys(table.get("model", ()))]
     paths["markdown"].write_text("\n".join(lines) + "\n")
     return paths

@@ -426,9 +426,11 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
         fitted = getattr(self, "thresholds_", None)
         return dict(fitted) if fitted is not None else self._floors()
 
-    def _decision(self, ev: EnvelopeEvidence) -> np.ndarray:
+    def _decision(self, evidence_db: dict) -> np.ndarray:
+        """Class margins, dB (``classes_`` order), from each family's evidence
+        (``EnvelopeEvidence.evidence_db``)."""
         thresholds = self._thresholds()
-        margin = {f: np.maximum(ev.evidence_db[f] - thresholds[f], -1e3) for f in FAULT_FAMILIES}
+        margin = {f: np.maximum(evidence_db[f] - thresholds[f], -1e3) for f in FAULT_FAMILIES}
         margin["healthy"] = -np.max(np.stack([margin[f] for f in FAULT_FAMILIES]), axis=0)
         return np.column_stack([margin[c] for c in self.classes_])
 
@@ -456,8 +458,8 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
         q = self.quantile
         if isinstance(q, bool) or not isinstance(q, numbers.Real) or not 0.0 < q <= 1.0:
             raise ValueError(f"quantile must be in (0, 1], got {self.quantile!r}")
-        margin = float(check_nonnegative("margin_db", self.margin_db))
-        floors = self._floors()
+        check_nonnegative("margin_db", self.margin_db)
+        self._floors()  # a bad threshold_db fails before any work
         n = len(X) if hasattr(X, "__len__") else 0
         if y is None:
             healthy = np.ones(n, bool)
@@ -476,10 +478,17 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
         X = check_array(X, dtype=[np.float64, np.float32], ensure_min_features=2)
         speed = None if rpm is None else check_rpm(rpm, (len(X),))[healthy]
         ev, _ = self._evidence(X[healthy], speed)
+        return self._fit_evidence(ev.evidence_db)
+
+    def _fit_evidence(self, evidence_db: dict):
+        """:meth:`fit` from the healthy rows' evidence (``EnvelopeEvidence.evidence_db``),
+        for callers that computed it once (the benchmark's folds)."""
+        floors = self._floors()
         self.thresholds_ = {}
         for f in FAULT_FAMILIES:
-            judged = ev.evidence_db[f][np.isfinite(ev.evidence_db[f])]
-            level = float(np.quantile(judged, q)) + margin if judged.size else floors[f]
+            judged = evidence_db[f][np.isfinite(evidence_db[f])]
+            level = (float(np.quantile(judged, self.quantile)) + float(self.margin_db)
+                     if judged.size else floors[f])
             self.thresholds_[f] = max(floors[f], level)
         return self
 
@@ -499,7 +508,7 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
         -------
         ndarray, shape (n_signals, 4)
         """
-        return self._decision(self._evidence(X, rpm)[0])
+        return self._decision(self._evidence(X, rpm)[0].evidence_db)
 
     def predict_proba(self, X, rpm=None):
         """Softmax of :meth:`decision_function` / ``softness_db``, columns as ``classes_``.
@@ -567,7 +576,7 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
         import pandas as pd
 
         ev, too_short = self._evidence(X, rpm)
-        labels = self.classes_[self._decision(ev).argmax(axis=1)]
+        labels = self.classes_[self._decision(ev.evidence_db).argmax(axis=1)]
         thresholds = self._thresholds()
         layout = {f: family_lines(f, self.harmonics) for f in FAULT_FAMILIES}
         out = []

@@ -661,27 +661,40 @@ def fault_offset(t, p, walk, faults, i, j):
 @njit(cache=True, error_model="numpy")
 def _bracket(p, walk, faults, i, j, level, a_side, lo, hi, f_lo, f_hi):
     """Shrink [lo, hi] around the time path j of fault i crosses ``level`` to adjacent
-    floating-point numbers: Illinois regula falsi (the offset is nearly linear in
-    time), then bisection. The side test is ``offset >= level``, as in the kernels."""
-    last = 0
+    floating-point numbers: secant steps (the offset is nearly linear in time), each
+    followed by a probe on the far side of its estimate, at twice the distance the
+    secant slope puts the crossing from it (plus two units in the last place), which
+    closes the bracket from both sides; then bisection. The side test is
+    ``offset >= level``, as in the kernels, and every update keeps it straddled, so the
+    result is the adjacent pair the side test switches between."""
     for _ in range(100):
         if hi - lo <= 1e-12 * (hi - lo + abs(hi)):
             break
         m = hi - f_hi * (hi - lo) / (f_hi - f_lo)
         if not (lo < m < hi):
             m = 0.5 * (lo + hi)
+        slope = (f_hi - f_lo) / (hi - lo)
         o_m = fault_offset(m, p, walk, faults, i, j)
         f_m = o_m - level
+        reach = 2.0 * abs(f_m / slope) + 4e-16 * abs(m)
         if (o_m >= level) == a_side:
             lo, f_lo = m, f_m
-            if last == -1:
-                f_hi *= 0.5
-            last = -1
+            q = m + reach
+            if q < hi:
+                o_q = fault_offset(q, p, walk, faults, i, j)
+                if (o_q >= level) == a_side:
+                    lo, f_lo = q, o_q - level
+                else:
+                    hi, f_hi = q, o_q - level
         else:
             hi, f_hi = m, f_m
-            if last == 1:
-                f_lo *= 0.5
-            last = 1
+            q = m - reach
+            if q > lo:
+                o_q = fault_offset(q, p, walk, faults, i, j)
+                if (o_q >= level) == a_side:
+                    lo, f_lo = q, o_q - level
+                else:
+                    hi, f_hi = q, o_q - level
     for _ in range(200):
         mid = 0.5 * (lo + hi)
         if mid <= lo or mid >= hi:

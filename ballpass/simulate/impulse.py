@@ -72,21 +72,23 @@ none of their papers was at hand to check details against).
 
 from __future__ import annotations
 
+import functools
 import math
 import time
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 from numba import njit
 
 from .._validation import check_number
+from ..bearing import Bearing, LoadDistribution
 from ..scene import STANDARD_GRAVITY, Scene
 from . import _kernels as K
 from ._registry import Model
 from ._shared import OVERSAMPLE, add_noise, check_finite
 from ._sr5_driver import _edge_names, _events
 from .result import FaultCrossings, GroundTruth, SimulationResult
-from .sr5 import SR5Parameters, build_model
+from .sr5 import SR5Parameters, _check_elastic, build_model
 
 __all__ = ["ImpulseParameters", "IMPULSE", "impact_amplitudes"]
 
@@ -130,6 +132,16 @@ class ImpulseParameters:
             check_number("contact_stiffness", self.contact_stiffness, 0.0, lo_open=True)
 
 
+@functools.lru_cache(maxsize=256)
+def _stiffness_and_load_zone(bearing: Bearing, load_n: float,
+                             stiffness: float | None) -> tuple[float, LoadDistribution]:
+    """K (``stiffness``, or the bearing's two Hertz contacts in series) and the Stribeck
+    equilibrium under ``load_n``: computed once per bearing, load and stiffness in a
+    process, as a dataset holds a few of each and many runs (read-only results)."""
+    kh = stiffness or bearing.hertz_stiffness()
+    return kh, bearing.load_distribution(load_n, stiffness=kh)
+
+
 def impact_amplitudes(scene: Scene, psi: np.ndarray, depth_m: np.ndarray,
                       params: ImpulseParameters | None = None) -> np.ndarray:
     """Force released by an element at angle ``psi`` dropping into a defect, N.
@@ -162,11 +174,26 @@ def impact_amplitudes(scene: Scene, psi: np.ndarray, depth_m: np.ndarray,
     >>> bool(dq[0] > dq[1] > 0.0), float(dq[2])   # deep defect: the whole load, 0 opposite
     (True, 0.0)
     """
-    params = params or ImpulseParameters()
-    b = scene.bearing
-    kh = params.contact_stiffness or b.hertz_stiffness()
+    kh, load_zone = _load_zone(scene, params or ImpulseParameters())
+    return _released_force(scene, load_zone, kh, psi, depth_m)
+
+
+def _load_zone(scene: Scene, params: ImpulseParameters) -> tuple[float, LoadDistribution]:
+    """K and the Stribeck equilibrium under the scene's radial load (plus the shaft
+    weight with ``gravity``), refused beyond the elastic limit sr5 refuses (its largest
+    contact deflection above 1 % of the element diameter)."""
     load = scene.radial_load_n + (params.shaft_mass * STANDARD_GRAVITY if scene.gravity else 0.0)
-    ld = b.load_distribution(load, stiffness=kh)
+    b = scene.bearing
+    kh, ld = _stiffness_and_load_zone(b, load, params.contact_stiffness)
+    _check_elastic(scene, (ld.deflection_m - b.radial_clearance_m) * math.cos(b.contact_angle_rad),
+                   load)
+    return kh, ld
+
+
+def _released_force(scene: Scene, ld: LoadDistribution, kh: float, psi: np.ndarray,
+                    depth_m: np.ndarray) -> np.ndarray:
+    """dQ of :func:`impact_amplitudes` on the load zone ``ld``, N."""
+    b = scene.bearing
     n = b.load_exponent
     delta = (ld.deflection_m * np.cos(psi) + ld.lateral_deflection_m * np.sin(psi)
              - b.radial_clearance_m) * math.cos(b.contact_angle_rad)
@@ -259,13 +286,13 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
                          "contact_forces; use model='sr5' (or model='auto')")
     t_wall = time.perf_counter()
     params = params or ImpulseParameters()
-    if params.contact_stiffness is None:  # derived once, for the kinematics and the loads
-        params = replace(params, contact_stiffness=scene.bearing.hertz_stiffness())
+    # K, for the kinematics and the loads; refuses a load beyond the elastic limit
+    kh, load_zone = _load_zone(scene, params)
     # the sr5 kinematics of this scene: parameter vector, slip walk and fault table from
-    # the scene's own seed (the sr4 binding: no resonator state is needed)
-    bm = build_model(scene, SR5Parameters(shaft_mass=params.shaft_mass,
-                                          contact_stiffness=params.contact_stiffness),
-                     resonator=False)
+    # the scene's own seed (the sr4 binding without its static equilibrium: no state is
+    # integrated)
+    bm = build_model(scene, SR5Parameters(shaft_mass=params.shaft_mass, contact_stiffness=kh),
+                     resonator=False, equilibrium=False)
     n_samples = scene.n_samples
     # sr5's event horizon (the end of its internal grid), so both list the same entries
     # and exits; the ends of the edge ramps (columns 1, 2 of the levels) are sr5's
@@ -285,8 +312,7 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
                        bm.faults[f_hit, K.F_ELEM].astype(np.int64), e_hit)
     psi = K.element_angles_many(t_hit, bm.p, bm.walk, z)[np.arange(t_hit.size), carrier]
     depth = np.array([f.effective_depth_mm(scene.bearing) * 1e-3 for f in scene.faults])
-    dq = impact_amplitudes(scene, psi, depth[f_hit] if depth.size else psi * 0.0,
-                                       params)
+    dq = _released_force(scene, load_zone, kh, psi, depth[f_hit] if depth.size else psi * 0.0)
     theta = np.array([math.radians(s.angle_deg) for s in scene.sensors])[:, None]
     kappa = np.array([s.attenuation for s in scene.sensors])[:, None]
     cos_rel = np.cos(psi[None, :] - theta)
@@ -325,10 +351,11 @@ IMPULSE = Model(
                 "slip, Stribeck load-zone and transmission modulation, ringing the "
                 "scene's resonance; no contact dynamics",
     represents=frozenset({"envelope", "varying_speed"}),
-    # measured by benchmarks/models_cost.py (docs/models_cost.md), after sr5's mass change:
-    # 0.083 of sr5 per simulated second at 48 kHz (median of 5 interleaved rounds of 3
-    # back-to-back calls on a quiet machine, IQR 0.081-0.085), 0.081 at 12 kHz
-    relative_cost=0.083,
+    # measured by benchmarks/models_cost.py (docs/models_cost.md), 5 interleaved rounds of
+    # 3 back-to-back calls on a busy shared machine: 0.059 and 0.062 of sr5's CPU time per
+    # simulated second at 48 kHz in two runs (0.037-0.039 at 12 kHz); wall-time ratios
+    # 0.015-0.024, which the busy machine flatters (sr5's longer calls wait more for a core)
+    relative_cost=0.059,
     solvers=("analytic",),
     fixed_step_solvers=(),
     reference="P. D. McFadden, J. D. Smith, J. Sound Vib. 96 (1984) 69-82; D. Ho, R. B. "

@@ -159,7 +159,8 @@ class GroundTruth:
             faults=scene.faults,
             frequencies=scene.frequencies,
             shaft_angle=scene.speed.shaft_angle(t, scene.duration_s),
-            rpm=scene.speed.rpm_at(t, scene.duration_s) * np.ones_like(t),
+            rpm=(np.full(t.shape, float(scene.speed.rpm_start)) if scene.speed.is_constant
+                 else scene.speed.rpm_at(t, scene.duration_s) * np.ones_like(t)),
             fault_crossings=crossings,
             effective_depth_mm=tuple(f.effective_depth_mm(scene.bearing) for f in scene.faults),
             **outputs,

@@ -152,14 +152,14 @@ class BearingModel:
         Fault table (columns ``F_*`` of :mod:`._kernels`).
     sensors : ndarray (n_sensors, N_SCOLS)
         Sensor table (columns ``S_*`` of :mod:`._kernels`).
-    y0 : ndarray (n_state,)
-        Static equilibrium at t = 0 (full layout).
-    scale : ndarray (n_state,)
+    y0 : ndarray (n_state,) or None
+        Static equilibrium at t = 0 (full layout); None when bound without it.
+    scale : ndarray (n_state,) or None
         Characteristic magnitude of each state component (for tolerances).
     levels : ndarray (n_faults, 4)
         Angular offsets (rad) marking fault edges and ramp ends.
     static_deflection : float
-        Largest contact deflection at the static equilibrium, m.
+        Largest contact deflection at the static equilibrium, m (NaN without it).
 
     Examples
     --------
@@ -178,8 +178,8 @@ class BearingModel:
     psi0: np.ndarray
     faults: np.ndarray
     sensors: np.ndarray
-    y0: np.ndarray
-    scale: np.ndarray
+    y0: np.ndarray | None
+    scale: np.ndarray | None
     levels: np.ndarray
     static_deflection: float
 
@@ -360,7 +360,7 @@ def _slip_walk(scene: Scene, cage_ratio: float, rng: np.random.Generator) -> np.
 
 
 def build_model(scene: Scene, params: SR5Parameters | None = None, *,
-                resonator: bool = True) -> BearingModel:
+                resonator: bool = True, equilibrium: bool = True) -> BearingModel:
     """Bind a scene to the sr5 (``resonator=True``) or sr4 kernels.
 
     Draws the slip table from the scene's seed, converts faults and sensors to kernel
@@ -373,6 +373,11 @@ def build_model(scene: Scene, params: SR5Parameters | None = None, *,
     params : SR5Parameters, optional
     resonator : bool
         True for sr5, False for sr4.
+    equilibrium : bool
+        False skips the static equilibrium, for callers that use only the kinematics
+        (``p``, ``walk``, ``faults``, ``levels``: the impulse model): ``y0`` and
+        ``scale`` are then None, ``static_deflection`` NaN, and the elastic-limit check
+        is the caller's.
 
     Returns
     -------
@@ -421,8 +426,8 @@ def build_model(scene: Scene, params: SR5Parameters | None = None, *,
     sensors = _sensor_table(scene)
     n_res = len(scene.sensors) if resonator else 0
 
-    y0, scale, deflection = _static_state(scene, params, (p, walk, faults, sensors), n_res,
-                                          kh)
+    y0, scale, deflection = (_static_state(scene, params, (p, walk, faults, sensors), n_res,
+                                           kh) if equilibrium else (None, None, math.nan))
     return BearingModel(scene=scene, params=params, n_res=n_res, p=p, walk=walk, psi0=psi0,
                         faults=faults, sensors=sensors, y0=y0, scale=scale, levels=levels,
                         static_deflection=deflection)

@@ -77,6 +77,10 @@ print(result.table[["split", "model", "optimistic", "n_test", "accuracy",
 # %%
 # ``write_report`` (or ``ballpass benchmark ds --out report``) writes the table as
 # Markdown and CSV with a confusion-matrix figure per split and model; with real
-# recordings, ``--real`` trains on the simulation and tests on them.
+# recordings, ``--real`` trains on the simulation and tests on them. Each row's features
+# and diagnoser evidence are computed once and reused by every fold. The command says up
+# front how many rows and fits lie ahead and shows one bar over both; finished work is
+# kept in ``report/_checkpoint``, so Ctrl-C writes a report of the finished splits and
+# models, marked partial, exits with code 130, and the same command again resumes.
 paths = write_report(result, folder / "report")
 print(sorted(p.name for p in (folder / "report").iterdir())[:6])
