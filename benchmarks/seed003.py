@@ -9,11 +9,14 @@ line at 166.73/100.04/66.69/55.55 Hz at 1500/900/600/500 rpm, displacement ampli
 becomes complicated". This script checks each claim with ballpass and measures the
 solvers:
 
-1. ``solvers``: Newmark at its default step against dopri5 at rtol 1e-10, and dopri5 at
-   rtol 1e-8 against 1e-10 (the floor any two solvers reach on that scene); wall times.
-2. ``lines``: the x-displacement spectrum at the four speeds, for the seed's set-up (0.125
+1. ``solvers``: the default rk4 and Newmark at their default steps against dopri5 at
+   rtol 1e-10, and dopri5 at rtol 1e-8 against 1e-10 (the floor any two solvers reach on
+   that scene); wall times.
+2. ``ceiling``: the largest BPFI line the seed's notch can make in a rotor resting on its
+   rollers, in closed form (:func:`line_ceiling`), against the seed's amplitudes.
+3. ``lines``: the x-displacement spectrum at the four speeds, for the seed's set-up (0.125
    mm radial clearance, gravity only) and for a regular one (5 um, 500 N).
-3. ``bifurcation``: Poincare sections over the clearance (0-0.125 mm) and the speed
+4. ``bifurcation``: Poincare sections over the clearance (0-0.125 mm) and the speed
    (500-2000 rpm) with the 0-1 test for chaos on each section.
 
     python benchmarks/seed003.py            # ~5 min on 2 cores
@@ -73,17 +76,20 @@ def solvers(quick: bool) -> pd.DataFrame:
         s = scene(c, load, 1500.0, duration, 20_000.0, fault)
         runs = {}
         for key, kw in (("ref", dict(solver="dopri5", rtol=1e-10)),
-                        ("dopri5", dict(solver="dopri5", rtol=1e-8)), ("newmark", {})):
+                        ("dopri5", dict(solver="dopri5", rtol=1e-8)), ("default", {}),
+                        ("newmark", dict(solver="newmark"))):
             bp.simulate(s.replace(duration_s=0.01), model="rotor2", **kw)  # compile
             t0 = time.perf_counter()
             runs[key] = bp.simulate(s, model="rotor2", return_forces=True, **kw)
             runs[key].info["wall"] = time.perf_counter() - t0
         ref = runs["ref"].truth.displacement
         n50 = int(0.05 * s.fs)
-        for key in ("newmark", "dopri5"):
+        for key in ("default", "newmark", "dopri5"):
             x = runs[key].truth.displacement
-            rows.append(dict(scene=name, solver=key if key == "dopri5" else "newmark (default)",
-                             step=(f"dt = {runs[key].info['dt_s'] * 1e6:.2f} us" if key == "newmark"
+            info = runs[key].info
+            rows.append(dict(scene=name, solver=info["solver"] + (" (default)" if key == "default"
+                                                                  else ""),
+                             step=(f"dt = {info['dt_s'] * 1e6:.2f} us" if "dt_s" in info
                                    else "rtol = 1e-8"),
                              err_50ms=_rel(x, ref, n50), err_full=_rel(x, ref),
                              wall_s=runs[key].info["wall"],
@@ -94,7 +100,7 @@ def solvers(quick: bool) -> pd.DataFrame:
 
 
 def cost_ratio(quick: bool) -> dict:
-    """Wall time per simulated second, rotor2 (newmark) against sr5 (rk4), medians of 3."""
+    """Wall time per simulated second, rotor2 and sr5 (default solvers), medians of 3."""
     duration = 0.2 if quick else 0.5
     out = {}
     for model, s in (("sr5", bp.Scene(bearing="NJ305", rpm=1500, radial_load_n=500,
@@ -142,6 +148,42 @@ def lines(quick: bool):
                              largest_line_hz=f[top], largest_line_um=amp[top] * 1e6,
                              p2p_x_um=np.ptp(x) * 1e6))
     return pd.DataFrame(rows), spectra
+
+
+def line_ceiling() -> pd.DataFrame:
+    """Largest BPFI line a 0.5 x 0.5 mm inner-race notch can put in the displacement,
+    from the kinematics alone (no model run).
+
+    While a roller is in the notch the rotor can drop at most the roller's geometric
+    drop h (``Fault.effective_depth_mm``: a 9.25 mm cylinder into a 0.5 mm wide notch)
+    and, supported by gravity alone, at most the free fall g tau^2 / 2 in the notch
+    crossing time tau. The notch is under some roller a fraction Z w / (2 pi r_i) of the
+    time (Z rollers meet it per inner-ring turn, each for w / (2 pi r_i) of the turn).
+    A non-negative pulse train's Fourier amplitude at any frequency is at most twice its
+    mean, so |X(BPFI)| <= 2 min(h, g tau^2 / 2) Z w / (2 pi r_i), for a rotor that stays
+    on its rollers (quasi-static below the contact mode: BPFI / f_c < 0.1, so the
+    dynamic amplification 1 / (1 - (BPFI / f_c)^2) is below 1.01).
+    """
+    b = bp.Bearing.catalog("NJ305").with_clearance(0.125)
+    h = DEFECT.effective_depth_mm(b) * 1e-3
+    r_i = 0.5 * (b.pitch_diameter_mm - b.element_diameter_mm) * 1e-3
+    duty = b.n_elements * DEFECT.width_mm * 1e-3 / (2 * np.pi * r_i)
+    f_c = bp.simulate.rotor2.contact_omega(scene(0.125, 0.0, 1500.0, 0.1, 3000.0)) / (2 * np.pi)
+    rows = []
+    for rpm, (_, theory_um, _, measured_um) in SEED_TABLE.items():
+        s = scene(0.125, 0.0, rpm, 0.1, 3000.0)
+        surface = (s.shaft_hz - s.frequencies.ftf) * 2 * np.pi * r_i  # notch past a roller
+        tau = DEFECT.width_mm * 1e-3 / surface
+        drop = min(h, 0.5 * bp.scene.STANDARD_GRAVITY * tau**2)
+        ceiling = 2 * drop * duty
+        rows.append(dict(rpm=rpm, bpfi_hz=s.frequencies.bpfi, drop_um=h * 1e6,
+                         crossing_ms=tau * 1e3, free_fall_um=0.5 * 9.80665 * tau**2 * 1e6,
+                         duty=duty, ceiling_um=ceiling * 1e6,
+                         ceiling_any_drop_um=2 * h * duty * 1e6,
+                         paper_theory_um=theory_um, paper_measured_um=measured_um,
+                         theory_over_ceiling=theory_um / (ceiling * 1e6),
+                         bpfi_over_contact=s.frequencies.bpfi / f_c))
+    return pd.DataFrame(rows)
 
 
 def _sweep(base: bp.Scene, parameter: str, values, discard: float) -> pd.DataFrame:
@@ -247,6 +289,9 @@ def main() -> None:
                      ).to_csv(RESULTS / "seed003_cost.csv", index=False)
         print("cost (median, spread) s:", cost, "rotor2/sr5 =",
               cost["rotor2"][0] / cost["sr5"][0])
+        ceil = line_ceiling()
+        ceil.to_csv(RESULTS / "seed003_ceiling.csv", index=False)
+        _print(ceil, index=False)
         tab, spectra = lines(args.quick)
         tab.to_csv(RESULTS / "seed003_lines.csv", index=False)
         _print(tab, index=False)
