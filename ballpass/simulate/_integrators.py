@@ -1223,7 +1223,7 @@ def _minv_times(minv, f, out):
         out[i] = s
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def _quintic_out(t0, h, x0, v0, a0, x1, v1, a1, tk, k, with_xv, out_x, out_v, out_a):
     """Record at tk in [t0, t0 + h] the quintic Hermite interpolant of a step's end
     states (x, v, a): its second derivative (the acceleration, accurate to O(h^4), the
