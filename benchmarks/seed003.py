@@ -259,11 +259,94 @@ def _print(df: pd.DataFrame, **kw) -> None:
     print(df.to_string(float_format=lambda v: f"{v:.3g}", **kw))
 
 
+#: CSVs in benchmarks/results/ the page is written from
+CSVS = {"solvers": "seed003_solvers.csv", "cost": "seed003_cost.csv",
+        "ceiling": "seed003_ceiling.csv", "lines": "seed003_lines.csv",
+        "clearance": "seed003_bifurcation_clearance.csv",
+        "speed": "seed003_bifurcation_speed.csv"}
+
+
+def _sections(df: pd.DataFrame) -> pd.DataFrame:
+    """Poincare sections summarised per parameter value."""
+    return df.groupby("parameter").agg(
+        points=("x_m", "size"), mean_x_um=("x_m", lambda v: v.mean() * 1e6),
+        spread_x_um=("x_m", lambda v: np.ptp(v) * 1e6),
+        spread_y_um=("y_m", lambda v: np.ptp(v) * 1e6), K=("K", "first")).reset_index()
+
+
+def _span(values, fmt: str = "{:.2g}") -> str:
+    return f"{fmt.format(min(values))}-{fmt.format(max(values))}"
+
+
+def page(d: dict) -> str:
+    """docs/seed003.md from the tables of one run (``CSVS``)."""
+    from ballpass.diagnose.report import markdown_table
+
+    sol = d["solvers"].copy()
+    err = {(r.scene, r.solver.split()[0]): r for r in sol.itertuples()}
+    for col in ("err_50ms", "err_full"):
+        sol[col] = sol[col].map(lambda v: f"{v:.2g}")
+    sol = sol.rename(columns={"err_50ms": "error, 50 ms", "err_full": "error, 0.3 s",
+                              "wall_s": "wall (s)", "ref_wall_s": "reference wall (s)"})
+    sol["scene"] = sol["scene"].str.replace("seed set-up", "paper's set-up")
+    cost = d["cost"].set_index("model")
+    ceil = d["ceiling"][["rpm", "bpfi_hz", "crossing_ms", "free_fall_um", "ceiling_um",
+                         "ceiling_any_drop_um", "paper_theory_um", "paper_measured_um",
+                         "theory_over_ceiling", "bpfi_over_contact"]]
+    lines = d["lines"].copy()
+    lines["setup"] = lines["setup"].str.replace("seed set-up", "paper's set-up")
+    seed = lines[lines.setup.str.startswith("paper")]
+    regular = lines[lines.setup.str.startswith("regular")]
+    lines = lines[["setup", "rpm", "bpfi_hz", "line_hz", "line_um", "seed_theory_um",
+                   "seed_measured_um", "largest_line_hz", "largest_line_um", "p2p_x_um"]
+                  ].rename(columns={"seed_theory_um": "paper theory (um)",
+                                    "seed_measured_um": "paper measured (um)"})
+    clear, speed = _sections(d["clearance"]), _sections(d["speed"])
+    small = clear[clear.parameter > 0].iloc[0]
+    k = speed["K"].dropna()
+    dt = {key: float(r.step.split()[2]) for key, r in err.items() if r.step.startswith("dt")}
+    measured = d["ceiling"]["paper_measured_um"] / d["ceiling"]["ceiling_um"]
+    values = dict(
+        sol_tab=markdown_table(sol), ceil_tab=markdown_table(ceil),
+        lines_tab=markdown_table(lines), clear_tab=markdown_table(clear),
+        speed_tab=markdown_table(speed),
+        pp=f"{_span(seed.p2p_x_um, '{:.0f}')} µm",
+        seed_lines=" / ".join(f"{v:.2f}" for v in seed.line_um),
+        ceilings=" / ".join(f"{v:.2g}" for v in d["ceiling"]["ceiling_um"]),
+        ratios=" / ".join(f"{v:.2g}" for v in d["ceiling"]["theory_over_ceiling"]),
+        c_small=small.spread_x_um, c_small_mm=small.parameter,
+        c_big=clear.spread_x_um.iloc[-1], k_range=_span(k),
+        dt_reg=dt[("regular, healthy", "rk4")],
+        e_reg_h=err[("regular, healthy", "rk4")].err_50ms,
+        e_reg_d=err[("regular, inner defect", "rk4")].err_50ms,
+        d_h=err[("seed set-up, healthy", "dopri5")].err_50ms,
+        dt_nm=dt[("seed set-up, inner defect", "newmark")],
+        e_nm=err[("seed set-up, inner defect", "newmark")].err_50ms,
+        dt_seed=dt[("seed set-up, inner defect", "rk4")],
+        e_rk=err[("seed set-up, inner defect", "rk4")].err_50ms,
+        c_r2=cost.loc["rotor2", "median_s"], s_r2=cost.loc["rotor2", "spread_s"],
+        c_sr5=cost.loc["sr5", "median_s"], s_sr5=cost.loc["sr5", "spread_s"],
+        c_ratio=cost.loc["rotor2", "median_s"] / cost.loc["sr5", "median_s"],
+        r_t=_span(d["ceiling"]["theory_over_ceiling"], "{:.2g}") + "x",
+        r_m=_span(measured, "{:.2g}") + "x",
+        seed_range=_span(seed.line_um, "{:.1f}"),
+        ceil_range=_span(d["ceiling"]["ceiling_um"]),
+        reg_range=_span(regular.line_um),
+        s_range=_span(speed.spread_x_um, "{:.0f}"))
+    return PAGE.format(**values)
+
+
+#: the page's text (a template: ``page`` fills in the tables and the numbers quoted in
+#: the prose from the CSVs)
+PAGE = (Path(__file__).resolve().parent / "seed003_page.md").read_text()
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--quick", action="store_true", help="shorter records, fewer values")
     ap.add_argument("--replot", action="store_true",
-                    help="redraw the bifurcation figure from the CSVs (no simulation)")
+                    help="redraw the bifurcation figure and rewrite docs/seed003.md from "
+                         "the CSVs (no simulation)")
     args = ap.parse_args()
     RESULTS.mkdir(parents=True, exist_ok=True)
     import matplotlib
@@ -305,6 +388,7 @@ def main() -> None:
         _print(df.groupby("parameter").agg(points=("x_m", "size"),
                                            spread_um=("x_m", lambda v: np.ptp(v) * 1e6),
                                            K=("K", "first")))
+    (DOCS / "seed003.md").write_text(page({k: pd.read_csv(RESULTS / f) for k, f in CSVS.items()}))
     print(f"total {time.perf_counter() - t0:.0f} s")
 
 
