@@ -1,26 +1,26 @@
-"""``rotor2``: the rigid rotor on a cylindrical roller bearing of seed 003.
+"""``rotor2``: the rigid rotor on a cylindrical roller bearing of the NJ 305 paper.
 
 A rigid rotor of mass m (2 DOF: x along the load line, y perpendicular, in the
 bearing plane) runs on the Z rollers of a cylindrical roller bearing whose outer ring
-is fixed to a rigid housing. Seed 003 ("Dynamic behaviour of rotor roller bearing
-system with bearing defects", NJ 305) section 3.5:
+is fixed to a rigid housing. The NJ 305 paper ("Dynamic behaviour of rotor roller bearing
+system with bearing defects"; authors and year not printed), section 3.5:
 
     m x'' + c x' + sum_j Q_j cos(phi_j) = F_r + m g + m_u e (w^2 cos(theta) + w' sin(theta))
     m y'' + c y' + sum_j Q_j sin(phi_j) =             m_u e (w^2 sin(theta) - w' cos(theta))
 
-with c = 200 N s/m the bearing damping of seed 003 section 3.6 (the lumped viscous
-damping of Harsha's 2-DOF rotor models, which seed 003 follows), theta the shaft angle,
-w = theta' and the unbalance term m_u e w^2 the seed's equation needs (it prints m w^2,
-without the unbalance mass and eccentricity; see shared/seeds/DIGEST.md section 1.4).
+with c = 200 N s/m the bearing damping of the paper's section 3.6 (the lumped viscous
+damping of Harsha's 2-DOF rotor models, which the paper follows), theta the shaft angle,
+w = theta' and the unbalance term m_u e w^2 the paper's equation needs (it prints m w^2,
+without the unbalance mass and eccentricity).
 Roller j sits at phi_j = phi_0 + 2 pi j / Z + (1 - r) theta / 2 (rigid cage at the fundamental train
 frequency, r = d cos(alpha) / d_p) and is compressed by
 
     delta_j = x cos(phi_j) + y sin(phi_j) - c_r - h_j(t)
 
 with c_r the radial clearance (negative: preload) and h_j the depth of any localized
-defect under the roller. Its load is the Palmgren line contact (seed 003 eqs. 1-2,
-6), optionally with the constant contact damping c_d of seed 003 section 2.3
-(``Rotor2Parameters.contact_damping_ns_m``, default 0 so that the seed's damping is
+defect under the roller. Its load is the Palmgren line contact (the paper's eqs. 1-2,
+6), optionally with the constant contact damping c_d of the paper's section 2.3
+(``Rotor2Parameters.contact_damping_ns_m``, default 0 so that the paper's damping is
 not counted twice):
 
     Q_j = max(0, K delta_j^(10/9) + c_d (x' cos(phi_j) + y' sin(phi_j)))  for delta_j > 0,
@@ -29,7 +29,7 @@ not counted twice):
 K the load-deflection constant of one roller between both races
 (:meth:`ballpass.Bearing.hertz_stiffness`: Palmgren delta = 3.84e-5 Q^0.9 / l^0.8 per
 contact, inner and outer in series). With a misalignment gamma the roller is sliced
-into k laminae of width w = l / k (seed 003 section 3.4.2, eq. 6): lamina lambda at
+into k laminae of width w = l / k (the paper's section 3.4.2, eq. 6): lamina lambda at
 axial position s_lambda from the roller centre is compressed by
 delta_j + s_lambda gamma cos(phi_j) and carries (K / k) delta^(10/9), which sums to
 Palmgren's law when gamma = 0 (the laminae then collapse to one exact term).
@@ -38,7 +38,7 @@ Ball bearings run the same equations with Hertz point contacts, Q = K delta^(3/2
 K from :meth:`ballpass.Bearing.hertz_stiffness` (the 2-DOF rotor of Harsha's papers,
 DIGEST.md section 4 item 3); laminae need rollers, so a misalignment is refused there.
 
-Assumptions (where seed 003 is silent or garbled):
+Assumptions (where the paper is silent or garbled):
 
 * Rigid housing and outer ring; the sensor signal ``res.accel`` is the rotor's
   (journal's) acceleration projected on each sensor's radial direction,
@@ -46,21 +46,21 @@ Assumptions (where seed 003 is silent or garbled):
   so rotor2 does not represent ``envelope`` and ignores ``Scene.resonance_hz`` and the
   sensors' ``attenuation``.
 * Rigid cage, no slip (``Scene.slip`` is ignored): the model is deterministic, as the
-  seed's, so that Poincare sections show the dynamics, not the slip.
-* Damping: the seed's rotor equation has one viscous term c Y2' with c = 200 N s/m;
+  paper's, so that Poincare sections show the dynamics, not the slip.
+* Damping: the paper's rotor equation has one viscous term c Y2' with c = 200 N s/m;
   it acts on the rotor in both directions whether rollers touch or not. Per-contact
   damping (section 2.3) acts only along loaded rollers: alone it leaves the rotor's
   sideways rolling over a roller almost undamped (its lines of action are nearly
   radial), so it is an option, not the default. Rollers have no mass of their own
-  (no centrifugal load, seed 003 eq. 10 is dropped) and the roller-race contacts are
+  (no centrifugal load, the paper's eq. 10 is dropped) and the roller-race contacts are
   lumped into one series contact.
 * Defects are the :class:`~ballpass.Fault` depth profiles shared with ``sr5``: a
   notch of effective depth min(h, d/2 (1 - sqrt(1 - (w/d)^2))) (the drop of a
   cylinder of diameter d into a notch of width w is the same as a ball's), sharp or
   with half-cosine ramps; inner-race defects turn with the shaft, roller defects spin
-  at the roller spin frequency and meet both races. Seed 003's sinusoidal roller
+  at the roller spin frequency and meet both races. The paper's sinusoidal roller
   profile (eqs. 4-5) is not used: its constants A_1, R_r/D_L are undefined there.
-* Roller tilt: only a prescribed misalignment gamma (``Rotor2Parameters``); the seed's
+* Roller tilt: only a prescribed misalignment gamma (``Rotor2Parameters``); the paper's
   thrust-driven tilt needs an axial load the Scene does not have.
 * The run starts at the quasi-static equilibrium of the healthy bearing under
   F_r + m g (:meth:`ballpass.Bearing.load_distribution`), at rest.
@@ -137,7 +137,7 @@ DT_NEWMARK_OMEGA = 0.025
 #: defect deep enough to unload it (depth beyond the static contact deflection; a sharp
 #: edge counts the whole notch): its impacts are stiffer than the static contact. With
 #: both limits the dynamic part of the displacement stays within a relative L2 error of
-#: 1e-2 of dopri5 at rtol 1e-10 on the seed-003 scenes for as long as the motion is not
+#: 1e-2 of dopri5 at rtol 1e-10 on the NJ 305 paper's scenes for as long as the motion is not
 #: chaotic (benchmarks/seed003.py, docs/seed003.md; where it is, no two solvers agree
 #: for long)
 RAMP_STEPS = 128
@@ -160,27 +160,27 @@ P_FAULTS = _K.N_PARAMS + 9   # fault table (sr5 layout), row after row
 
 @dataclass(frozen=True)
 class Rotor2Parameters:
-    """Structural parameters of the ``rotor2`` model (defaults: seed 003 section 3.6).
+    """Structural parameters of the ``rotor2`` model (defaults: the paper, section 3.6).
 
     Parameters
     ----------
     rotor_mass_kg : float, optional
         Mass m of the rigid rotor with the inner ring, kg, in (0, 1e4]. Default 1.0
-        ("the mass of the rotor roller bearing system is 1 kg", seed 003 section 3.6).
+        ("the mass of the rotor roller bearing system is 1 kg", the paper's section 3.6).
     bearing_damping_ns_m : float, optional
         Viscous damping c of the rotor in the bearing, N s/m, in [0, 1e6], the c Y2'
-        of the seed's rotor equation (section 3.5). Default 200 ("damping factor of the
-        bearing is 200 N.s/m", seed 003 section 3.6).
+        of the paper's rotor equation (section 3.5). Default 200 ("damping factor of the
+        bearing is 200 N.s/m", the paper's section 3.6).
     contact_damping_ns_m : float, optional
         Viscous damping c_d of each loaded roller contact along its line of action,
-        N s/m, in [0, 1e6] (the constant lubricant damping of seed 003 section 2.3).
-        Default 0: the seed's 200 N s/m is the bearing damping above.
+        N s/m, in [0, 1e6] (the constant lubricant damping of the paper's section 2.3).
+        Default 0: the paper's 200 N s/m is the bearing damping above.
     unbalance_mass_kg : float, optional
-        Unbalance mass m_u, kg, in [0, rotor_mass_kg]. Default 0.05 (seed 003 section
+        Unbalance mass m_u, kg, in [0, rotor_mass_kg]. Default 0.05 (the paper's section
         3.6: 50 g).
     unbalance_eccentricity_m : float, optional
-        Its eccentricity e, m, in [0, 0.1]. Default 20e-6 (seed 003 section 3.6). The
-        unbalance force is m_u e w^2 (the seed's eq. prints m w^2).
+        Its eccentricity e, m, in [0, 0.1]. Default 20e-6 (the paper's section 3.6). The
+        unbalance force is m_u e w^2 (the paper's eq. prints m w^2).
     unbalance_phase_deg : float, optional
         Angle of the unbalance at t = 0, degrees from the load line. Default 0.
     misalignment_rad : float, optional
@@ -188,7 +188,7 @@ class Rotor2Parameters:
         to the load line, rad, with abs(gamma) <= 0.01. Default 0 (aligned; the laminae
         collapse to Palmgren's law exactly).
     n_laminae : int, optional
-        Laminae k per roller when ``misalignment_rad`` is not 0 (seed 003 eq. 6), in
+        Laminae k per roller when ``misalignment_rad`` is not 0 (the paper's eq. 6), in
         [1, 100]. Default 10.
     cage_angle_deg : float, optional
         Angle of roller 0 at t = 0, degrees from the load line. Default 0 (a roller on
@@ -674,9 +674,9 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
 #: the registry entry
 ROTOR2 = Model(
     name="rotor2",
-    description="seed 003 rigid rotor (2 DOF) on a roller (Palmgren line contacts) or ball "
-                "(Hertz) bearing: clearance, unbalance, gravity, localized defects; "
-                "RK4 (Newmark-beta as in the paper on request)",
+    description="the NJ 305 paper's rigid rotor (2 DOF) on a roller (Palmgren line "
+                "contacts) or ball (Hertz) bearing: clearance, unbalance, gravity, "
+                "localized defects; RK4 (Newmark-beta as in the paper on request)",
     represents=frozenset({"rotor_dynamics", "contact_dynamics", "contact_forces",
                           "varying_speed"}),
     # wall time per simulated second against sr5, side by side: 2.05x (11 interleaved
@@ -686,7 +686,7 @@ ROTOR2 = Model(
     solvers=tuple(SOLVERS),
     fixed_step_solvers=("rk4", "newmark"),
     reference="Dynamic behaviour of rotor roller bearing system with bearing defects "
-              "(seed 003, NJ 305; shared/seeds/DIGEST.md section 1.4); Palmgren (1959) line "
+              "(NJ 305; authors and year not printed); Palmgren (1959) line "
               "contact; Newmark (1959)",
     accepts=_accepts,
     run=_run,
