@@ -79,7 +79,7 @@ with Newton iterations on the contact forces, :func:`._integrators.newmark_for`)
 stable, but second order: the contact mode rings for ~15 periods after every roller
 pass and impact and its phase error, (omega dt)^2 / 12 per radian, accumulates, so the
 output acceleration is within 1e-2 of dopri5 only for omega_c dt <~ 0.05 (about one
-step per 5 us output sample at 48 kHz). RK4 reaches that accuracy at omega_c dt = 0.4;
+step per 5 us output sample at 48 kHz). RK4 reaches it at omega_c dt = 0.35-0.4;
 the default 0.3 gives 3e-3 to 4e-3 on the 6205 reference scene with and without a
 defect (docs/rotor2_step.md).
 """
