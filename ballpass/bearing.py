@@ -13,17 +13,18 @@ References
    the dimensionless factors a*, b*, delta*; ch. 7 Stribeck load distribution, J_r(eps)).
 .. [2] N. Sawalhi, R. B. Randall, "Simulating gear and bearing interactions in the
    presence of faults: Part I", MSSP 22 (2008) 1924-1951, eqs. (17)-(20) as printed in
-   seed 004 (defect frequencies).
+   Tran, Furch & Cu (defect frequencies).
 .. [3] M. Nakhaeinejad, M. D. Bryant, "Dynamic modeling of rolling element bearings with
-   surface contact defects using bond graphs", J. Tribology 133 (2011) 011102 (seed 000),
+   surface contact defects using bond graphs", J. Tribology 133 (2011) 011102 (Nakhaeinejad &
+   Bryant 2011),
    eqs. (6)-(8): Harris point-contact stiffness, curvature sum and difference. Its
    printed "2E2" is 2*sqrt(2)*E, and its delta* polynomial is a chart fit good to 3 %
    only for F(rho) in [0.9, 0.99]; here delta* comes from the elliptic integrals instead.
-.. [4] Seed 001 (MSC-ADAMS inner-race paper), eq. (2) series combination of the inner
+.. [4] Nabhan & Rashed (2020) (MSC-ADAMS inner-race paper), eq. (2) series combination of the inner
    and outer contacts, eq. (3) Harris stiffness, eqs. (4)-(10) Stribeck distribution
    (eq. 10: Q_max = 4.37 F_r / (Z cos alpha)).
 .. [5] A. Palmgren, *Ball and Roller Bearing Engineering*, 1959: line contact
-   delta = 3.84e-5 Q^0.9 / l^0.8 (mm, N, mm), as used by seed 003, eq. (1).
+   delta = 3.84e-5 Q^0.9 / l^0.8 (mm, N, mm), as used by the NJ 305 rotor paper, eq. (1).
 .. [6] K. L. Johnson, *Contact Mechanics*, CUP 1985, sec. 4.2 (elliptical contact in
    Carlson's form), and DLMF 19.25.1 (K - E and E - k'^2 K through R_D).
 """
@@ -315,7 +316,7 @@ class Bearing:
     def frequencies(self, shaft_hz: float) -> BearingFrequencies:
         """Characteristic frequencies for a rotating inner ring and a fixed outer ring.
 
-        Sawalhi & Randall (2008), eqs. (17)-(20) (seed 004), with r = (d/d_p) cos(alpha):
+        Sawalhi & Randall (2008), eqs. (17)-(20) (Tran, Furch & Cu), with r = (d/d_p) cos(alpha):
         FTF = f_r/2 (1 - r); BPFO = Z FTF; BPFI = Z f_r/2 (1 + r);
         BSF = d_p/(2d) f_r (1 - r^2); ball-defect frequency = 2 BSF.
 
@@ -354,7 +355,8 @@ class Bearing:
     def contact_curvature(self, race: str) -> tuple[float, float]:
         """Curvature sum and curvature difference of one ball-raceway contact.
 
-        Harris & Kotzalas [1] ch. 6 (seed 000 eqs. 7-8). With gamma = d cos(alpha)/d_p
+        Harris & Kotzalas [1] ch. 6 (Nakhaeinejad & Bryant (2011) eqs. 7-8). With gamma = d
+        cos(alpha)/d_p
         and f the groove conformity (groove radius / d), the principal curvatures are
         ball 2/d, 2/d; inner race 2/d * gamma/(1 - gamma) (rolling direction) and
         -1/(f d) (groove); outer race -2/d * gamma/(1 + gamma) and -1/(f d). Concave
@@ -458,7 +460,8 @@ class Bearing:
 
         Balls: Harris's point contact, :func:`point_contact_stiffness` with the
         curvatures of :meth:`contact_curvature`, scaled with ``youngs_modulus_pa`` and
-        ``poisson_ratio`` (seed 000 eq. 6, seed 001 eq. 3). Rollers: Palmgren's line
+        ``poisson_ratio`` (Nakhaeinejad & Bryant (2011) eq. 6, Nabhan & Rashed (2020) eq. 3).
+        Rollers: Palmgren's line
         contact, :func:`line_contact_stiffness`, the same for both races (it has no
         curvature dependence) and not scaled with E: the law is an empirical fit for
         bearing steel.
@@ -488,7 +491,7 @@ class Bearing:
     def hertz_stiffness(self) -> float:
         """Combined load-deflection constant K of one element between both races, N/m^n.
 
-        The inner and outer contacts act in series (seed 001 eq. 2):
+        The inner and outer contacts act in series (Nabhan & Rashed (2020) eq. 2):
         K = [1 / ((1/K_i)^(1/n) + (1/K_o)^(1/n))]^n, with K_i, K_o from
         :meth:`contact_stiffnesses` and n = :attr:`load_exponent`, so that the load on
         an element is Q = K delta^n with delta the total elastic approach of the two
@@ -503,7 +506,8 @@ class Bearing:
         -----
         For the 6205 (conformities 0.515/0.525, E = 2.075e11 Pa, nu = 0.3) this gives
         K = 9.40e9 N/m^1.5 (exact elliptic-integral delta*; the value 9.5e9 quoted for
-        seed 000 comes from its approximate delta* polynomial). For NJ305 (l = 11 mm)
+        Nakhaeinejad & Bryant (2011) comes from its approximate delta* polynomial). For NJ305 (l =
+        11 mm)
         Palmgren's law gives 6.77e8 N/m^(10/9) (1.46e9 per contact).
 
         Examples
@@ -530,7 +534,7 @@ class Bearing:
         (angle 0, the centre of the load zone) and y at +90 deg. Element j sits at
         psi_j = cage_angle + 360 j / Z and is compressed along its contact normal by
         delta_j = (x cos psi_j + y sin psi_j - c) cos(alpha), carrying
-        Q_j = K max(delta_j, 0)^n (seed 001 eqs. 1, 11 with sin for the y term, 13-14;
+        Q_j = K max(delta_j, 0)^n (Nabhan & Rashed (2020) eqs. 1, 11 with sin for the y term, 13-14;
         Harris & Kotzalas [1] ch. 7). The equilibrium
         sum_j Q_j cos(alpha) (cos psi_j, sin psi_j) = (F_r, 0) is solved to machine
         precision with :func:`scipy.optimize.brentq`: the radial balance is monotone in
@@ -668,43 +672,44 @@ _CATALOG: dict[str, dict] = {
     ),
     "6004": dict(
         n_elements=9, element_diameter_mm=6.35, pitch_diameter_mm=31.0,
-        source="SKF 6004, seed 001 Table 1",
+        source="SKF 6004, Nabhan & Rashed (2020) Table 1",
     ),
     "ER-16K": dict(
         n_elements=9, element_diameter_mm=7.94, pitch_diameter_mm=39.32,
-        source="MB ER-16K, seed 000 Table 1 (pitch 39.32 mm from the race diameters)",
+        source="MB ER-16K, Nakhaeinejad & Bryant (2011) Table 1 (pitch 39.32 mm from the "
+               "race diameters)",
     ),
     "6208": dict(
         n_elements=9, element_diameter_mm=11.8872, pitch_diameter_mm=59.9948,
-        source="SKF 6208, seed 004 Table 2",
+        source="SKF 6208, Tran, Furch & Cu Table 2",
     ),
     "6305": dict(
         n_elements=7, element_diameter_mm=11.0998, pitch_diameter_mm=43.4848,
-        source="SKF 6305, seed 004 Table 2",
+        source="SKF 6305, Tran, Furch & Cu Table 2",
     ),
     "6306": dict(
         n_elements=8, element_diameter_mm=11.8872, pitch_diameter_mm=51.9938,
-        source="SKF 6306, seed 004 Table 2",
+        source="SKF 6306, Tran, Furch & Cu Table 2",
     ),
     "6307": dict(
         n_elements=8, element_diameter_mm=13.4874, pitch_diameter_mm=57.4802,
-        source="SKF 6307, seed 004 Table 2",
+        source="SKF 6307, Tran, Furch & Cu Table 2",
     ),
     "NU2204": dict(
         n_elements=11, element_diameter_mm=6.477, pitch_diameter_mm=33.4772,
         element="roller", roller_length_mm=8.0,
-        source="SKF NU 2204, seed 004 Table 2 (roller length 8 mm assumed)",
+        source="SKF NU 2204, Tran, Furch & Cu Table 2 (roller length 8 mm assumed)",
     ),
     "3207": dict(
         n_elements=14, element_diameter_mm=10.3124, pitch_diameter_mm=53.4924,
         contact_angle_deg=30.0,
-        source="SKF 3207 BN double-row angular contact, seed 004 Table 2 (14 balls over "
+        source="SKF 3207 BN double-row angular contact, Tran, Furch & Cu Table 2 (14 balls over "
                "both rows, alpha = 30 deg; the planar models treat them as one row)",
     ),
     "NJ305": dict(
         n_elements=11, element_diameter_mm=9.25, pitch_diameter_mm=43.5,
         element="roller", roller_length_mm=11.0, radial_clearance_mm=0.125,
-        source="NJ 305, seed 003 section 2.1 (P_d = 0.25 mm diametral)",
+        source="NJ 305, the NJ 305 rotor paper section 2.1 (P_d = 0.25 mm diametral)",
     ),
     # The MFPT data set's test bearing (Bechhoefer, MFPT fault database, 2013): 8 elements
     # of 0.235 in on a 1.245 in pitch circle, contact angle 0. Its geometry gives FTF
@@ -810,7 +815,7 @@ def hertz_factors(curvature_difference: float) -> HertzFactors:
     b* = (2 E / (pi kappa))^(1/3). The first relation cancels to second order near the
     circular contact, so it is solved in Carlson's form (Johnson, module reference 6, DLMF 19.25.1):
     (1 + F)/(1 - F) = R_D(0, 1, p) / R_D(0, p, 1) with p = 1/kappa^2, for ln p by
-    :func:`scipy.optimize.brentq`. This replaces seed 000's delta* polynomial, which
+    :func:`scipy.optimize.brentq`. This replaces Nakhaeinejad & Bryant's delta* polynomial, which
     follows the chart within 3 % only for F(rho) in [0.9, 0.99] (it is 7 % off at 0.88,
     23 % at 0.85, 5 % at 0.995, and meaningless outside).
 
@@ -877,8 +882,9 @@ def point_contact_stiffness(
 ) -> float:
     """Hertz load-deflection constant of one point contact between like materials.
 
-    Harris & Kotzalas (module reference 1) ch. 6, seed 000 eq. 6 (printed "2E2", read 2 sqrt(2) E),
-    seed 001 eq. 3: K = 2 sqrt(2) E / (3 (1 - nu^2)) sum_rho^(-1/2) delta*^(-3/2), so
+    Harris & Kotzalas (module reference 1) ch. 6, Nakhaeinejad & Bryant (2011) eq. 6 (printed
+    "2E2", read 2 sqrt(2) E),
+    Nabhan & Rashed (2020) eq. 3: K = 2 sqrt(2) E / (3 (1 - nu^2)) sum_rho^(-1/2) delta*^(-3/2), so
     that Q = K delta^1.5. With E = 2.075e5 MPa and nu = 0.3 the prefactor is Harris's
     2.15e5 (N/mm^1.5 with sum_rho in 1/mm). delta* comes from :func:`hertz_factors`.
 
@@ -925,7 +931,8 @@ PALMGREN_COEFFICIENT = 3.84e-5
 def line_contact_stiffness(length_m: float) -> float:
     """Palmgren's load-deflection constant of one roller-raceway line contact.
 
-    Palmgren (module reference 5; seed 003 eq. 1): delta = 3.84e-5 Q^0.9 / l^0.8 with delta and l in
+    Palmgren (module reference 5; the NJ 305 rotor paper eq. 1): delta = 3.84e-5 Q^0.9 / l^0.8 with
+    delta and l in
     mm and Q in N, for bearing steel. Inverted: Q = K delta^(10/9) with
     K = (l^0.8 / 3.84e-5)^(10/9) N/mm^(10/9), returned in SI (times 1000^(10/9)).
 
@@ -952,7 +959,7 @@ def line_contact_stiffness(length_m: float) -> float:
 
 
 def series_stiffness(k_inner: float, k_outer: float, load_exponent: float) -> float:
-    """Two power-law contacts Q = K delta^n in series (seed 001 eq. 2).
+    """Two power-law contacts Q = K delta^n in series (Nabhan & Rashed (2020) eq. 2).
 
     Both carry the same load Q and their approaches add, so
     K = [1 / ((1/K_i)^(1/n) + (1/K_o)^(1/n))]^n.
@@ -985,7 +992,8 @@ def series_stiffness(k_inner: float, k_outer: float, load_exponent: float) -> fl
 def stribeck_integral(epsilon: float, load_exponent: float = 1.5) -> float:
     """Harris's radial load integral J_r(epsilon) of the continuous Stribeck distribution.
 
-    Harris & Kotzalas (module reference 1) ch. 7; seed 001 eqs. 5, 8, 9: for infinitely many
+    Harris & Kotzalas (module reference 1) ch. 7; Nabhan & Rashed (2020) eqs. 5, 8, 9: for
+    infinitely many
     elements,
     Q(psi) = Q_max [1 - (1 - cos psi)/(2 eps)]^n inside the zone ``|psi| <= psi_l`` with
     psi_l = arccos(1 - 2 eps) (pi when eps >= 1), and F_r = Z Q_max J_r cos(alpha) with
@@ -1041,7 +1049,7 @@ def stribeck_qmax(
 ) -> float:
     """Closed-form Stribeck maximum element load Q_max = F_r / (Z J_r(eps) cos alpha), N.
 
-    At zero clearance (eps = 0.5) and n = 1.5 this is seed 001 eq. 10,
+    At zero clearance (eps = 0.5) and n = 1.5 this is Nabhan & Rashed (2020) eq. 10,
     Q_max = 4.37 F_r / (Z cos alpha); for rollers (n = 10/9) the constant is about
     4.08. It is the many-element limit: a finite bearing's exact value
     (:meth:`Bearing.load_distribution`) differs by the discreteness of the sum (0.4 %

@@ -21,6 +21,7 @@ SUBCOMMANDS = {
     "plot": "plot",
     "diagnose": "diagnose",
     "generate": "generate",
+    "examples": "examples",
     "info": "info",
     "benchmark": "benchmark",
     "work-precision": "work_precision",
@@ -54,8 +55,64 @@ def _one_line(message, category, filename, lineno, line=None) -> str:
     return f"ballpass: warning: {message}\n"
 
 
+#: exit code of a command stopped by Ctrl-C or SIGTERM (128 + SIGINT, as shells report)
+EXIT_INTERRUPTED = 130
+#: exit code when the reader of the output went away (128 + SIGPIPE, as ``cat`` gives)
+EXIT_BROKEN_PIPE = 141
+
+
+def _interrupt(signum, frame) -> None:
+    """SIGTERM handler: stop the command as Ctrl-C does (cleanly, workers stopped)."""
+    raise KeyboardInterrupt
+
+
 def main(argv: list[str] | None = None) -> int:
-    """Run the ``ballpass`` command; returns the process exit code."""
+    """Run the ``ballpass`` command; returns the process exit code.
+
+    Ctrl-C and SIGTERM end any command with one line on stderr and exit code 130
+    (``generate`` says how many shards are written); output cut short by its reader
+    (``ballpass info DIR | head -1``) ends quietly with exit code 141.
+    """
+    import signal
+    import threading
+
+    in_main = threading.current_thread() is threading.main_thread()
+    previous = signal.signal(signal.SIGTERM, _interrupt) if in_main else None
+    try:
+        code = _run(argv)
+        sys.stdout.flush()        # a closed pipe shows here, not at interpreter exit
+        return code
+    except KeyboardInterrupt as exc:
+        words = sys.argv[1:] if argv is None else argv
+        command = next((w for w in words if w in SUBCOMMANDS), None)
+        notes = "".join(f"; {note}" for note in getattr(exc, "__notes__", ()))
+        print(f"ballpass{' ' + command if command else ''}: interrupted{notes}",
+              file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except BrokenPipeError:
+        _discard_stdout()
+        return EXIT_BROKEN_PIPE
+    finally:
+        if in_main:
+            signal.signal(signal.SIGTERM, previous)
+
+
+def _discard_stdout() -> None:
+    """Point stdout at the null device: its reader is gone, so what is left of the
+    output (and Python's flush at exit) goes nowhere instead of raising again."""
+    import os
+
+    try:
+        fd = sys.stdout.fileno()
+    except (AttributeError, OSError, ValueError):   # not a real file (captured)
+        return
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, fd)
+    os.close(devnull)
+
+
+def _run(argv: list[str] | None) -> int:
+    """Parse ``argv`` and run the subcommand; bad inputs end in one line, exit code 2."""
     parser = build_parser()
     args = parser.parse_args(argv)
     if getattr(args, "func", None) is None:
@@ -64,6 +121,8 @@ def main(argv: list[str] | None = None) -> int:
     previous, warnings.formatwarning = warnings.formatwarning, _one_line
     try:
         return int(args.func(args) or 0)
+    except BrokenPipeError:
+        raise               # not a bad input: the reader of stdout went away
     except (ValueError, TypeError, OSError, RuntimeError, MemoryError) as exc:
         message = _message(exc)
         if message is None:

@@ -2,8 +2,8 @@
 
 A rotor on a bearing with clearance answers a periodic excitation (unbalance at the
 shaft speed, varying compliance at the roller-pass rate, a defect) periodically,
-quasi-periodically or chaotically depending on speed, load and clearance (seed 003's
-conclusions; shared/seeds/DIGEST.md section 3, item 10). The standard views:
+quasi-periodically or chaotically depending on speed, load and clearance (the NJ 305 rotor paper's
+conclusions; our digest of the papers, item 10). The standard views:
 
 * :func:`poincare_section`: the rotor's displacement (x along the load line, y
   perpendicular, m) strobed once per shaft (or cage) revolution after the transient. A
@@ -37,7 +37,7 @@ import numbers
 import numpy as np
 
 __all__ = ["poincare_section", "bifurcation_diagram", "zero_one_test", "plot_poincare",
-           "plot_bifurcation", "STROBES", "sweepable_parameters"]
+           "plot_bifurcation", "STROBES", "sweepable_parameters", "MAX_VALUES"]
 
 #: strobe name -> what it samples once per period of
 STROBES = {
@@ -51,6 +51,9 @@ MIN_POINTS_01 = 300
 
 #: the bearing parameter a bifurcation diagram can sweep besides the Scene's own fields
 BEARING_PARAMETERS = ("radial_clearance_mm",)
+#: Most values a bifurcation diagram takes: each is one simulation, and a diagram is read
+#: by eye -- 10,000 columns are more than a 7-inch figure has pixels at 300 dpi (2,100).
+MAX_VALUES = 10_000
 
 
 def _strobe_angle(res, strobe: str) -> np.ndarray:
@@ -181,7 +184,8 @@ def bifurcation_diagram(scene, parameter: str, values, *, model: str = "rotor2",
         ``"duration_s"``, ...) or ``"radial_clearance_mm"`` of its bearing
         (:func:`sweepable_parameters` lists them).
     values : sequence of float
-        Values of the parameter, in its unit (rpm, N, mm, ...).
+        Values of the parameter, in its unit (rpm, N, mm, ...); at most
+        :data:`MAX_VALUES`.
     model : str, optional
         Model to run (default ``"rotor2"``); any model that returns a displacement.
     strobe : {"shaft", "cage"}, optional
@@ -236,6 +240,9 @@ def bifurcation_diagram(scene, parameter: str, values, *, model: str = "rotor2",
     if vals.size == 0 or not np.all(np.isfinite(vals)):
         raise ValueError("values must be a non-empty sequence of finite numbers, got "
                          f"{vals.tolist()}")
+    if vals.size > MAX_VALUES:
+        raise ValueError(f"values: {vals.size:,} values, one simulation each; a diagram "
+                         f"takes at most {MAX_VALUES:,}")
     if isinstance(n_jobs, bool) or not isinstance(n_jobs, int) or n_jobs == 0:
         raise ValueError(f"n_jobs must be a non-zero int (-1 = all cores), got {n_jobs!r}")
     if strobe not in STROBES:

@@ -494,6 +494,9 @@ class Scene:
         object.__setattr__(self, "duration_s",
                            _number("duration_s", self.duration_s, 0.0, 3600.0, lo_open=True))
         object.__setattr__(self, "fs", _number("fs", self.fs, 1000.0, 1e6))
+        if round(self.duration_s * self.fs) < 1:   # would silently become one sample
+            raise ValueError(f"duration_s={self.duration_s:g} s is shorter than one sample "
+                             f"at fs={self.fs:g} Hz; give at least {1 / self.fs:.3g} s")
         if isinstance(self.seed, bool) or not isinstance(self.seed, int) or self.seed < 0:
             raise ValueError(f"seed must be an int >= 0, got {self.seed!r}")
         object.__setattr__(self, "slip", _number("slip", self.slip, 0.0, 0.1))

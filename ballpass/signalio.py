@@ -202,7 +202,9 @@ def atomic_write(path, write) -> None:
     write : callable
         Called with the temporary :class:`pathlib.Path` to fill. If it raises, the
         temporary file is removed, ``path`` is left as it was and the original error
-        propagates (an error while removing the temporary file never replaces it).
+        propagates (an error while removing the temporary file never replaces it); an
+        :class:`OSError` that names no file (a full disk) is raised again naming
+        ``path``.
 
     Examples
     --------
@@ -261,9 +263,16 @@ def atomic_write_many(items) -> None:
             # is atomic); created with the process umask, like any file the user writes
             tmp = path.with_name(f".{path.name}.{uuid.uuid4().hex}.tmp")
             pending.append((tmp, path))
-            write(tmp)
-            with open(tmp, "rb+") as fh:
-                os.fsync(fh.fileno())
+            try:
+                write(tmp)
+                with open(tmp, "rb+") as fh:
+                    os.fsync(fh.fileno())
+            except OSError as exc:   # a full disk says so without a path: name the file
+                if exc.filename not in (None, str(tmp)):
+                    raise
+                if exc.errno is None:
+                    raise OSError(f"cannot write {path}: {exc}") from exc
+                raise OSError(exc.errno, exc.strerror, str(path)) from exc
         for tmp, path in pending:
             os.replace(tmp, path)
     except BaseException:
@@ -393,7 +402,7 @@ def signal_writer(path, accel, fs: float, *, channels=None, meta=None):
             columns.update({name: pa.array(row) for name, row in zip(channels, data, strict=True)})
             info = json.dumps({"fs": fs, "channels": channels, "meta": json.loads(meta_json)})
             table = pa.table(columns).replace_schema_metadata({_ARROW_KEY: info.encode()})
-            pq.write_table(table, tmp)
+            pq.write_table(table, tmp, write_page_checksum=True)
 
     return write
 
@@ -495,7 +504,8 @@ def _read(path: Path, suffix: str) -> SignalFile:
     else:
         import pyarrow.parquet as pq
 
-        table = pq.read_table(path)
+        # page CRCs (which write_signal writes) are checked: flipped bytes are refused
+        table = pq.read_table(path, page_checksum_verification=True)
         info = json.loads((table.schema.metadata or {}).get(_ARROW_KEY, b"{}"))
         meta = info.get("meta", {})
         fs = info.get("fs")

@@ -2,7 +2,8 @@
 
 A wavy surface departs from its nominal circle by r(phi) = sum_q A_q cos(q phi + phase_q)
 (q lobes round the circumference, amplitude A_q). In a bearing model it enters the
-contact deflection of every element, delta_j = ... + r (seed 002 section 4.4, Liu &
+contact deflection of every element, delta_j = ... + r (Wrzochal & Adamczak's review section 4.4,
+Liu &
 Shao 2015 eq. 19; Sopanen & Mikkola 2003). Its known signature on a radially loaded
 bearing with Z elements, shaft frequency f_s and cage frequency f_c (Wardle 1988,
 Yhland 1992):

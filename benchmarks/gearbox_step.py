@@ -5,7 +5,7 @@ mode), rounded down to a divisor of the internal output grid 1/(4 fs). Like sr5'
 default (``DT_SR5_OMEGA``, benchmarks/sr5_speed.py), it must keep the output's relative
 L2 error below 1e-3 against a tight reference.
 
-For each scene (seed 004's 6208 at 2000 rpm with 5 um runout on both wheels: the helical
+For each scene (Tran, Furch & Cu's 6208 at 2000 rpm with 5 um runout on both wheels: the helical
 constant-mesh pair and the 1st-speed spur pair, healthy, with a tooth fault, with a
 bearing fault, with both) and each omega_max dt = theta, the output rate is chosen so
 that one step spans one internal grid interval, fs = omega_max / (4 theta): the rule's
@@ -65,7 +65,7 @@ def scenes() -> dict[str, dict]:
         "spur, healthy": dict(gears=pair("seed004-1st")),
         "helical, pinion crack": dict(gears=pair("seed004", crack)),
         "spur, pinion spall": dict(gears=pair("seed004-1st", spall)),
-        "helical, inner spall 4x2 mm (seed 004)": dict(
+        "helical, inner spall 4x2 mm (Tran, Furch & Cu)": dict(
             gears=pair("seed004"), fault=bp.Fault("inner", width_mm=4.0, depth_mm=2.0)),
         "spur, inner 0.5x0.1 mm": dict(
             gears=pair("seed004-1st"), fault=bp.Fault("inner", width_mm=0.5, depth_mm=0.1)),
@@ -146,9 +146,9 @@ def write(runs: pd.DataFrame, duration: float) -> Path:
     lines = [
         "# Work-precision of the gearbox model's default step",
         "",
-        f"{duration:g} s of seed 004's 6208 at {RPM:g} rpm with 5 um runout on both wheels, "
-        f"resonance at {RESONANCE_FRACTION:g} fs, one sensor. One RK4 step per internal grid "
-        "interval at fs = omega_max / (4 theta), the worst case of the default rule. Error: "
+        f"{duration:g} s of Tran, Furch & Cu's 6208 at {RPM:g} rpm with 5 um runout on both "
+        f"wheels, resonance at {RESONANCE_FRACTION:g} fs, one sensor. One RK4 step per internal "
+        "grid interval at fs = omega_max / (4 theta), the worst case of the default rule. Error: "
         f"relative L2 of the output against 1/{N_REF} of the step; 'dt/2': half the step; "
         f"'reference check': 1/{N_REF // 2} of the step against the reference (the "
         "reference's own error is about a fifteenth of it). Produced by "

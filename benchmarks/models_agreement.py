@@ -188,7 +188,7 @@ def write_multibody(rows: list[dict], spectra: dict, duration: float) -> list[st
         "* **Level.** The impulse model only rings the resonance at the exits (0.2-0.9 "
         "of the multibody's RMS); sr5 is 1.1-3.4 times the multibody's: its massless "
         "elements pass every load step to the housing at once, where the multibody's "
-        "balls and 1 kg housing on 4e10 N/m (seed 000 Table 1) filter them.",
+        "balls and 1 kg housing on 4e10 N/m (Nakhaeinejad & Bryant (2011) Table 1) filter them.",
     ]
     fig, axes = plt.subplots(1, 3, figsize=(11, 3.2))
     for ax, kind in zip(axes, KINDS, strict=True):

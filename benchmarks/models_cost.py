@@ -13,7 +13,7 @@ ratio to sr5. A model that cannot take the reference scene is listed with its re
 Writes ``docs/models_cost.csv``, ``docs/models_cost.md`` and ``docs/models_cost.png``,
 and regenerates the model table (from :func:`ballpass.simulate.model_table` and this
 measurement) between the ``models-table`` markers of ``docs/models.md`` and
-``README.md``; the ``relative_cost`` of each model in the code cites this table.
+``docs/hierarchy.md``; the ``relative_cost`` of each model in the code cites this table.
 
     python benchmarks/models_cost.py                # 1 s scene, 15 rounds
     python benchmarks/models_cost.py --rounds 3     # a quick run
@@ -182,9 +182,9 @@ def registry_markdown(table) -> str:
 
 
 def update_tables(table) -> None:
-    """Replace the text between the models-table markers of docs/models.md and README."""
+    """Replace the text between the models-table markers of docs/models.md and docs/hierarchy.md."""
     block = f"{BEGIN}\n{registry_markdown(table)}\n{END}"
-    for path in (DOCS / "models.md", ROOT / "README.md"):
+    for path in (DOCS / "models.md", DOCS / "hierarchy.md"):
         text = path.read_text()
         if BEGIN in text and END in text:
             head, rest = text.split(BEGIN, 1)

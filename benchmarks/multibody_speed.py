@@ -3,7 +3,7 @@ multibody RK4's work-precision.
 
 Scenes: the 6205 reference scene of benchmarks/models_cost.py (1797 rpm, 500 N, 0.5 x
 0.1 mm inner-race fault, 48 kHz output, 15 kHz resonance), the same bearing healthy, and
-seed 000's operating point (ER-16K, 35 Hz, 110 N) with a 1.0 x 0.5 mm outer-race fault.
+Nakhaeinejad & Bryant's operating point (ER-16K, 35 Hz, 110 N) with a 1.0 x 0.5 mm outer-race fault.
 
 * Cost: wall time of the whole :func:`ballpass.simulate` call per simulated second,
   multibody (default step) and sr5 (default rk4), without ``return_forces`` as in

@@ -1,15 +1,16 @@
-"""Seed 001 reproduction: faulty/healthy indicator ratios of an inner-race fault over speed.
+"""Nabhan & Rashed (2020) reproduced: faulty/healthy indicator ratios of an inner-race fault
+over speed.
 
-Seed 001 (an MSC-ADAMS study of an SKF 6004 with an inner-race notch; DIGEST sections
+Nabhan & Rashed (2020) (an MSC-ADAMS study of an SKF 6004 with an inner-race notch; DIGEST sections
 1.2 and 2.4) plots the ratio faulty/healthy of RMS, crest factor, kurtosis and skewness
 of the housing acceleration over 500-3000 rpm, for notch widths 0.25, 0.50 and 0.75 mm,
 with accelerometers in the loaded zone (its Fig. 11) and the unloaded zone (Fig. 12).
 This script simulates the same sweep with ballpass and draws the same figure.
 
 Set-up (stated in docs/seed001.md): 6004, 500 N radial load, notch depth 0.5 mm (the
-ball drops 2.5 / 9.9 / 22 um, seed 001 eq. 26 with the ball diameter), notch at the
+ball drops 2.5 / 9.9 / 22 um, Nabhan & Rashed (2020) eq. 26 with the ball diameter), notch at the
 load line at t = 0, the Sawalhi-Randall 15 kHz / 5 % housing resonance at 48 kHz (as
-examples/seed001_speed_sweep.toml), sensors at 0 deg (loaded) and 180 deg (unloaded),
+the shipped grid speed_sweep_6004), sensors at 0 deg (loaded) and 180 deg (unloaded),
 and **white measurement noise of a fixed 0.5 m/s^2 RMS**, the same for healthy and
 faulty runs, so that a ratio compares machines, not signal-to-noise settings. Each
 ratio divides the mean of an indicator over ``--repeats`` faulty runs (own seeds) by its
@@ -91,7 +92,7 @@ def ratios(speeds, repeats: int = 3, duration_s: float = 1.0, n_jobs: int = 2) -
 
 
 def plot(table: pd.DataFrame, path: Path) -> None:
-    """Figure like seed 001's Figs. 11-12: rows = sensor zone, columns = indicator."""
+    """Figure like Nabhan & Rashed's Figs. 11-12: rows = sensor zone, columns = indicator."""
     from matplotlib.figure import Figure
     from matplotlib.ticker import FormatStrFormatter, NullFormatter
 

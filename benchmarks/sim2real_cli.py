@@ -1,5 +1,5 @@
 """The shipped sim-to-real grid as a user runs it: ``ballpass generate
-examples/sim2real_cwru.toml`` and ``ballpass benchmark --real``, on both CWRU bearings
+sim2real_cwru`` and ``ballpass benchmark --real``, on both CWRU bearings
 and several training seeds.
 
 ``benchmarks/sim2real.py`` studies the simulator's realism options on a scene set of
@@ -167,7 +167,7 @@ def markdown(table: pd.DataFrame, seconds: float) -> str:
         f"Produced by `PYTHONPATH=. python benchmarks/sim2real_cli.py --real ...` "
         f"({seconds / 60:.0f} min); do not edit by hand.",
         "",
-        "`examples/sim2real_cwru.toml` unchanged but for its root seed (and `bearing = "
+        "The shipped grid `sim2real_cwru` unchanged but for its root seed (and `bearing = "
         "\"6203\"` for the fan end), generated and benchmarked as `ballpass generate` and "
         "`ballpass benchmark --real` do; tested on the CWRU drive-end channel of the "
         "drive-end files and the fan-end channel of the fan-end files, with the healthy "

@@ -34,8 +34,9 @@ extensions = [
 ]
 
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
-exclude_patterns = ["_build", "auto_examples/*.ipynb", "auto_examples/*.py",
-                    "auto_examples/*.zip", "auto_examples/*.json", "auto_examples/*.md5"]
+exclude_patterns = ["_build"] + [f"{gallery}/*.{ext}"
+                                  for gallery in ("auto_examples", "auto_tutorials")
+                                  for ext in ("ipynb", "py", "zip", "json", "md5")]
 myst_enable_extensions = ["dollarmath", "colon_fence"]
 myst_heading_anchors = 3
 suppress_warnings = ["myst.xref_missing"]
@@ -58,8 +59,8 @@ numpydoc_xref_param_type = False
 intersphinx_mapping = {}
 
 sphinx_gallery_conf = {
-    "examples_dirs": str(ROOT / "examples" / "gallery"),
-    "gallery_dirs": "auto_examples",
+    "examples_dirs": [str(ROOT / "examples" / "tutorials"), str(ROOT / "examples" / "gallery")],
+    "gallery_dirs": ["auto_tutorials", "auto_examples"],
     "filename_pattern": r"/plot_",
     "download_all_examples": False,
     "remove_config_comments": True,
@@ -70,8 +71,12 @@ sphinx_gallery_conf = {
 
 html_theme = "pydata_sphinx_theme"
 html_title = f"ballpass {version}"
-html_theme_options = {"navigation_with_keys": False, "show_toc_level": 2}
-html_static_path: list[str] = []
+html_theme_options = {"navigation_with_keys": False, "show_toc_level": 2,
+                      "show_nav_level": 2, "navigation_depth": 2}
+html_static_path = ["_static"]
+html_css_files = ["ballpass.css"]
+# the site's whole table of contents in the left sidebar of every page, top-level ones too
+html_sidebars = {"**": ["globaltoc.html"]}
 
 
 def _skip_sklearn_routing(app, what, name, obj, skip, options):

@@ -8,6 +8,7 @@ running the shards on another executor must reproduce it bit for bit.
 
 import importlib
 import json
+import math
 import os
 import signal
 import subprocess
@@ -385,3 +386,32 @@ def test_dataset_written_before_the_clearance_column_loads(tmp_path, monkeypatch
     assert meta.clearance_um.isna().all() and len(meta) == 2
     assert list(meta.columns).index("clearance_um") == list(meta.columns).index(
         "radial_load_n") + 1
+
+
+@pytest.mark.parametrize("noise", [{"snr_db": 12.0}, {"noise_rms": 0.4}])
+def test_every_parameter_column_holds_its_axis_value(tmp_path, noise):
+    """One run whose every numeric axis has its own value, unlike any default and any
+    other axis's: each column must hold its axis's value (a swapped pair of columns, a
+    unit converted twice or a value read from the wrong field shows), and the scene
+    stored with the row, from which regenerate() rebuilds the signal, must say the
+    same. The noise axes are exclusive, hence one run each; the other is stored as "no
+    noise" (inf dB, 0 m/s^2)."""
+    values = {"fault_width_mm": 0.31, "fault_depth_mm": 0.07, "fault_angle_deg": 25.0,
+              "rpm": 1650.0, "radial_load_n": 420.0, "clearance_um": 7.0, "slip": 0.013,
+              "resonance_hz": 3300.0, "resonance_damping": 0.045, **noise}
+    grid = {"dataset": {"duration_s": 0.05, "fs": 12000, "seed": 3, "model": "sr5"},
+            "grid": {"bearing": ["6205"], "fault": ["outer"], "sensor": ["loaded"],
+                     **{key: [value] for key, value in values.items()}}}
+    generate(grid, tmp_path, progress=False)
+    _, meta = load(tmp_path)
+    row = meta.iloc[0]
+    absent = {"snr_db": math.inf, "noise_rms": 0.0}
+    for key, value in {**absent, **values}.items():
+        assert row[key] == value, key
+    assert (row.rpm_start, row.rpm_end, row.label) == (1650.0, 1650.0, "outer")
+    scene = json.loads(row.scene)
+    fault = scene.pop("fault")
+    assert {f"fault_{k}": fault[k] for k in ("width_mm", "depth_mm", "angle_deg")} == {
+        k: values[k] for k in ("fault_width_mm", "fault_depth_mm", "fault_angle_deg")}
+    assert {k: scene[k] for k in values if not k.startswith("fault_")} == {
+        k: v for k, v in values.items() if not k.startswith("fault_")}

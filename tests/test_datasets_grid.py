@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ballpass.datasets import Grid, read_grid
+from ballpass.datasets import Grid, example_grid, read_grid
 from ballpass.datasets.grid import count_points, run_seed
 
 BASE = {
@@ -195,8 +195,7 @@ def test_fault_engagement_needs_a_ball_fault():
 
 
 def test_sim2real_example_engagement_line_counts_as_its_comment_says():
-    path = Path(__file__).parent.parent / "examples" / "sim2real_cwru.toml"
-    text = path.read_text()
+    text = example_grid("sim2real_cwru").read_text()
     assert read_grid(tomllib.loads(text)).n_runs == 156
     g = read_grid(tomllib.loads(text.replace("# fault_engagement =", "fault_engagement =")))
     assert g.n_runs == 252
@@ -217,7 +216,7 @@ def test_clearance_axis_reaches_every_scene():
 def test_sim2real_example_preload_line_reads():
     # the example's commented-out preload, uncommented with the positions its comment
     # names: 3 angles multiply the fault rows, the one clearance every row
-    text = (Path(__file__).parent.parent / "examples" / "sim2real_cwru.toml").read_text()
+    text = example_grid("sim2real_cwru").read_text()
     text = text.replace("# clearance_um =", "clearance_um =").replace(
         "fault_angle_deg = [0]", "fault_angle_deg = [0, 90, 180]")
     g = read_grid(tomllib.loads(text))

@@ -32,6 +32,11 @@ def test_site_builds_without_warnings(tmp_path):
     assert (html / "index.html").exists()
     gallery = sorted((html / "auto_examples").glob("plot_*.html"))
     assert len(gallery) == len(list((ROOT / "examples" / "gallery").glob("plot_*.py")))
+    # the tutorials are executed at build time: each page shows what its code printed
+    tutorials = sorted((html / "auto_tutorials").glob("plot_*.html"))
+    assert len(tutorials) == len(list((ROOT / "examples" / "tutorials").glob("plot_*.py"))) == 3
+    for page in tutorials:
+        assert "sphx-glr-script-out" in page.read_text(), page.name
     # every gallery page carries at least one figure the script drew
     for page in gallery:
         assert "sphx-glr-single-img" in page.read_text() or "sphx-glr-multi-img" in \

@@ -133,3 +133,31 @@ def test_variance_lost_in_rounding_reads_as_constant(recwarn):
     assert ind["kurtosis"] == 0.0 and ind["skewness"] == 0.0
     assert all(np.isfinite(v) for v in ind.values())
     assert not recwarn.list
+
+
+def test_offset_sine_closed_forms_use_the_rms_not_the_std():
+    """1 + sin: the level indicators include the mean (DC), the moments do not.
+
+    rms = sqrt(1 + 1/2) = sqrt(1.5) while the standard deviation is sqrt(0.5), so a
+    crest factor over the std instead of the RMS reads 2 / sqrt(0.5) = 2.83 instead of
+    2 / sqrt(1.5) = 1.633 (likewise the shape factor, sqrt(0.5) instead of sqrt(1.5));
+    moments about 0 instead of the mean give a kurtosis 2.2 instead of 1.5. For whole
+    cycles sampled uniformly the sums of sin, sin^2, sin^3 and sin^4 are exact and
+    1 + sin >= 0, so mean(|x|) = 1: rtol 1e-12. mean(sqrt(1 + sin)) = 2 sqrt(2) / pi
+    only in the limit (sqrt(1 + sin) has kinks where sin = -1): at 200 samples per cycle
+    the clearance factor is 4e-5 from pi^2 / 4 (measured), hence rtol 2e-4.
+    """
+    x = 1.0 + sine(n=1000, cycles=5, amplitude=1.0)
+    ind = F.indicators(x)
+    np.testing.assert_allclose(ind["rms"], np.sqrt(1.5), rtol=1e-12)
+    np.testing.assert_allclose(ind["peak"], 2.0, rtol=1e-12)
+    np.testing.assert_allclose(ind["peak_to_peak"], 2.0, rtol=1e-12)
+    np.testing.assert_allclose(ind["crest_factor"], 2.0 / np.sqrt(1.5), rtol=1e-12)
+    np.testing.assert_allclose(ind["kurtosis"], 1.5, rtol=1e-12)
+    assert abs(ind["skewness"]) < 1e-12
+    np.testing.assert_allclose(ind["shape_factor"], np.sqrt(1.5), rtol=1e-12)
+    np.testing.assert_allclose(ind["impulse_factor"], 2.0, rtol=1e-12)
+    np.testing.assert_allclose(ind["clearance_factor"], np.pi**2 / 4, rtol=2e-4)
+    # the scikit-learn transformer reports the same values
+    row = F.IndicatorTransformer().fit_transform(x[None])[0]
+    np.testing.assert_allclose(row, [ind[name] for name in F.INDICATORS], rtol=1e-12)

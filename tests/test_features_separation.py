@@ -70,12 +70,13 @@ def test_tsa_keeps_random_removes_periodic_two_shafts():
     assert np.std(res_a - noise) > 0.5 * np.std(noise)
 
 
-def test_tacho_gives_the_same_separation_as_rpm():
+@pytest.mark.parametrize("pulses_per_rev", [1, 2])
+def test_tacho_gives_the_same_separation_as_rpm(pulses_per_rev):
     rng = np.random.default_rng(2)
     x = _periodic(rng, RPM_A, 100) + 0.2 * rng.standard_normal(N)
-    tacho = (np.mod(RPM_A / 60 * T, 1.0) < 0.1).astype(float)
+    tacho = (np.mod(pulses_per_rev * RPM_A / 60 * T, 1.0) < 0.1).astype(float)
     _d, r_rpm = separate_discrete(x, FS, rpm=RPM_A)
-    _d, r_tacho = separate_discrete(x, FS, tacho=tacho)
+    _d, r_tacho = separate_discrete(x, FS, tacho=tacho, pulses_per_rev=pulses_per_rev)
     # the tachometer's pulses are located to a fraction of a sample (linear
     # interpolation of the edge): the two residuals agree to 2 % of the signal
     assert np.std(r_rpm - r_tacho) < 0.02 * np.std(x)

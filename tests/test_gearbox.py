@@ -374,6 +374,63 @@ def test_further_structural_modes_are_added_as_in_sr5():
     assert band_power(moded, 2_800, 3_200) < 4 * band_power(plain, 2_800, 3_200)
 
 
+@pytest.mark.parametrize("preset", ["seed004", "seed004-1st"])  # helical, spur
+def test_mesh_damper_sees_the_rate_of_the_deflection_the_spring_sees(preset):
+    """N = k(t) delta + c_m d(delta)/dt: the rate the damper is fed must be the time
+    derivative of the deflection the spring is fed, transmission error (mesh harmonics
+    and both runouts) included. Both are read from the kernel's own force: with c_m = 0
+    it gives k delta, so delta = N / k (any stiffness, spur jumps included); with c_m the
+    extra force over c_m is the rate. Along a state moving at constant velocity during
+    a speed ramp, that rate must equal a central difference of delta (h = 0.1 us: the
+    fastest term, 3x mesh ~ 1.6 kHz, leaves (w h)^2 / 6 = 2e-7 (measured); rtol 1e-5).
+    The transmission error's rate fed with the wrong sign is off by ~100 %."""
+    from ballpass.simulate import _gear_kernels as G
+    from ballpass.simulate.gearbox import build_gearbox
+
+    pair = bp.GearPair.preset(preset, eccentricity_um=(5.0, 8.0),
+                              transmission_error_um=(2.0, 0.5, 0.3))
+    scene = bp.Scene(bearing="6208", rpm=(1500.0, 2100.0), duration_s=0.2, fs=FS,
+                     resonance_hz=3000.0, gears=pair)
+    gm = build_gearbox(scene)
+    elastic = gm.g.copy()
+    elastic[G.G_CM] = 0.0
+    rng = np.random.default_rng(0)
+    velocity = np.zeros(G.N_POS)  # shaft u, pinion and gear torsion, gear centre
+    velocity[[0, 4, 5, 6]] = rng.normal(size=4) * [1e-3, 0.1, 1e-3, 0.1]
+    # pinion wound 20 um ahead on the line of action, more than the transmission error
+    # (15.8 um of amplitudes): the teeth stay in contact (delta > 0) at every time
+    start = gm.y0.copy()
+    start[4] += 20e-6 / gm.g[G.G_RBP]
+
+    def force(t, t_c, g):
+        y = start.copy()
+        y[:G.N_POS] += (t - t_c) * velocity
+        y[G.N_POS:] = velocity
+        n, k, _e = G.mesh_force(t, y, gm.bearing.p, g, gm.te)
+        assert n > 0.0
+        return n, k
+
+    h = 1e-7
+    for t_c in rng.uniform(0.01, 0.19, 10):
+        deflection = [n / k for n, k in (force(t, t_c, elastic) for t in (t_c - h, t_c + h))]
+        rate = (force(t_c, t_c, gm.g)[0] - force(t_c, t_c, elastic)[0]) / gm.g[G.G_CM]
+        assert rate == pytest.approx((deflection[1] - deflection[0]) / (2 * h), rel=1e-5)
+
+
+def test_the_gearbox_bearing_slips_as_sr5s():
+    """The gearbox's bearing is sr5's: the same seed draws the same slip walk, so the
+    defect entries (pure kinematics, whatever the mesh force does to the loads) are
+    those of sr5 for the scene without gears, bit for bit; Scene.slip's spread is tested
+    on sr5 (test_simulate_physics)."""
+    scene = bp.Scene(bearing="6208", rpm=RPM, duration_s=0.2, fs=FS, resonance_hz=3000.0,
+                     slip=0.02, seed=5, fault=bp.Fault("outer", angle_deg=10.0),
+                     gears=bp.GearPair.preset("seed004"))
+    gear = bp.simulate(scene).truth.fault_crossings.entries()
+    alone = bp.simulate(scene.replace(gears=None), model="sr5").truth.fault_crossings.entries()
+    assert len(gear) == 21
+    np.testing.assert_array_equal(gear, alone)
+
+
 @pytest.fixture(scope="module")
 def paper_setup():
     """Tran, Furch & Cu's own set-up at sr5's current parameters: the constant-mesh

@@ -149,3 +149,108 @@ def test_sr4_has_no_resonator_and_reads_the_housing():
     e4 = np.std(bandpass(sr4.accel, FS, (2000.0, 4000.0)))
     e5 = np.std(bandpass(sr5.accel, FS, (2000.0, 4000.0)))
     assert e5 > 3 * e4
+
+
+@pytest.mark.parametrize("slope_db_oct", [0.0, -3.0])
+def test_snr_is_relative_to_the_rms_of_a_signal_with_a_mean(slope_db_oct):
+    """snr_db is relative to the RMS of the noise-free signal (Scene docs), DC included.
+    For 1 + sin the RMS is sqrt(1.5) and the std sqrt(0.5): a noise level scaled by the
+    std would come out 42 % low. 100 000 samples estimate an RMS to 1/sqrt(2 n) = 0.2 %
+    (white; the -3 dB/oct noise is normalised to unit RMS exactly): rel 2 %."""
+    from ballpass.simulate._shared import add_noise
+
+    n = 100_000
+    clean = 1.0 + np.sin(2 * np.pi * 50 * np.arange(n) / FS)[None]  # 50 Hz: whole cycles
+    scene = bp.Scene("6205", rpm=1797.0, duration_s=n / FS, fs=FS, resonance_hz=3000.0,
+                     snr_db=6.0, noise_slope_db_oct=slope_db_oct)
+    noise = add_noise(scene, clean) - clean
+    assert np.sqrt(np.mean(noise**2)) == pytest.approx(np.sqrt(1.5) * 10 ** (-6 / 20), rel=0.02)
+
+
+@pytest.mark.parametrize("changes", [
+    {"fault": bp.Fault("outer", width_mm=1.0)},
+    {"fault": bp.Fault("inner", width_mm=1.0, edge="blunt")},
+    {"fault": bp.Fault("ball", width_mm=1.0)},
+    {"waviness": bp.Waviness("outer", (3, 10), (0.5, 0.2))},
+    {"waviness": bp.Waviness("inner", (3, 10), (0.5, 0.2))},
+    {"waviness": bp.Waviness("ball", (3, 10), (0.5, 0.2))},
+], ids=["outer", "inner-blunt", "ball", "wavy-outer", "wavy-inner", "wavy-ball"])
+def test_kinematic_rates_are_the_derivatives_of_the_angles_and_depths(changes):
+    """The contact damping is fed the rate of each element's defect depth, and the
+    cage speed drives the ball-spin and housing terms: each must be the time derivative
+    of the depth and angle the kernel computes (central difference, h = 10 ns), during
+    a speed ramp with 2 % slip, at 20 instants where some depth is changing (on a ramp
+    or a wavy race). The fastest change, a 0.2 mm ramp crossed in ~50 us, leaves
+    (pi h / 50 us)^2 = 4e-7 of truncation (measured <= 2e-8): rtol 1e-6. A rate of the
+    wrong sign (inner race: cage minus shaft speed) or missing a factor is off by O(1)."""
+    from ballpass.simulate import _kernels as K
+    from ballpass.simulate.sr5 import build_model
+
+    sc = bp.Scene("6205", rpm=(1700.0, 1900.0), duration_s=0.2, fs=FS, resonance_hz=3000.0,
+                  slip=0.02, **changes)
+    bm = build_model(sc)
+    z = sc.bearing.n_elements
+    kin = K.kinematics_scratch(z)
+
+    def at(t):
+        cage_rate = K.element_angles(t, bm.p, bm.walk, kin)
+        K.fault_depths(t, bm.p, bm.faults, kin, cage_rate, True)
+        return (cage_rate, kin[K.K_PSI, 0], kin[K.K_DEPTH, :z].copy(),
+                kin[K.K_DDEPTH, :z].copy())
+
+    changing = [t for t in np.linspace(0.001, 0.199, 4000) if np.any(at(t)[3] != 0.0)]
+    assert len(changing) > 40
+    h = 1e-8
+    for t in np.random.default_rng(0).choice(changing, 20, replace=False):
+        cage_rate, _, _, depth_rate = at(t)
+        (_, psi_lo, depth_lo, _), (_, psi_hi, depth_hi, _) = at(t - h), at(t + h)
+        assert cage_rate == pytest.approx((psi_hi - psi_lo) / (2 * h), rel=1e-6)
+        np.testing.assert_allclose(depth_rate, (depth_hi - depth_lo) / (2 * h), rtol=0,
+                                   atol=1e-6 * np.max(np.abs(depth_rate)))
+
+
+@pytest.mark.parametrize("kind", ["outer", "inner", "ball"])
+def test_contact_damping_sees_the_rate_of_the_deflection_the_hertz_law_sees(kind):
+    """Hunt-Crossley contacts carry Q = K delta^n (1 + alpha d(delta)/dt): the rate must
+    be the time derivative of the deflection the Hertz law is fed (ring velocities, the
+    cage carrying the element round, the depth of a defect ramp). Both are read from
+    the kernel's own loads: with alpha = 0, delta = (Q / K)^(1/n); with alpha, the rate
+    is (Q_alpha / Q - 1) / alpha. Along rings moving at constant velocity during a speed
+    ramp with slip, at 10 instants where a loaded element is on a defect ramp and 10
+    anywhere, it must equal a central difference of delta (h = 10 ns; truncation as in
+    the kinematic rates above, measured <= 2e-8 of the largest rate): rtol 1e-6."""
+    from ballpass.simulate import _kernels as K
+    from ballpass.simulate.sr5 import SR5Parameters, build_model
+
+    sc = bp.Scene("6205", rpm=(1700.0, 1900.0), duration_s=0.2, fs=FS, resonance_hz=3000.0,
+                  slip=0.02, fault=bp.Fault(kind, width_mm=1.0))
+    bm = build_model(sc, SR5Parameters(contact_damping=1e-4))
+    elastic = bm.p.copy()
+    elastic[K.P_CD] = 0.0
+    z = sc.bearing.n_elements
+    kin = K.kinematics_scratch(z)
+    rng = np.random.default_rng(0)
+    velocity = rng.normal(size=4) * 1e-3  # u_s, v_s, u_p, v_p rates, m/s
+
+    def loads(t, t_c, p):
+        """Contact loads at t of rings at the static state at t_c, moving at velocity."""
+        K.fault_depths(t, bm.p, bm.faults, kin, K.element_angles(t, bm.p, bm.walk, kin), True)
+        u_s, v_s, u_p, v_p = bm.y0[:4] + (t - t_c) * velocity
+        return np.array([K.contact_load(j, u_s - u_p, v_s - v_p, velocity[0] - velocity[2],
+                                        velocity[1] - velocity[3], p, kin) for j in range(z)])
+
+    def on_ramp(t):
+        loaded = loads(t, t, elastic) > 0.0
+        return np.any(loaded & (kin[K.K_DDEPTH, :z] != 0.0))
+
+    ramps = [t for t in np.linspace(0.001, 0.199, 4000) if on_ramp(t)]
+    assert len(ramps) >= 10
+    h = 1e-8
+    for t_c in np.concatenate((rng.choice(ramps, 10, replace=False), rng.uniform(0.01, 0.19, 10))):
+        hertz = loads(t_c, t_c, elastic)
+        on = hertz > 0.0
+        rate = (loads(t_c, t_c, bm.p)[on] / hertz[on] - 1.0) / bm.p[K.P_CD]
+        delta = [(loads(t, t_c, elastic) / bm.p[K.P_KH]) ** (1 / bm.p[K.P_NH])
+                 for t in (t_c - h, t_c + h)]
+        expected = ((delta[1] - delta[0]) / (2 * h))[on]
+        np.testing.assert_allclose(rate, expected, rtol=0, atol=1e-6 * np.max(np.abs(expected)))

@@ -242,6 +242,11 @@ def test_auto_never_picks_a_model_that_drops_a_field_the_scene_sets(fields, need
     assert bp.simulate.resolve_model(scene) == "sr5"
     plain = bp.Scene(bearing="6205", needs=("envelope",))
     assert bp.simulate.resolve_model(plain) == "impulse"
-    # asked for by name, the model runs and says what it leaves out
-    res = bp.simulate(scene.replace(duration_s=0.05), model="impulse")
+    # asked for by name it is refused, naming what it lacks and who has it; run only
+    # when the caller opts in, and then it says what it leaves out
+    with pytest.raises(ValueError, match=f"model 'impulse' does not represent {need}, .*"
+                                         "Models that do: sr5"):
+        bp.simulate(scene.replace(duration_s=0.05), model="impulse")
+    res = bp.simulate(scene.replace(duration_s=0.05), model="impulse",
+                      allow_unrepresented=True)
     assert need in res.info["model_reason"]

@@ -26,8 +26,8 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     p = subparsers.add_parser(
         "bifurcation",
         help="bifurcation diagram of the rotor (Poincare sections over a parameter)",
-        description="Simulate the rotor (model rotor2, seed 003) for each value of one "
-        "parameter, strobe its displacement once per shaft (or cage) revolution after "
+        description="Simulate the rotor (model rotor2, the NJ 305 rotor paper) for each value "
+        "of one parameter, strobe its displacement once per shaft (or cage) revolution after "
         "the transient, and write the points (parameter, point, x_m, y_m; m) as CSV. "
         "Parameters: any numeric scene field (rpm, radial_load_n, ...) or "
         "radial_clearance_mm of the bearing.",
@@ -86,8 +86,9 @@ def run(args: argparse.Namespace) -> int:
                                                             suffixes=FIGURE_SUFFIXES)
     if args.range is not None:
         start, stop, num = args.range
-        if num != int(num) or num < 1:
-            raise ValueError(f"--range NUM must be a whole number >= 1, got {num:g}")
+        if num != int(num) or not 1 <= num <= bp.dynamics.MAX_VALUES:
+            raise ValueError(f"--range NUM must be a whole number from 1 to "
+                             f"{bp.dynamics.MAX_VALUES:,} (one simulation each), got {num:g}")
         values = np.linspace(start, stop, int(num))
     else:
         values = np.asarray(args.values)

@@ -30,7 +30,7 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     from ..gears import GEAR_PRESETS
 
     p.add_argument("--gears", choices=sorted(GEAR_PRESETS), default=None,
-                   help="a gear pair whose pinion sits on the bearing's shaft (seed 004 "
+                   help="a gear pair whose pinion sits on the bearing's shaft (Tran, Furch & Cu "
                    "Table 1 presets); runs the gearbox model")
     p.add_argument("--torque", type=float, default=None,
                    help="input torque of the gear pair, N m (default: the preset's, 50)")
@@ -157,7 +157,8 @@ def run(args) -> int:
                  f"{scene.radial_load_n:g} N")
         fig = signal_overview(res.accel, res.fs, bearing=scene.bearing,
                               shaft_hz=scene.shaft_hz, channels=list(res.sensor_names),
-                              title=title, band=scene.demodulation_band)
+                              title=title, band=scene.demodulation_band,
+                              band_source="the sensor resonance's band")
         writes.append((plot, figure_writer(fig, plot)))
     atomic_write_many(writes)
     info = res.info

@@ -332,6 +332,10 @@ def _die_with_parent(parent_pid: int) -> None:
         threading.Thread(target=watch, daemon=True).start()
     if os.getppid() != parent_pid:  # the parent died before the signal was armed
         os._exit(1)
+    # Ctrl-C reaches the whole process group: the parent alone handles it (and stops
+    # the workers with SIGTERM, whose handler the fork copied from the CLI: default here)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
 
 
 _PR_SET_PDEATHSIG = 1  # from <linux/prctl.h>
@@ -364,6 +368,16 @@ def _pool(n_workers: int) -> cf.ProcessPoolExecutor:
                                   initializer=_die_with_parent, initargs=(os.getpid(),))
 
 
+def _stop_workers(executor: cf.ProcessPoolExecutor) -> None:
+    """End the pool's worker processes at once (SIGTERM, then wait for them): their
+    unfinished shards are only temporary files, removed by the caller."""
+    processes = list((getattr(executor, "_processes", None) or {}).values())
+    for process in processes:
+        process.terminate()
+    for process in processes:
+        process.join(timeout=10)
+
+
 def _dispatch(specs: list[ShardSpec], n_workers: int, executor):
     """Run the shards; yield their reports as they complete."""
     if executor is None and n_workers == 1:
@@ -373,17 +387,23 @@ def _dispatch(specs: list[ShardSpec], n_workers: int, executor):
     if own:
         executor = _pool(n_workers)
     futures = [executor.submit(run_shard, s) for s in specs]
+    finished = False
     try:
         for fut in cf.as_completed(futures):
             yield fut.result()
+        finished = True
     except BrokenProcessPool:
         raise RuntimeError("a worker process died (killed, or out of memory?); complete "
                            "shards are kept, run generate again to resume") from None
     finally:
-        for fut in futures:
-            fut.cancel()
-        if own:
-            executor.shutdown(wait=True, cancel_futures=True)
+        if own and not finished:   # an error, Ctrl-C or SIGTERM: stop the workers now;
+            _stop_workers(executor)  # the pool then fails the futures left (cancelling
+            executor.shutdown(wait=True)  # them too would race it)
+        else:
+            for fut in futures:
+                fut.cancel()
+            if own:
+                executor.shutdown(wait=True, cancel_futures=True)
 
 
 # ----------------------------------------------------------------------------- planning
@@ -391,8 +411,7 @@ def _resolved_models(grid: Grid) -> list[tuple[str, Run]]:
     """(resolved model, first run) per grid point, in order; unknown models and solvers,
     and a model that would ignore what a scene's fields ask for (``fault_engagement < 1``
     needs ``intermittent_faults``), raise here: its rows' parameter columns would lie."""
-    from ..phenomena import DEFAULT_NEEDS
-    from ..simulate import MODELS, SOLVERS, resolve_model, scene_needs
+    from ..simulate import MODELS, SOLVERS, resolve_model, unrepresented
 
     if grid.dataset["solver"] not in ("auto", *SOLVERS):
         raise ValueError(f"dataset.solver must be 'auto' or one of {sorted(SOLVERS)}, "
@@ -402,12 +421,11 @@ def _resolved_models(grid: Grid) -> list[tuple[str, Run]]:
     out = []
     for run in grid.runs[::repeats]:
         scene = run.build_scene()
-        try:
-            model = resolve_model(scene, run.model)
+        try:   # what the model leaves out is refused below, in the grid's terms
+            model = resolve_model(scene, run.model, allow_unrepresented=True)
         except (TypeError, ValueError) as exc:
             raise ValueError(f"model {run.model!r} (run {run.run_id}): {exc}") from None
-        from_fields = scene_needs(scene) - set(scene.needs or DEFAULT_NEEDS)
-        ignored = from_fields - MODELS[model].represents
+        ignored = unrepresented(scene, model)
         if ignored:
             able = [m.name for m in MODELS.values() if ignored <= m.represents]
             raise ValueError(
@@ -501,6 +519,21 @@ def _check_existing(folder: Path, grid: Grid, fingerprint: dict) -> dict | None:
                 f"one dataset. {untouched} Finish it with the installation that started "
                 "it, or generate into a new --out folder (or delete this one to start "
                 "over).")
+        layout = ("index", "file", "runs", "n_rows")
+        for stored_shard, planned in zip(manifest["shards"], _planned_shards(grid),
+                                         strict=False):
+            if [stored_shard.get(k) for k in layout] != [planned[k] for k in layout]:
+                raise ValueError(
+                    f"{folder}: the manifest's shard entry {stored_shard.get('index')} "
+                    f"({', '.join(f'{k} {stored_shard.get(k)!r}' for k in layout)}) is not "
+                    f"what its grid plans ({', '.join(f'{k} {planned[k]!r}' for k in layout)})"
+                    f": the manifest was altered. {untouched} Generate into a new --out "
+                    "folder.")
+        if len(manifest["shards"]) != grid.n_shards:
+            raise ValueError(
+                f"{folder}: the manifest lists {len(manifest['shards'])} shards where its "
+                f"grid plans {grid.n_shards}: the manifest was altered. {untouched} Generate "
+                "into a new --out folder.")
     elif folder.exists() and (not folder.is_dir() or any(  # a kill can leave these behind
             not (is_temporary(p) or p.name == LOCK_FILE) for p in folder.iterdir())):
         raise FileExistsError(f"{folder} exists and is not an empty folder or a ballpass "
@@ -590,16 +623,21 @@ def check_resources(grid: Grid, folder, n_workers: int = 1, rows_done: int = 0,
     return out
 
 
-def _new_manifest(grid: Grid, fingerprint: dict) -> dict:
-    from .. import __version__
-
-    rows_per_run = grid.rows_per_run
+def _planned_shards(grid: Grid) -> list[dict]:
+    """The shard entries of a new manifest of ``grid`` (none complete)."""
     shards = []
     for i in range(grid.n_shards):
         runs = grid.shard_runs(i)
         shards.append({"index": i, "file": shard_name(i), "runs": [runs.start, runs.stop],
-                       "n_rows": len(runs) * rows_per_run, "complete": False,
+                       "n_rows": len(runs) * grid.rows_per_run, "complete": False,
                        "features_complete": False, "bytes": 0})
+    return shards
+
+
+def _new_manifest(grid: Grid, fingerprint: dict) -> dict:
+    from .. import __version__
+
+    shards = _planned_shards(grid)
     return {
         "format": "ballpass-dataset", "format_version": FORMAT_VERSION,
         "ballpass_version": __version__, "fingerprint": fingerprint,
@@ -615,7 +653,8 @@ def _verify(folder: Path, shard: dict, key: str) -> bool:
     complete and intact? A damaged one is deleted (with a warning) to be made again.
 
     A file renamed into place just before a kill, with no checksum in the manifest yet,
-    is accepted if it reads with its page CRCs verified; its checksum is then recorded.
+    is accepted if it reads with its page CRCs verified and holds this shard's runs (a
+    stray copy of another shard does not); its checksum is then recorded.
     """
     import pyarrow.parquet as pq
 
@@ -627,10 +666,13 @@ def _verify(folder: Path, shard: dict, key: str) -> bool:
         problem = shard_problem(path, shard, key)
     else:
         try:
-            pq.read_table(path, page_checksum_verification=True)
-            problem = None
-        except (OSError, ValueError) as exc:
-            problem = f"fails its page checksums ({exc})"
+            run_ids = pq.read_table(path, page_checksum_verification=True).column("run_id")
+            start, stop = shard["runs"]
+            problem = None if all(start <= r < stop for r in run_ids.to_pylist()) else (
+                f"holds rows of runs outside this shard's runs {start} to {stop - 1} (a "
+                "copy of another shard?)")
+        except (OSError, ValueError, KeyError) as exc:
+            problem = f"fails its page checksums or has no run_id column ({exc})"
         if problem is None:
             size, shard[key] = path.stat().st_size, file_sha256(path)
             shard["features_bytes" if key == "features_sha256" else "bytes"] = size
@@ -881,8 +923,15 @@ def generate(grid, out_dir, n_jobs: int = 1, executor: cf.Executor | None = None
         if any(s.simulate for s in specs):
             _warm_up({m: run for m, run in reversed(models)}, grid.dataset["solver"])
         n_workers = 1 if executor is not None else _n_workers(n_jobs, len(specs))
-        rows_written, done_models = _run(specs, folder, manifest, n_workers, executor,
-                                         progress)
+        try:
+            rows_written, done_models = _run(specs, folder, manifest, n_workers, executor,
+                                             progress)
+        except KeyboardInterrupt as exc:   # the manifest lists every shard finished
+            remove_temporaries(folder)
+            done = sum(s["complete"] for s in manifest["shards"])
+            exc.add_note(f"{done} of {len(manifest['shards'])} shards written, rerun to "
+                         "resume")
+            raise
         complete = all(s["complete"] and (s["features_complete"] or not features)
                        for s in manifest["shards"])
         manifest["status"] = "complete" if complete else "running"

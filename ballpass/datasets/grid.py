@@ -143,8 +143,7 @@ def _axis_values(key: str, raw) -> list:
             if v not in FAULT_VALUES:
                 raise ValueError(f"{where} must be one of {FAULT_VALUES}, got {v!r}")
         elif key == "model":
-            if not isinstance(v, str):
-                raise ValueError(f"{where} must be a model name (str), got {v!r}")
+            _check_model_name(where, v)
         elif key == "sensor":
             v = _sensor_value(where, v)
         elif key == "rpm" and isinstance(v, list):
@@ -165,6 +164,15 @@ def _axis_values(key: str, raw) -> list:
     elif len({json.dumps(v) for v in out}) != len(out):
         raise ValueError(f"grid.{key} has duplicate values {out}; use [dataset] repeats instead")
     return out
+
+
+def _check_model_name(where: str, name) -> None:
+    """Refuse a model that is neither ``"auto"`` nor in the registry, naming those."""
+    from ..simulate import MODELS
+
+    if name != "auto" and name not in MODELS:
+        raise ValueError(f"{where}: unknown model {name!r}; use 'auto' or one of "
+                         f"{list(MODELS)}")
 
 
 def _sensor_value(where: str, v) -> str | dict:
@@ -199,9 +207,9 @@ def _dataset_settings(raw: dict) -> dict:
         v = out[key]
         if v is not None and (isinstance(v, bool) or not isinstance(v, int) or v < lo):
             raise ValueError(f"dataset.{key} must be an int >= {lo}, got {v!r}")
-    for key in ("model", "solver"):
-        if not isinstance(out[key], str):
-            raise ValueError(f"dataset.{key} must be a str, got {out[key]!r}")
+    if not isinstance(out["solver"], str):
+        raise ValueError(f"dataset.solver must be a str, got {out['solver']!r}")
+    _check_model_name("dataset.model", out["model"])
     if out["needs"] is not None:  # phenomena every run asks for (Scene(needs=...))
         out["needs"] = sorted(check_needs(out["needs"], "dataset.needs"))
     if out["segment_s"] is not None and out["segment_s"] > out["duration_s"]:
@@ -418,6 +426,10 @@ def _load_source(source) -> dict:
                 return tomllib.load(fh)
         except tomllib.TOMLDecodeError as exc:
             raise ValueError(f"{path}: not a valid TOML grid file: {exc}") from None
+        except UnicodeDecodeError as exc:   # a binary file (or another encoding)
+            raise ValueError(f"{path}: not a TOML text file (byte {exc.object[exc.start]:#04x} "
+                             f"at position {exc.start} is not UTF-8); give the grid's .toml "
+                             "file") from None
     raise TypeError(f"grid must be a TOML file path, a dict or a Grid, got {type(source).__name__}")
 
 

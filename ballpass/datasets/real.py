@@ -106,8 +106,9 @@ class CwruRecord:
         Catalogue name of the bearing the label is about: for a fault file the faulty
         bearing (``"6205"`` at the drive end, ``"6203"`` at the fan end) whichever
         accelerometer heard it, whose fault lines a diagnosis must look for; otherwise
-        the bearing at that accelerometer (``"6205"`` at DE, ``"6203"`` at FE, None for
-        the base).
+        (also for a fault file whose name and record number do not say the end, e.g. a
+        renamed ``IR007_0.mat``, with a warning) the bearing at that accelerometer
+        (``"6205"`` at DE, ``"6203"`` at FE, None for the base).
     label : str
         ``"healthy"``, ``"inner"``, ``"outer"``, ``"ball"``, or ``"unknown"`` when
         neither the name nor the record number tells.
@@ -373,12 +374,17 @@ def load_cwru_mat(path, channel: str = "DE", fs: float | None = None) -> CwruRec
                       "kept, flagged in rpm_mismatch", stacklevel=2)
     kind = info["kind"] or "unknown"
     faulty = kind in _KINDS.values()
+    if faulty and info["end"] is None:
+        warnings.warn(f"{path.name}: neither the name nor the record number {record} says "
+                      "which bearing (drive or fan end) is faulty; the fault is read as the "
+                      f"{channel} accelerometer's bearing's", stacklevel=2)
     return CwruRecord(
         accel=accel,
         fs=float(fs),
         rpm=float(rpm),
         channel=channel,
-        bearing=CWRU_BEARINGS[info["end"]] if faulty else CWRU_BEARINGS.get(channel),
+        bearing=(CWRU_BEARINGS[info["end"]] if faulty and info["end"] is not None
+                 else CWRU_BEARINGS.get(channel)),
         label=kind,
         fault_end=info["end"] if faulty else None,
         fault_width_mm=info["size_in"] * 25.4 if faulty else math.nan,
@@ -456,7 +462,8 @@ def segment_records(records, fs: float, length: int):
     X : ndarray of float32, shape (n_segments, length)
     meta : pandas.DataFrame
         ``record.columns()`` plus ``segment``, ``start_s``, ``duration_s``, ``fs``,
-        ``source_fs``, ``group`` (the file name) and ``file``.
+        ``source_fs``, ``group`` (the record's own ``group`` column, else the file name)
+        and ``file``.
     """
     import pandas as pd
     import scipy.signal
@@ -478,7 +485,8 @@ def segment_records(records, fs: float, length: int):
         columns = rec.columns()
         rows.extend(
             columns | {"segment": k, "start_s": k * length / fs, "duration_s": length / fs,
-                       "fs": float(fs), "source_fs": rec.fs, "group": rec.name,
+                       "fs": float(fs), "source_fs": rec.fs,
+                       "group": columns.get("group", rec.name),
                        "file": str(path)}
             for k in range(n)
         )
@@ -591,11 +599,15 @@ def read_mat(path, channel: str = "DE", fs: float | None = None):
 
         return load_mfpt_mat(path)
     if names is not None and not any(_VARIABLE.fullmatch(name) for name in names):
-        held = ", ".join(names[:5]) + (", ..." if len(names) > 5 else "") or "nothing"
-        raise ValueError(f"{path.name} is neither a CWRU recording (variables X<number>_DE_time, "
-                         f"_FE_time, _BA_time) nor an MFPT one (a struct `bearing`); it holds "
-                         f"{held}")
+        raise ValueError(not_cwru_nor_mfpt(path, names))
     return load_cwru_mat(path, channel=channel, fs=fs)
+
+
+def not_cwru_nor_mfpt(path: Path, names: list[str]) -> str:
+    """The message for a .mat file whose variables are neither CWRU's nor MFPT's."""
+    held = ", ".join(names[:5]) + (", ..." if len(names) > 5 else "") or "nothing"
+    return (f"{path.name} is neither a CWRU recording (variables X<number>_DE_time, "
+            f"_FE_time, _BA_time) nor an MFPT one (a struct `bearing`); it holds {held}")
 
 
 def load_real(paths, fs: float, segment_s: float = 1.0, channel: str = "DE"):

@@ -123,7 +123,56 @@ def read_manifest(folder) -> dict | None:
         raise ValueError(f"{path} lists no shards (or shards without file, n_rows and "
                          "complete): the manifest is damaged. Generate the dataset again "
                          "into a new folder.")
+    _check_version(path, manifest)
+    _check_shard_entries(path, shards)
+    total = sum(s["n_rows"] for s in shards)
+    if manifest.get("n_rows", total) != total:
+        raise ValueError(f"{path} records n_rows = {manifest['n_rows']!r} but its shards "
+                         f"hold {total} rows: the manifest was altered. Generate the "
+                         "dataset again into a new folder.")
     return manifest
+
+
+def _check_version(path: Path, manifest: dict) -> None:
+    """Refuse a manifest of a format this ballpass does not know."""
+    version = manifest.get("format_version", 1)
+    if isinstance(version, bool) or version not in range(1, FORMAT_VERSION + 1):
+        raise ValueError(
+            f"{path} has format_version {version!r}; this ballpass reads format versions "
+            f"1 to {FORMAT_VERSION}. Read it with the ballpass that wrote it (a newer "
+            "one: `pip install -U ballpass`), or generate the dataset again.")
+
+
+def _check_shard_entries(path: Path, shards: list) -> None:
+    """Each entry must name its own shard file, as the writer names it, in the folder.
+
+    Entry ``i`` has ``index`` ``i`` and ``file`` ``part-0000i.parquet`` (nothing else:
+    no folder, no ``..``, no absolute path, no other name), a whole ``n_rows`` >= 1 and
+    a boolean ``complete``. So nothing outside the dataset folder is ever read, written
+    or deleted because of what a manifest says.
+    """
+    seen = set()
+    for position, shard in enumerate(shards):
+        file, index = shard["file"], shard.get("index", position)
+        expected = shard_name(position)
+        if file != expected or index != position or isinstance(index, bool):
+            twice = " (listed twice)" if file in seen else ""
+            raise ValueError(
+                f"{path}: shard entry {position} names file {file!r}{twice} with index "
+                f"{index!r}, where ballpass writes shard {position} as {expected!r} in the "
+                "dataset folder. The manifest was altered; nothing was read, written or "
+                "deleted. Generate the dataset again into a new folder.")
+        seen.add(file)
+        n_rows = shard["n_rows"]
+        if isinstance(n_rows, bool) or not isinstance(n_rows, int) or n_rows < 1:
+            raise ValueError(f"{path}: shard {file} has n_rows {n_rows!r}, not a whole "
+                             "number >= 1: the manifest was altered. Generate the dataset "
+                             "again into a new folder.")
+        for key in ("complete", "features_complete"):
+            if not isinstance(shard.get(key, False), bool):
+                raise ValueError(f"{path}: shard {file} has {key} {shard[key]!r}, not true "
+                                 "or false: the manifest was altered. Generate the dataset "
+                                 "again into a new folder.")
 
 
 def file_sha256(path: Path) -> str:
@@ -192,20 +241,30 @@ def shard_problem(path: Path, shard: dict, key: str = "sha256") -> str | None:
     """What is wrong with a shard the manifest lists as complete, or None if it is intact.
 
     Checks that the file exists, has the recorded size and the recorded SHA-256
-    (``shard[key]``; shards of the first layout carry no checksum and are only checked
-    to exist).
+    (``shard[key]``; shards of the first layout carry no checksum), and that it holds
+    the ``n_rows`` the manifest records (read from the file's footer, so an altered
+    count is never reported as fact).
     """
+    import pyarrow.parquet as pq
+
     if not path.is_file():
         return "is missing (deleted or moved)"
     expected = shard.get(key)
-    if expected is None:
-        return None
-    size = path.stat().st_size
-    recorded = shard.get("features_bytes" if key == "features_sha256" else "bytes")
-    if recorded and size != recorded:
-        return f"has {size} bytes where the manifest records {recorded} (truncated or altered)"
-    if file_sha256(path) != expected:
-        return "is corrupted: its SHA-256 differs from the one recorded in the manifest"
+    if expected is not None:
+        size = path.stat().st_size
+        recorded = shard.get("features_bytes" if key == "features_sha256" else "bytes")
+        if recorded and size != recorded:
+            return (f"has {size} bytes where the manifest records {recorded} (truncated or "
+                    "altered)")
+        if file_sha256(path) != expected:
+            return "is corrupted: its SHA-256 differs from the one recorded in the manifest"
+    try:
+        rows = pq.read_metadata(path).num_rows
+    except (OSError, ValueError):
+        return "is not a readable Parquet file"
+    if rows != shard["n_rows"]:
+        return (f"holds {rows} rows where the manifest records {shard['n_rows']} (the "
+                "manifest or the file was altered)")
     return None
 
 
@@ -240,6 +299,12 @@ def _shard_paths(path, features: bool = False,
                     f"shard {file} {problem}. Run `ballpass generate` with the same grid "
                     f"and --out {path} again to regenerate it.")
             files.append(file)
+    stray = sorted(p.name for p in path.glob("part-*.parquet")
+                   if p.name not in {s["file"] for s in manifest["shards"]})
+    if stray:
+        warnings.warn(f"{path} holds {', '.join(stray)}, which its manifest does not list: "
+                      "not part of the dataset (ballpass ignores them, other Parquet "
+                      "readers of the folder would not); remove them", stacklevel=3)
     if warn and manifest.get("status") != "complete":
         warnings.warn(f"{path}: dataset is incomplete ({len(files)} of "
                       f"{len(manifest['shards'])} shards); run `ballpass generate` again to "
@@ -400,6 +465,28 @@ def load_features(path, filters=None):
     return _read(files, None, filters).to_pandas()
 
 
+def _live_status(folder: Path, manifest: dict) -> str:
+    """The manifest's status, but ``"interrupted"`` for a run that says ``"running"``
+    while no process holds the folder's lock (it was killed or stopped)."""
+    status = manifest.get("status")
+    if status != "running":
+        return status
+    try:
+        import fcntl
+    except ImportError:  # pragma: no cover - Windows: no lock to ask
+        return status
+    try:
+        with open(folder / LOCK_FILE, "rb") as fh:
+            fcntl.flock(fh, fcntl.LOCK_SH | fcntl.LOCK_NB)
+    except BlockingIOError:
+        return status          # a generate holds it right now
+    except FileNotFoundError:
+        pass
+    except OSError:            # cannot ask (e.g. unreadable lock): say what the file says
+        return status
+    return "interrupted"
+
+
 #: columns whose distinct combinations form an operating condition in :func:`info`
 CONDITION_COLUMNS = ("bearing", "rpm", "radial_load_n", "sensor")
 
@@ -415,7 +502,9 @@ def info(path) -> dict:
     Returns
     -------
     dict
-        ``status``, ``n_rows``, ``n_runs``, ``shards_complete``, ``shards_total``,
+        ``status`` (``"complete"``, ``"running"`` while a generate works on it, or
+        ``"interrupted"``: stopped before the end, rerun generate to resume), ``n_rows``,
+        ``n_runs``, ``shards_complete``, ``shards_total``,
         ``fs`` (Hz), ``duration_s`` (s per row), ``signal_length``, ``size_bytes`` (on
         disk), ``ballpass_version``, ``labels`` (pandas Series: rows per label) and
         ``conditions`` (DataFrame: rows per label for each condition, columns
@@ -455,7 +544,7 @@ def info(path) -> dict:
     size = sum(f.stat().st_size for f in path.rglob("*") if f.is_file())
     out = {
         "path": str(path),
-        "status": manifest["status"],
+        "status": _live_status(path, manifest),
         "ballpass_version": manifest["ballpass_version"],
         "shards_complete": len(files),
         "shards_total": len(manifest["shards"]),

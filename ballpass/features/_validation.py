@@ -51,6 +51,29 @@ def check_signal(x, axis: int = -1, *, name: str = "x", min_samples: int = 2,
     return arr
 
 
+def to_unit_scale(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``x`` (samples last) scaled so that each signal's largest magnitude lies in
+    [0.25, 1), and the exponent ``k`` (int, shape (..., 1)) with ``x = scaled * 2**k``.
+
+    The factor is an even power of two, so the scaling (and a square root of it) is
+    exact: results that do not depend on scale come out bit for bit the same at any
+    scale, and a result in unit^p is ``np.ldexp(r, p * k)``, without the overflow or
+    underflow of squaring a signal of 1e200 or 1e-300 on the way. An all-zero signal
+    gets ``k = 0``.
+    """
+    peak = np.max(np.abs(x), axis=-1, keepdims=True) if x.size else np.zeros(x.shape[:-1] + (1,))
+    _, k = np.frexp(peak)           # peak = m 2**k, m in [0.5, 1)
+    k = np.where(peak > 0, k + k % 2, 0)
+    return np.ldexp(x, -k), k
+
+
+def from_unit_scale(r: np.ndarray, k: np.ndarray, power: int) -> np.ndarray:
+    """A result ``r`` in unit^``power`` of signals scaled by :func:`to_unit_scale`, in
+    the signals' own unit: exact, and inf only where the float range ends."""
+    with np.errstate(over="ignore"):
+        return np.ldexp(r, power * k)
+
+
 #: Narrowest band accepted, as a fraction of fs. A 4th-order Butterworth band-pass
 #: narrower than fs/1000 rings for thousands of samples and its second-order sections
 #: lose precision; envelope analysis needs a band several times wider than the fault

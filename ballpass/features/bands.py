@@ -16,7 +16,14 @@ import math
 import numpy as np
 
 from ..bearing import Bearing
-from ._validation import check_nonnegative, check_positive_int, check_rpm
+from ._validation import (
+    check_fs,
+    check_nonnegative,
+    check_positive_int,
+    check_rpm,
+    check_signal,
+    to_unit_scale,
+)
 from .envelope import envelope_spectrum
 from .shaft import without_shaft_lines
 
@@ -76,6 +83,33 @@ def _target_orders(bearing: Bearing, harmonics: int) -> np.ndarray:
     return np.concatenate(lines + [sidebands])
 
 
+def _check_reach(harmonics: int, tolerance: float, background_hz: float | None,
+                 bearing: Bearing, rpm, top_hz: float, n_bins: int) -> None:
+    """Refuse, before any work, a tolerance of 1 or more (the search window would reach
+    0 Hz), more harmonics than both the spectrum's ``n_bins`` bins and those whose
+    lowest line's search window starts below its top ``top_hz`` (every line above is
+    NaN: ``harmonics=10**9`` would allocate gigabytes) and, unless None, a background
+    window wider than the spectrum."""
+    if not tolerance < 1.0:
+        raise ValueError(f"tolerance must be in [0, 1) (relative half-width of the search "
+                         f"window; real slip is 0.01-0.02), got {tolerance!r}")
+    if background_hz is not None and background_hz > top_hz:
+        raise ValueError(f"background_hz must be at most the spectrum's top frequency, "
+                         f"{top_hz:g} Hz, got {background_hz:g}")
+    speeds = np.asarray(rpm, dtype=float)
+    if speeds.size == 0 or not (np.isfinite(speeds).all() and (speeds > 0).all()):
+        return  # check_rpm says what is wrong
+    orders = bearing.frequencies(1.0)
+    lowest = min(getattr(orders, line) for line in FAULT_LINES) * speeds.min() / 60.0
+    fit = math.floor(top_hz / (lowest * (1.0 - tolerance)))
+    most = max(1, fit, n_bins)
+    if harmonics > most:
+        raise ValueError(f"harmonics must be at most {most:,} here, the spectrum's bins: "
+                         f"the search window of every line beyond harmonic {fit:,} of the "
+                         f"lowest fault line ({lowest:.4g} Hz at {speeds.min():g} rpm) lies "
+                         f"above the spectrum's top, {top_hz:g} Hz; got {harmonics:,}")
+
+
 def fault_band_levels(
     freqs,
     ses,
@@ -121,9 +155,11 @@ def fault_band_levels(
     rpm : float or array_like of shape (...)
         Shaft speed, rev/min: one for all spectra or one per spectrum.
     harmonics : int, optional
-        Harmonics 1..H of each line (default 3).
+        Harmonics 1..H of each line (default 3); at most the spectrum's bins, or more
+        if the lowest line's search window still starts below the top at H.
     tolerance : float, optional
-        Relative half-width of the search window (default 0.01, i.e. 1 % slip).
+        Relative half-width of the search window, in [0, 1) (default 0.01, i.e. 1 %
+        slip).
     background_hz : float, optional
         Width of the background window on each side, Hz (default 10).
     shaft_guard : bool, optional
@@ -157,6 +193,9 @@ def fault_band_levels(
     tolerance = check_nonnegative("tolerance", tolerance)
     background_hz = check_nonnegative("background_hz", background_hz)
     rpm = check_rpm(rpm, ses.shape[:-1])
+    # a background wider than a given spectrum is all of it (no bomb: the windows are
+    # cut at its ends), as a spectrum cut below its Nyquist frequency may need
+    _check_reach(harmonics, tolerance, None, bearing, rpm, freqs[-1], freqs.size)
 
     df = freqs[1]
     n_bins = freqs.size
@@ -211,6 +250,43 @@ def fault_band_levels(
     return {name: levels[..., j][()] for j, name in enumerate(fault_band_names(harmonics))}
 
 
+def highest_fault_line(bearing, rpm, fs: float, harmonics: int = 3) -> np.ndarray:
+    """Highest line the fault-band levels read, Hz: the envelope must carry it.
+
+    ``harmonics`` times the highest defect frequency (BPFO, BPFI, 2xBSF) plus one shaft
+    order (the sideband of a modulated line), capped just below ``fs / 2``. A
+    demodulation band chosen by the kurtogram must lie above it (``fault_hz`` of
+    :func:`ballpass.features.fast_kurtogram`).
+
+    Parameters
+    ----------
+    bearing : Bearing
+        The bearing.
+    rpm : float or ndarray
+        Shaft speed(s), rev/min.
+    fs : float
+        Sampling frequency, Hz.
+    harmonics : int, optional
+        Harmonics read (default 3, as :func:`fault_band_levels`).
+
+    Returns
+    -------
+    ndarray, shape of ``rpm``
+        Frequency, Hz.
+
+    Examples
+    --------
+    >>> import ballpass as bp
+    >>> from ballpass.features.bands import highest_fault_line
+    >>> round(float(highest_fault_line(bp.Bearing.catalog("6205"), 1797.0, 12_000.0)))
+    517
+    """
+    per_order = bearing.frequencies(1.0)  # every defect frequency scales with the speed
+    orders = harmonics * max(per_order.bpfo, per_order.bpfi, per_order.ball_defect) + 1.0
+    shaft_hz = np.asarray(rpm, dtype=float) / 60.0
+    return np.minimum(orders * shaft_hz, np.nextafter(fs / 2, 0))
+
+
 def fault_band_features(
     x,
     fs: float,
@@ -244,11 +320,11 @@ def fault_band_features(
         Shaft speed, rev/min, one per signal or one for all.
     band : (float, float) or None, optional
         Demodulation band, Hz; ``None`` (default) chooses it per signal with the
-        kurtogram.
+        kurtogram, among bands above the highest line read (:func:`highest_fault_line`).
     prewhiten : bool, optional
         Cepstrum pre-whitening before demodulation (default False).
     harmonics, tolerance, background_hz, shaft_guard
-        See :func:`fault_band_levels`.
+        See :func:`fault_band_levels`; ``background_hz`` at most ``fs / 2``.
     axis : int, optional
         Sample axis (default -1).
 
@@ -274,10 +350,23 @@ def fault_band_features(
     >>> bool(feats["bpfo_1"] > 10 > feats["bpfi_1"])
     True
     """
-    freqs, ses = envelope_spectrum(x, fs, band, squared=True, prewhiten=prewhiten, axis=axis)
+    xv = check_signal(x, axis)
+    bearing = as_bearing(bearing)
+    _check_reach(check_positive_int("harmonics", harmonics, 1),
+                 check_nonnegative("tolerance", tolerance),
+                 check_nonnegative("background_hz", background_hz), bearing, rpm,
+                 check_fs(fs) / 2.0, xv.shape[-1] // 2 + 1)   # the SES's bins
+    fault_hz = None
+    if band is None:  # the kurtogram's band must carry the lines read
+        fault_hz = highest_fault_line(bearing, check_rpm(rpm, xv.shape[:-1]), check_fs(fs),
+                                      harmonics)
+    # the levels are ratios: computed on a copy scaled exactly to unit peak, whose SES
+    # neither overflows (1e200 m/s^2) nor underflows (1e-300)
+    freqs, ses = envelope_spectrum(to_unit_scale(xv)[0], fs, band, squared=True,
+                                   prewhiten=prewhiten, fault_hz=fault_hz)
     return fault_band_levels(
         freqs,
-        np.moveaxis(ses, axis, -1),
+        ses,
         bearing,
         rpm,
         harmonics=harmonics,

@@ -4,7 +4,7 @@ The time-domain statistics vibration engineers trend: level (RMS, peak,
 peak-to-peak) and shape (crest factor, kurtosis, skewness, shape, impulse and
 clearance factors). Kurtosis is Pearson's (3 for Gaussian noise, 1.5 for a sine), as
 condition monitoring uses it, i.e. ``scipy.stats.kurtosis(fisher=False)``. The
-faulty/healthy ratio of each indicator is the statistic of seed 001 (an MSC-ADAMS
+faulty/healthy ratio of each indicator is the statistic of Nabhan & Rashed (2020) (an MSC-ADAMS
 inner-race study, figs. 11-12): RMS ratios rise with speed and fault size, crest-factor
 ratios may miss the fault.
 """
@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._validation import check_signal
+from ._validation import check_signal, from_unit_scale, to_unit_scale
 
 __all__ = ["INDICATORS", "indicators", "indicator_ratios"]
 
@@ -60,6 +60,10 @@ def indicators(x, *, axis: int = -1) -> dict[str, np.ndarray]:
     variance is lost in the rounding of its mean (``var <= (eps * mean)^2``, where
     scipy.stats returns NaN) gets ``kurtosis = skewness = 0`` too.
 
+    The indicators are computed on a copy of each signal scaled exactly (by a power of
+    two) to unit peak, so the shape indicators are the same at any scale (1e-300 or
+    1e200 m/s^2) and the level ones are finite wherever the float range holds them.
+
     Parameters
     ----------
     x : array_like, shape (..., n_samples)
@@ -85,7 +89,10 @@ def indicators(x, *, axis: int = -1) -> dict[str, np.ndarray]:
 
 
 def _indicators(x: np.ndarray) -> dict[str, np.ndarray]:
-    """:func:`indicators` of validated ``x`` (float64, samples last)."""
+    """:func:`indicators` of validated ``x`` (float64, samples last), computed on a copy
+    scaled exactly to unit peak (:func:`to_unit_scale`): the same shape indicators at any
+    scale (a signal of 1e200 squared overflows, one of 1e-300 underflows)."""
+    x, k = to_unit_scale(x)
     a = np.abs(x)
     top, bottom = x.max(axis=-1), x.min(axis=-1)
     rms = np.sqrt(np.mean(x * x, axis=-1))
@@ -116,13 +123,15 @@ def _indicators(x: np.ndarray) -> dict[str, np.ndarray]:
     if constant.any():  # the convention of the docstring instead of 0/0
         for name in ("crest_factor", "shape_factor", "impulse_factor", "clearance_factor"):
             out[name] = np.where(constant, 1.0, out[name])
+    for name in ("rms", "peak", "peak_to_peak"):   # back in the unit of x
+        out[name] = from_unit_scale(out[name], k[..., 0], 1)
     return {name: value[()] for name, value in out.items()}
 
 
 def indicator_ratios(faulty, healthy, *, axis: int = -1) -> dict[str, np.ndarray]:
-    """Faulty/healthy ratio of each indicator (seed 001's detection statistic).
+    """Faulty/healthy ratio of each indicator (Nabhan & Rashed's detection statistic).
 
-    A ratio well above 1 flags the fault; seed 001 finds the RMS ratio the most
+    A ratio well above 1 flags the fault; Nabhan & Rashed (2020) finds the RMS ratio the most
     reliable, the crest-factor ratio unreliable. Skewness is near 0 for a healthy
     bearing, so its ratio is unstable; it is returned for completeness.
 

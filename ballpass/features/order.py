@@ -22,6 +22,7 @@ import numpy as np
 import scipy.integrate
 import scipy.interpolate
 
+from .._resources import available_memory, human_bytes
 from ._validation import check_fs, check_positive_int, check_signal
 from .envelope import _amplitude_spectrum, _envelope
 
@@ -161,11 +162,19 @@ def _order_track(xv, fs, rpm, tacho, pulses_per_rev, samples_per_rev):
     """:func:`order_track` on validated ``xv`` (samples last); also returns the rate."""
     n = xv.shape[-1]
     t, revs = shaft_revolutions(n, fs, rpm=rpm, tacho=tacho, pulses_per_rev=pulses_per_rev)
-    if samples_per_rev is None:
-        max_rev_time = np.max(np.diff(t) / np.diff(revs))  # s per revolution, slowest
-        samples_per_rev = math.ceil(fs * max_rev_time)
-    samples_per_rev = check_positive_int("samples_per_rev", samples_per_rev, 2)
+    max_rev_time = np.max(np.diff(t) / np.diff(revs))  # s per revolution, slowest
+    default = math.ceil(fs * max_rev_time)
+    samples_per_rev = check_positive_int(
+        "samples_per_rev", default if samples_per_rev is None else samples_per_rev, 2)
     n_out = math.floor((revs[-1] - revs[0]) * samples_per_rev) + 1
+    # the angle grid, its times and each output row with the spline's temporaries
+    needed = 8 * n_out * (2 + 4 * math.prod(xv.shape[:-1]))
+    if needed > available_memory():   # before anything that size is built
+        raise ValueError(
+            f"samples_per_rev={samples_per_rev} gives {n_out:,} samples per signal "
+            f"({human_bytes(needed)} to compute), more than the "
+            f"{human_bytes(available_memory())} of memory available; the default, "
+            f"{default}, samples the slowest revolution as finely as the signal does")
     grid = revs[0] + np.arange(n_out) / samples_per_rev
     if tacho is None:
         t_grid = np.interp(grid, revs, t)

@@ -37,12 +37,14 @@ def _harmonic_bins(freqs: np.ndarray, ses: np.ndarray, shaft_hz: np.ndarray,
     n, n_bins = ses.shape
     df = freqs[1]
     fine = SHAFT_GUARD_BINS * df <= 0.25 * shaft_hz  # (n,)
-    k = np.arange(1, int(freqs[-1] / shaft_hz.min()) + 1)
-    if k.size == 0:  # the spectrum ends below the first harmonic
+    # only rows fine enough are guarded: their harmonics are >= 12 bins apart, so K is
+    # at most n_bins / 12 (a coarse row, e.g. fs = 1e12 Hz, would ask for billions)
+    k = np.arange(1, int(freqs[-1] / shaft_hz[fine].min()) + 1) if fine.any() else []
+    if len(k) == 0:  # the spectrum ends below the first harmonic, or no row is guarded
         return np.zeros(ses.shape, dtype=bool), np.zeros(ses.shape)
     exact = k[None, :] * shaft_hz[:, None] / df  # harmonic frequencies in bins, (n, K)
     centre = np.rint(exact).astype(np.int64)
-    half = max(5, math.ceil(background_hz / df))
+    half = min(n_bins, max(5, math.ceil(background_hz / df)))  # the whole spectrum at most
     rows = np.arange(n)[:, None, None]
     around = np.clip(centre[..., None] + np.arange(-half, half + 1), 1, n_bins - 1)
     background = np.median(ses[rows, around], axis=-1)  # (n, K)

@@ -21,16 +21,17 @@ Models (the table behind ``auto``: ``python -m ballpass bearings`` lists bearing
 ``sr4``
     The same without the resonator: the sensors read the housing acceleration.
 ``rotor2``
-    Seed 003's rigid rotor on a cylindrical roller bearing (Palmgren line contacts,
+    The NJ 305 rotor paper's rigid rotor on a cylindrical roller bearing (Palmgren line contacts,
     clearance, unbalance, defects), Newmark-beta by default (see :mod:`.rotor2`): the
     non-linear rotor dynamics for Poincare sections and bifurcation diagrams
     (:mod:`ballpass.dynamics`).
 ``multibody``
-    Nakhaeinejad & Bryant (2011, seed 000): every ball a body with traction, slip and
+    Nakhaeinejad & Bryant (2011, Nakhaeinejad & Bryant (2011)): every ball a body with traction,
+    slip and
     centrifugal load (see :mod:`.multibody`). What scenes that need ``ball_dynamics``
     run.
 ``gearbox``
-    A gear pair (seed 004) whose pinion sits on the bearing's shaft, coupled to the sr5
+    A gear pair (Tran, Furch & Cu) whose pinion sits on the bearing's shaft, coupled to the sr5
     bearing-pedestal model (see :mod:`.gearbox`); what a scene with ``gears`` runs.
 
 A new model is one file that builds a :class:`Model` and one line in :data:`MODELS`.
@@ -38,10 +39,14 @@ A new model is one file that builds a :class:`Model` and one line in :data:`MODE
 
 from __future__ import annotations
 
+import logging
 import sys
+import time
 import types
 
-from ._cache import clear_stale_cache, source_fingerprint
+import numpy as np
+
+from ._cache import clear_stale_cache, has_compiled_kernels, source_fingerprint
 
 # before any kernel module is imported: numba must not load kernels compiled from
 # other sources (see ._cache)
@@ -63,6 +68,7 @@ __all__ = [
     "simulate",
     "integrate",
     "scene_needs",
+    "unrepresented",
     "resolve_model",
     "model_table",
     "build",
@@ -144,10 +150,39 @@ def scene_needs(scene: Scene, *, return_forces: bool = False) -> frozenset:
     return frozenset(needs)
 
 
-def _choose(scene: Scene, model: str, return_forces: bool) -> tuple[Model, str]:
+def unrepresented(scene: Scene, model: str, *, return_forces: bool = False) -> frozenset:
+    """What the scene states that ``model`` does not represent.
+
+    The stated needs are those of the scene's fields (gears, a clearance, a speed
+    ramp, ...), of ``Scene(needs=...)`` and of ``return_forces``; not the default
+    needs of a scene that states none, which only guide ``model="auto"``. A model
+    asked for by name that leaves one out would give a signal without what its
+    scene says it has.
+
+    Examples
+    --------
+    >>> import ballpass as bp
+    >>> sorted(bp.simulate.unrepresented(bp.Scene(bearing="6205", clearance_um=5.0),
+    ...                                  "impulse"))
+    ['mounted_clearance']
+    >>> sorted(bp.simulate.unrepresented(bp.Scene(bearing="6205"), "impulse"))
+    []
+    """
+    stated = scene_needs(scene, return_forces=return_forces)
+    if not scene.needs:   # the defaults are no statement of the scene's
+        stated -= DEFAULT_NEEDS
+    return stated - MODELS[model].represents
+
+
+def _choose(scene: Scene, model: str, return_forces: bool,
+            allow_unrepresented: bool = False) -> tuple[Model, str]:
     """The model to run and the reason (for ``res.info["model_reason"]``)."""
     if not isinstance(model, str):
         raise TypeError(f"model must be a str, got {type(model).__name__}")
+    for name, flag in (("return_forces", return_forces),
+                       ("allow_unrepresented", allow_unrepresented)):
+        if not isinstance(flag, bool | np.bool_):
+            raise TypeError(f"{name} must be True or False, got {flag!r}")
     needs = scene_needs(scene, return_forces=return_forces)
     if model != "auto":
         if model not in MODELS:
@@ -156,6 +191,14 @@ def _choose(scene: Scene, model: str, return_forces: bool) -> tuple[Model, str]:
         refusal = chosen.accepts(scene)
         if refusal:
             raise ValueError(f"model {model!r} cannot take this scene: {refusal}")
+        stated = unrepresented(scene, model, return_forces=return_forces)
+        if stated and not allow_unrepresented:
+            able = [m.name for m in MODELS.values() if stated <= m.represents]
+            raise ValueError(
+                f"model {model!r} does not represent {', '.join(sorted(stated))}, which the "
+                f"scene asks for: its signal would lack it. Models that do: "
+                f"{', '.join(able) or 'none'}. Use model='auto' or one of those, or pass "
+                "allow_unrepresented=True to simulate without it.")
         missing = needs - chosen.represents
         note = (f"; it does not represent {', '.join(sorted(missing))}, which the scene "
                 "asks for" if missing else "")
@@ -176,7 +219,8 @@ def _choose(scene: Scene, model: str, return_forces: bool) -> tuple[Model, str]:
         + "; ".join(passed))
 
 
-def resolve_model(scene: Scene, model: str = "auto", *, return_forces: bool = False) -> str:
+def resolve_model(scene: Scene, model: str = "auto", *, return_forces: bool = False,
+                  allow_unrepresented: bool = False) -> str:
     """Name of the model :func:`simulate` will run for ``scene``.
 
     Parameters
@@ -187,6 +231,9 @@ def resolve_model(scene: Scene, model: str = "auto", *, return_forces: bool = Fa
         :func:`scene_needs`) or a name in :data:`MODELS`.
     return_forces : bool, optional
         Whether contact forces will be requested (they are a need of their own).
+    allow_unrepresented : bool, optional
+        Let a model named by the caller leave out what the scene states and it does
+        not represent (:func:`unrepresented`; default False: refused).
 
     Returns
     -------
@@ -195,8 +242,9 @@ def resolve_model(scene: Scene, model: str = "auto", *, return_forces: bool = Fa
     Raises
     ------
     ValueError
-        Unknown model name, a model that cannot take the scene, or (``auto``) no model
-        that covers the needs; the message says what each model lacks.
+        Unknown model name, a model that cannot take the scene or (unless
+        ``allow_unrepresented``) leaves out what it states, or (``auto``) no model that
+        covers the needs; the message says what each model lacks and which has it.
 
     Examples
     --------
@@ -204,7 +252,7 @@ def resolve_model(scene: Scene, model: str = "auto", *, return_forces: bool = Fa
     >>> bp.simulate.resolve_model(bp.Scene(bearing="6205"))
     'sr5'
     """
-    return _choose(scene, model, return_forces)[0].name
+    return _choose(scene, model, return_forces, allow_unrepresented)[0].name
 
 
 def model_table():
@@ -237,7 +285,8 @@ def model_table():
 
 def simulate(scene: Scene, model: str = "auto", solver: str = "auto", *, dt: float | None = None,
              rtol: float | None = None, atol: float | None = None, params=None,
-             return_forces: bool = False, oversample: int = OVERSAMPLE) -> SimulationResult:
+             return_forces: bool = False, oversample: int = OVERSAMPLE,
+             allow_unrepresented: bool = False) -> SimulationResult:
     """Simulate the vibration of a scene.
 
     Parameters
@@ -272,6 +321,12 @@ def simulate(scene: Scene, model: str = "auto", solver: str = "auto", *, dt: flo
     oversample : int, optional
         Internal output rate as a multiple of ``scene.fs`` before the anti-alias
         decimation (default 4).
+    allow_unrepresented : bool, optional
+        Run a ``model`` named by the caller even if it leaves out what the scene
+        states (gears with ``"impulse"``, ``needs=("ball_dynamics",)`` with ``"sr5"``):
+        :func:`unrepresented` is then dropped from the signal, and
+        ``info["model_reason"]`` says so. Default False: refused, naming what is
+        missing and which models have it.
 
     Returns
     -------
@@ -279,10 +334,18 @@ def simulate(scene: Scene, model: str = "auto", solver: str = "auto", *, dt: flo
         ``accel`` in m/s^2, shape (n_samples,) or (n_sensors, n_samples);
         ``info["model"]`` and ``info["model_reason"]`` say which model ran and why.
 
+    Notes
+    -----
+    The kernels are numba code, compiled on first use and cached on disk. When the cache
+    holds none of them (the first simulation after installing or updating ballpass) the
+    ``"ballpass"`` logger says so at WARNING level before the 15-60 s of compilation,
+    and at INFO level how long that first simulation took.
+
     Raises
     ------
     ValueError
-        Bad arguments (before any work), or no model covers the scene's needs.
+        Bad arguments (before any work), a named model that leaves out what the scene
+        states, or no model covers the scene's needs.
     SimulationUnstableError
         The integration diverged; the message names the scene and the step size.
 
@@ -297,16 +360,47 @@ def simulate(scene: Scene, model: str = "auto", solver: str = "auto", *, dt: flo
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"scene must be a ballpass.Scene, got {type(scene).__name__}")
-    chosen, reason = _choose(scene, model, return_forces)
+    chosen, reason = _choose(scene, model, return_forces, allow_unrepresented)
     check_solver_args(chosen.name, solver, chosen.solvers, chosen.fixed_step_solvers,
                       dt, rtol, atol, oversample)
     solver = chosen.default_solver if solver == "auto" else solver
+    compiling = _announce_compilation()
+    start = time.perf_counter()
     res = chosen.run(scene, solver, dt=dt, rtol=rtol, atol=atol, params=params,
                      return_forces=return_forces, oversample=oversample)
+    if compiling:
+        _log.info("first simulation with compilation took %.1f s", time.perf_counter() - start)
     res.info["model"] = chosen.name
     res.info["model_reason"] = reason
     res.info.setdefault("solver", solver)
     return res
+
+
+_log = logging.getLogger("ballpass")
+#: whether this process has looked for compiled kernels yet (once per process)
+_compile_checked = False
+
+
+def _announce_compilation() -> bool:
+    """Say, once per process, that the kernels are being compiled when numba's cache
+    holds none of them (fresh install, update, empty ``NUMBA_CACHE_DIR``).
+
+    The record goes to the ``"ballpass"`` logger at WARNING level, so Python's default
+    handler prints it on stderr without any logging set-up; silence it with
+    ``logging.getLogger("ballpass").setLevel(logging.ERROR)``. Returns whether it was
+    said.
+    """
+    global _compile_checked
+    if _compile_checked:
+        return False
+    _compile_checked = True
+    if has_compiled_kernels():
+        return False
+    _log.warning(
+        "ballpass: compiling the simulator's numba kernels; the first simulation after "
+        "installing or updating ballpass takes 15-60 s, later ones reuse the compiled code"
+    )
+    return True
 
 
 from .work_precision import plot_work_precision, speedup, work_precision  # noqa: E402

@@ -128,13 +128,13 @@ def rhs(t, y, dydt, p, walk, faults, g, te, kin, yc, dc):
     """dy/dt of the coupled gear-bearing model (layout above) into ``dydt``; returns
     the mesh force, N. ``yc``, ``dc`` are length-8 scratch for the bearing core.
 
-    Bearing core: the sr5 equations (Sawalhi & Randall 2008; seed 004 eqs. 7-16 with
+    Bearing core: the sr5 equations (Sawalhi & Randall 2008; Tran, Furch & Cu eqs. 7-16 with
     the shaft damping, loads and sprung mass restored), plus N on the shaft along u.
     Angles are relative to the nominal motion (a speed ramp's angular acceleration
     alpha adds -alpha, -alpha z_p / z_g to each wheel's th'').
     Drive: I_m th_m'' = T_p - M_t, M_t = k_t (th_m - th_p) + c_t (th_m' - th_p') (shaft
     torque, pre-twisted by T_p / k_t).
-    Pinion (seed 004 eq. 5): I_p th_p'' = M_t - r_bp N.
+    Pinion (Tran, Furch & Cu eq. 5): I_p th_p'' = M_t - r_bp N.
     Gear (eqs. 2, 6): I_g th_g'' = r_bg N - T_g - k_o th_g - c_o th_g',
     m_g x_g'' = -k_g x_g - c_g x_g' - N, with the load torque T_g = T_p r_bg / r_bp and
     the output shaft (k_o, c_o) to a load turning at the nominal speed.

@@ -2,7 +2,7 @@
 A gear mesh masks a bearing fault; separation uncovers it
 =========================================================
 
-A 6208 with an inner-race fault on the input shaft of seed 004's first gear pair
+A 6208 with an inner-race fault on the input shaft of Tran, Furch & Cu's first gear pair
 (15/29 teeth, spur) at 2000 rpm. The mesh and its harmonics, deterministic, dominate
 the signal; removing the periodic part of both shafts (time-synchronous average
 subtraction) leaves the bearing's cyclostationary impacts, and BPFI appears in the

@@ -2,7 +2,7 @@
 Poincare sections and a bifurcation diagram of the rotor model
 ==============================================================
 
-Seed 003's rigid rotor on an NJ 305 roller bearing (``rotor2``): with no clearance the
+The NJ 305 rotor paper's rigid rotor on an NJ 305 roller bearing (``rotor2``): with no clearance the
 once-per-revolution Poincare section of the journal is a single point (periodic
 motion); with clearance the rotor rattles in the gap and the section spreads. The
 bifurcation diagram stacks the sections over the clearance.

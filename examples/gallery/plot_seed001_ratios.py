@@ -1,8 +1,8 @@
 """
-Seed 001: faulty/healthy indicator ratios against speed
+Nabhan & Rashed (2020): faulty/healthy indicator ratios against speed
 =======================================================
 
-Seed 001 judges an inner-race fault by the ratio of statistical indicators (RMS,
+Nabhan & Rashed (2020) judges an inner-race fault by the ratio of statistical indicators (RMS,
 crest factor, kurtosis) of the faulty to the healthy signal, over speed. Here a 6004
 with a 0.5 mm inner-race notch, loaded-zone sensor, the same absolute noise on both
 runs (``benchmarks/seed001_ratios.py`` runs the whole study).

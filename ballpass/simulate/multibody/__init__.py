@@ -1,4 +1,4 @@
-"""``multibody``: the planar multibody bearing of Nakhaeinejad & Bryant (2011, seed 000).
+"""``multibody``: the planar multibody bearing of Nakhaeinejad & Bryant (2011).
 
 Every ball is a body: the cage speed, the slip of each ball, the load sharing, the
 centrifugal load and the two impacts of a ball crossing a notch come out of the
@@ -8,18 +8,18 @@ hierarchy, and the reference the cheaper models are judged against.
 Model
 -----
 Bodies (planar, global frame, x along the load line towards the load zone, y at
-+90 deg in the direction of rotation; Newton-Euler, seed 000 eqs. 19-25):
++90 deg in the direction of rotation; Newton-Euler, Nakhaeinejad & Bryant eqs. 19-25):
 
 * **inner race** with its share of the shaft: x, y, rotation. It carries the radial
   load F_r and its weight along the load line, and is driven through a torsional
   coupling (stiffness k_d, damping c_d) by a motor that follows the scene's speed
   profile exactly, against the load and seal friction torques of eqs. 15-17;
-* **outer race** in a housing with stiffness and damping (seed 000 Table 1:
+* **outer race** in a housing with stiffness and damping (Nakhaeinejad & Bryant Table 1:
   4e7 N/mm); its rotation is locked by the housing fit (the paper's outer-race
   rotation DOF carries no load in a fixed housing);
 * **Z balls**: x, y and spin each;
 * **a cage** (rotation about the housing centre) whose pockets hold the balls apart
-  with a tangential spring-damper beyond the pocket clearance. Seed 000 neglects the
+  with a tangential spring-damper beyond the pocket clearance. The paper neglects the
   cage; without one, balls that leave the load zone lose traction and drift, and
   nothing would stop two of them passing through each other. The cage also carries the
   lubricant drag of the rolling set (eq. 18), which is what makes the balls slip when
@@ -28,13 +28,13 @@ Bodies (planar, global frame, x along the load line towards the load zone, y at
 That is 3 (Z + 2) degrees of freedom, 33 for nine balls, as in the paper (with the
 cage's rotation in place of the locked outer-race rotation).
 
-Contacts (each ball with each race; seed 000 eqs. 5-14):
+Contacts (each ball with each race; Nakhaeinejad & Bryant eqs. 5-14):
 
 * normal force ``Q = K delta^1.5 + tau (1.5 K delta^0.5) d(delta)/dt``, clipped at 0:
   Hertz (K of each race from :meth:`ballpass.Bearing.contact_stiffnesses`, the exact
   elliptic-integral form of eqs. 6-8) with Kramer's damping (eq. 9: b = tau k, tau =
-  1e-5 s; the print's 1e-2 is read as Kramer's 1e-5, see the seed digest) applied with
-  the contact's own linearised stiffness k = dQ/d(delta), so the damping vanishes with
+  1e-5 s; the print's 1e-2 is read as Kramer's 1e-5, his range being (0.25-2.5) 1e-5 k)
+  applied with the contact's own linearised stiffness k = dQ/d(delta), so the damping vanishes with
   the contact and the force is exactly 0 while separated;
 * traction ``F_t = mu(s) Q`` against the sliding velocity, with the slide-roll law of
   eq. 13 applied odd-symmetrically (mu(-s) = -mu(s); mu(0) = 0, so it is continuous),
@@ -87,7 +87,7 @@ scene's structural resonance (one-way coupled, solved exactly for the interval m
 of its excitation), anti-alias decimated and AC coupled, like sr5.
 
 Assumptions (defaults in :class:`MultibodyParameters`, each with its source): planar
-motion (no axial load, no ball precession: seed 000's 3-D randomness of ball faults is
+motion (no axial load, no ball precession: the paper's 3-D randomness of ball faults is
 absent), rigid bodies apart from the contacts, the cage centred on the housing, the
 normal force along the line of centres (the tilt of the force on a notch corner is
 neglected, as in the paper's profile model), no EHL film stiffness. Radial loads up to
@@ -148,19 +148,19 @@ class MultibodyParameters:
         inner-raceway radius, m R_i^2 / 2.
     housing_mass : float
         Outer race and the part of the housing that moves with it, kg. Default 1.0
-        (not given by seed 000; the order of a pillow block for a 1-inch shaft).
+        (not given by Nakhaeinejad & Bryant; the order of a pillow block for a 1-inch shaft).
     housing_stiffness : float
-        Housing stiffness, vertical and horizontal, N/m. Default 4e10 (seed 000
+        Housing stiffness, vertical and horizontal, N/m. Default 4e10 (the paper's
         Table 1: 4e7 N/mm).
     damping_time : float
-        tau of Kramer's damping b = tau k (seed 000 eq. 9, 1e-5 s with the paper's
+        tau of Kramer's damping b = tau k (Nakhaeinejad & Bryant eq. 9, 1e-5 s with the paper's
         factor 1.0 and Kramer's exponent), s. Applied to every contact with its
         linearised stiffness and to the housing. Default 1e-5.
     density : float
-        Ball density, kg/m^3. Default 7750 (seed 000 Table 1).
+        Ball density, kg/m^3. Default 7750 (Nakhaeinejad & Bryant Table 1).
     cage_mass : float
         Cage mass, kg (inertia m r_p^2 at the pitch radius). Default 0.01 (a pressed
-        steel cage of this size; seed 000 has none).
+        steel cage of this size; Nakhaeinejad & Bryant have none).
     pocket_clearance : float
         Tangential play of a ball in its pocket, m. Default 1e-4 (typical 0.1 mm).
     pocket_stiffness, pocket_damping : float
@@ -168,21 +168,21 @@ class MultibodyParameters:
         2 g ball).
     drive_stiffness, drive_damping : float
         Torsional coupling of the motor to the inner race, N m/rad and N m s/rad.
-        Defaults 1000 and 0.4 (a beam coupling, seed 000 sec. 4; ~560 Hz, damping
+        Defaults 1000 and 0.4 (a beam coupling, Nakhaeinejad & Bryant sec. 4; ~560 Hz, damping
         ratio ~0.7 with a 1 kg shaft). 0 and 0 leave the inner race spinning freely.
     film_parameter : float
-        Lambda of seed 000 eq. 12, >= 0. Default 0: boundary lubrication, mu = mu_bd as
+        Lambda of Nakhaeinejad & Bryant eq. 12, >= 0. Default 0: boundary lubrication, mu = mu_bd as
         in eq. 14.
     hydrodynamic_ratio : float
         mu_hd / mu_bd at equal slide-roll ratio, in [0, 1]. Default 0.5 (EHD traction
-        coefficients are about half the boundary ones; seed 000 gives no value).
+        coefficients are about half the boundary ones; the paper gives no value).
     traction : bool
         Tangential contact forces on (default). False makes every contact frictionless.
     viscosity_cst : float
         Kinematic viscosity nu_o of the lubricant in eq. 18, cSt. Default 20 (a light
-        spindle oil; seed 000 gives none).
+        spindle oil; the paper gives none).
     lubrication_factor : float
-        f_o of eq. 18. Default 1 (deep-groove ball bearing, oil mist; seed 000).
+        f_o of eq. 18. Default 1 (deep-groove ball bearing, oil mist; Nakhaeinejad & Bryant).
     friction_torques : bool
         Apply the torques of eqs. 15-18 (default True).
     seal_torque : float
@@ -266,7 +266,7 @@ class MultibodyParameters:
 
 
 def mu_traction(s, film_parameter: float = 0.0, hydrodynamic_ratio: float = 0.5):
-    """Traction coefficient against the slide-roll ratio (seed 000 eqs. 12-13).
+    """Traction coefficient against the slide-roll ratio (Nakhaeinejad & Bryant eqs. 12-13).
 
     mu_bd(s) = (-0.1 + 22.28 |s|) exp(-181.46 |s|) + 0.1, applied odd-symmetrically;
     for 0.01 <= Lambda < 1.5, mu = (mu_bd - mu_hd) ((Lambda - 1.5)/(0.01 - 1.5))^6 + mu_hd
@@ -888,12 +888,13 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
                             truth=truth, info=info)
 
 
-#: the planar multibody bearing of seed 000
+#: the planar multibody bearing of Nakhaeinejad & Bryant (2011)
 MULTIBODY = Model(
     name="multibody",
-    description="planar multibody bearing (seed 000): inner race, Z balls, cage and outer "
-                "race in a housing as bodies; Hertz contacts with damping, slide-roll "
-                "traction, centrifugal load, friction torques, notch profiles",
+    description="planar multibody bearing (Nakhaeinejad & Bryant 2011): inner race, Z "
+                "balls, cage and outer race in a housing as bodies; Hertz contacts with "
+                "damping, slide-roll traction, centrifugal load, friction torques, notch "
+                "profiles",
     represents=frozenset({"ball_dynamics", "contact_dynamics", "contact_forces", "envelope",
                           "varying_speed"}),
     # benchmarks/models_cost.py (docs/models_cost.md): 81-106x sr5 per simulated second
@@ -905,7 +906,8 @@ MULTIBODY = Model(
     fixed_step_solvers=("rk4",),
     reference="M. Nakhaeinejad, M. D. Bryant, 'Dynamic modeling of rolling element bearings "
               "with surface contact defects using bond graphs', J. Tribology 133 (2011) "
-              "011102 (seed 000), with the errata of the seed digest",
+              "011102, read with E = 210 GPa, K in N/mm^1.5, eq. 12's breakpoint 1.5 and "
+              "Kramer's 1e-5 s in eq. 9",
     accepts=_accepts,
     run=_run,
 )

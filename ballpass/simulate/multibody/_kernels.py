@@ -1,5 +1,5 @@
-"""Numba kernels of the planar multibody bearing (seed 000): the right-hand side, the
-fixed-step RK4 loop with its recorders, and the mechanical energy.
+"""Numba kernels of the planar multibody bearing (Nakhaeinejad & Bryant 2011): the
+right-hand side, the fixed-step RK4 loop with its recorders, and the mechanical energy.
 
 State (``nd = 6 + 3 Z`` coordinates, then their rates; SI units, global frame, x along
 the load line towards the centre of the load zone, y at +90 deg in the direction of
@@ -62,7 +62,7 @@ def wrap_pi(a):
 
 @njit(cache=True, error_model="numpy")
 def mu_slide_roll(s, w_bd, hd_ratio):
-    """Traction coefficient at slide-roll ratio s >= 0: seed 000 eq. 13
+    """Traction coefficient at slide-roll ratio s >= 0: Nakhaeinejad & Bryant eq. 13
     mu_bd = (-0.1 + 22.28 s) exp(-181.46 s) + 0.1, blended by eq. 12 with weight w_bd
     with the hydrodynamic law mu_hd = hd_ratio * mu_bd."""
     mu_bd = (-0.1 + 22.28 * s) * math.exp(-181.46 * s) + 0.1
@@ -145,7 +145,7 @@ def _contact_force(k, tau, delta, ddelta):
 
 @njit(cache=True, error_model="numpy")
 def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
-    """dy/dt at (t, y). The traction forces are first-order lags of seed 000's
+    """dy/dt at (t, y). The traction forces are first-order lags of the paper's
     steady law (eq. 11-13): dF/dt = (mu(s) Q - F) u_r / L, L the relaxation length
     (creep builds up over about a contact length of rolling, Johnson, Contact
     Mechanics, sec. 8.2); a separated contact applies none and its traction decays.

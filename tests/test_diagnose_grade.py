@@ -1,0 +1,84 @@
+"""The grade of a diagnosis (Smith & Randall's Y/P) pinned on marginal cases.
+
+"Y" needs the named family to clear its threshold *and* every other family by the
+grade margin; "P" when either fails. Each case is built from the evidence the
+diagnoser itself reports for one signal (so it holds whatever the evidence engine
+computes): the thresholds are placed around that evidence, through the public
+``threshold_db`` and ``explain()``. The margins used (1 dB against 10 dB) sit on either
+side of any sensible grade margin (3 dB now).
+"""
+
+import numpy as np
+import pytest
+
+import ballpass as bp
+
+FS, RPM = 12_000.0, 1797.0
+
+
+@pytest.fixture(scope="module")
+def outer_signal():
+    """Impacts at BPFO ringing a 3 kHz resonance, in white noise, 2 s: the outer family
+    reads far above the others."""
+    bpfo = bp.Bearing.catalog("6205").frequencies(RPM / 60).bpfo
+    t = np.arange(int(2 * FS)) / FS
+    phase = (t * bpfo) % 1.0 / bpfo  # time since the last impact, s
+    x = np.exp(-800 * phase) * np.sin(2 * np.pi * 3000 * phase)
+    x = x + 0.3 * np.random.default_rng(0).standard_normal(t.size)
+    evidence = bp.diagnose.EnvelopeDiagnoser(fs=FS, rpm=RPM).explain(x[None])[0].evidence_db
+    assert evidence["outer"] > 12.0 and all(np.isfinite(v) for v in evidence.values())
+    return x, evidence
+
+
+def _explain(x, evidence, offsets):
+    """Explanation with each family's threshold at its own evidence minus ``offsets``
+    (dB): the family's margin over its threshold becomes exactly that offset."""
+    thresholds = {f: evidence[f] - offsets[f] for f in offsets}
+    why = bp.diagnose.EnvelopeDiagnoser(fs=FS, rpm=RPM, threshold_db=thresholds).explain(
+        x[None])[0]
+    # the case is what the explanation itself reports: each family's margin is its
+    # offset (a family the diagnoser did not judge, -inf, is below any threshold)
+    for f, offset in offsets.items():
+        margin = why.evidence_db[f] - why.threshold_db[f]
+        assert margin == pytest.approx(offset, abs=1e-9) or (margin == -np.inf and offset < 0)
+    return why
+
+
+@pytest.mark.parametrize(("offsets", "label", "grade"), [
+    # barely clears its threshold, the next family 11 dB below it: partly diagnosed
+    ({"outer": 1.0, "inner": -10.0, "ball": -10.0}, "outer", "P"),
+    # clears its threshold and the others by 10 dB: clearly diagnosed
+    ({"outer": 10.0, "inner": -10.0, "ball": -10.0}, "outer", "Y"),
+    # every family 10 dB below its threshold: clearly healthy
+    ({"outer": -10.0, "inner": -10.0, "ball": -10.0}, "healthy", "Y"),
+    # healthy, but the outer family only 1 dB below its threshold: partly
+    ({"outer": -1.0, "inner": -10.0, "ball": -10.0}, "healthy", "P"),
+])
+def test_grade_of_marginal_and_clear_cases(outer_signal, offsets, label, grade):
+    x, evidence = outer_signal
+    offsets = {f: min(o, evidence[f]) for f, o in offsets.items()}  # thresholds >= 0
+    why = _explain(x, evidence, offsets)
+    assert (why.label, why.grade) == (label, grade), why
+    assert f"{label} (grade {grade})" in str(why)
+
+
+def test_a_fault_clearing_its_threshold_but_not_its_competitor_is_partly_diagnosed(
+        outer_signal):
+    """Outer clears its threshold by 1 dB more than the inner family clears its own
+    (its threshold set to 0): named, but grade "P"."""
+    x, evidence = outer_signal
+    assert evidence["inner"] >= 2.0  # the competitor's margin at threshold 0
+    why = _explain(x, evidence, {"outer": evidence["inner"] + 1.0, "inner": evidence["inner"]})
+    assert (why.label, why.grade) == ("outer", "P"), why
+
+
+def test_healthy_is_only_partly_diagnosed_when_a_family_could_not_be_judged(outer_signal):
+    """0.3 s is 3.6 cage periods, fewer than the ball family needs to resolve its +-FTF
+    sidebands (4): with every judged family far below a 40 dB threshold the record is
+    healthy, but grade "P", not "Y", and the note says why."""
+    x, _ = outer_signal
+    why = bp.diagnose.EnvelopeDiagnoser(fs=FS, rpm=RPM, threshold_db=40.0).explain(
+        x[None, :int(0.3 * FS)])[0]
+    assert why.evidence_db["ball"] == -np.inf and why.evidence_db["outer"] < 37.0
+    assert (why.label, why.grade) == ("healthy", "P"), why
+    assert any(note.startswith("ball not judged") for note in why.notes)
