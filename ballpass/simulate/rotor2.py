@@ -339,16 +339,25 @@ def rotor2_force(t, x, v, p, f, kx, kv):
 
 
 @njit(cache=True, error_model="numpy")
+def _roller(j, t, x, v, p):
+    """Roller j at time t for rotor state (x, v): load Q (N), dQ/d(delta) (N/m), contact
+    damping (N s/m) and the cos and sin of its angle (one roller at a time; the force
+    kernel steps all rollers by a rotation)."""
+    theta = _K.shaft_angle(t, p)
+    phi = p[P_PHI0] + _K.TWO_PI * j / p[_K.P_Z] + p[_K.P_CAGE] * theta
+    cs, sn = math.cos(phi), math.sin(phi)
+    q, dq, c = _contact(j, x[0] * cs + x[1] * sn - p[_K.P_CLEAR], v[0] * cs + v[1] * sn,
+                        p[P_LEN] * p[P_TILT] * cs, phi, theta, int(p[P_NF]),
+                        int(p[P_NLAM]), p)
+    return q, dq, c, cs, sn
+
+
+@njit(cache=True, error_model="numpy")
 def _loads_many(t, x, v, p, out):
     """Roller loads (N) at times t (n,) for states x, v (n, 2) into out (n, Z)."""
     for i in range(t.shape[0]):
         for j in range(out.shape[1]):
-            theta = _K.shaft_angle(t[i], p)
-            phi = p[P_PHI0] + _K.TWO_PI * j / out.shape[1] + p[_K.P_CAGE] * theta
-            cs, sn = math.cos(phi), math.sin(phi)
-            out[i, j] = _contact(j, x[i, 0] * cs + x[i, 1] * sn - p[_K.P_CLEAR],
-                                 v[i, 0] * cs + v[i, 1] * sn, p[P_LEN] * p[P_TILT] * cs, phi,
-                                 theta, int(p[P_NF]), int(p[P_NLAM]), p)[0]
+            out[i, j] = _roller(j, t[i], x[i], v[i], p)[0]
 
 
 #: the integrators compiled for rotor2's force
