@@ -9,11 +9,14 @@ line at 166.73/100.04/66.69/55.55 Hz at 1500/900/600/500 rpm, displacement ampli
 becomes complicated". This script checks each claim with ballpass and measures the
 solvers:
 
-1. ``solvers``: Newmark at its default step against dopri5 at rtol 1e-10, and dopri5 at
-   rtol 1e-8 against 1e-10 (the floor any two solvers reach on that scene); wall times.
-2. ``lines``: the x-displacement spectrum at the four speeds, for the seed's set-up (0.125
+1. ``solvers``: the default rk4 and Newmark at their default steps against dopri5 at
+   rtol 1e-10, and dopri5 at rtol 1e-8 against 1e-10 (the floor any two solvers reach on
+   that scene); wall times.
+2. ``ceiling``: the largest BPFI line the seed's notch can make in a rotor resting on its
+   rollers, in closed form (:func:`line_ceiling`), against the seed's amplitudes.
+3. ``lines``: the x-displacement spectrum at the four speeds, for the seed's set-up (0.125
    mm radial clearance, gravity only) and for a regular one (5 um, 500 N).
-3. ``bifurcation``: Poincare sections over the clearance (0-0.125 mm) and the speed
+4. ``bifurcation``: Poincare sections over the clearance (0-0.125 mm) and the speed
    (500-2000 rpm) with the 0-1 test for chaos on each section.
 
     python benchmarks/seed003.py            # ~5 min on 2 cores
@@ -73,17 +76,20 @@ def solvers(quick: bool) -> pd.DataFrame:
         s = scene(c, load, 1500.0, duration, 20_000.0, fault)
         runs = {}
         for key, kw in (("ref", dict(solver="dopri5", rtol=1e-10)),
-                        ("dopri5", dict(solver="dopri5", rtol=1e-8)), ("newmark", {})):
+                        ("dopri5", dict(solver="dopri5", rtol=1e-8)), ("default", {}),
+                        ("newmark", dict(solver="newmark"))):
             bp.simulate(s.replace(duration_s=0.01), model="rotor2", **kw)  # compile
             t0 = time.perf_counter()
             runs[key] = bp.simulate(s, model="rotor2", return_forces=True, **kw)
             runs[key].info["wall"] = time.perf_counter() - t0
         ref = runs["ref"].truth.displacement
         n50 = int(0.05 * s.fs)
-        for key in ("newmark", "dopri5"):
+        for key in ("default", "newmark", "dopri5"):
             x = runs[key].truth.displacement
-            rows.append(dict(scene=name, solver=key if key == "dopri5" else "newmark (default)",
-                             step=(f"dt = {runs[key].info['dt_s'] * 1e6:.2f} us" if key == "newmark"
+            info = runs[key].info
+            rows.append(dict(scene=name, solver=info["solver"] + (" (default)" if key == "default"
+                                                                  else ""),
+                             step=(f"dt = {info['dt_s'] * 1e6:.2f} us" if "dt_s" in info
                                    else "rtol = 1e-8"),
                              err_50ms=_rel(x, ref, n50), err_full=_rel(x, ref),
                              wall_s=runs[key].info["wall"],
@@ -94,7 +100,7 @@ def solvers(quick: bool) -> pd.DataFrame:
 
 
 def cost_ratio(quick: bool) -> dict:
-    """Wall time per simulated second, rotor2 (newmark) against sr5 (rk4), medians of 3."""
+    """Wall time per simulated second, rotor2 and sr5 (default solvers), medians of 3."""
     duration = 0.2 if quick else 0.5
     out = {}
     for model, s in (("sr5", bp.Scene(bearing="NJ305", rpm=1500, radial_load_n=500,
@@ -142,6 +148,42 @@ def lines(quick: bool):
                              largest_line_hz=f[top], largest_line_um=amp[top] * 1e6,
                              p2p_x_um=np.ptp(x) * 1e6))
     return pd.DataFrame(rows), spectra
+
+
+def line_ceiling() -> pd.DataFrame:
+    """Largest BPFI line a 0.5 x 0.5 mm inner-race notch can put in the displacement,
+    from the kinematics alone (no model run).
+
+    While a roller is in the notch the rotor can drop at most the roller's geometric
+    drop h (``Fault.effective_depth_mm``: a 9.25 mm cylinder into a 0.5 mm wide notch)
+    and, supported by gravity alone, at most the free fall g tau^2 / 2 in the notch
+    crossing time tau. The notch is under some roller a fraction Z w / (2 pi r_i) of the
+    time (Z rollers meet it per inner-ring turn, each for w / (2 pi r_i) of the turn).
+    A non-negative pulse train's Fourier amplitude at any frequency is at most twice its
+    mean, so |X(BPFI)| <= 2 min(h, g tau^2 / 2) Z w / (2 pi r_i), for a rotor that stays
+    on its rollers (quasi-static below the contact mode: BPFI / f_c < 0.1, so the
+    dynamic amplification 1 / (1 - (BPFI / f_c)^2) is below 1.01).
+    """
+    b = bp.Bearing.catalog("NJ305").with_clearance(0.125)
+    h = DEFECT.effective_depth_mm(b) * 1e-3
+    r_i = 0.5 * (b.pitch_diameter_mm - b.element_diameter_mm) * 1e-3
+    duty = b.n_elements * DEFECT.width_mm * 1e-3 / (2 * np.pi * r_i)
+    f_c = bp.simulate.rotor2.contact_omega(scene(0.125, 0.0, 1500.0, 0.1, 3000.0)) / (2 * np.pi)
+    rows = []
+    for rpm, (_, theory_um, _, measured_um) in SEED_TABLE.items():
+        s = scene(0.125, 0.0, rpm, 0.1, 3000.0)
+        surface = (s.shaft_hz - s.frequencies.ftf) * 2 * np.pi * r_i  # notch past a roller
+        tau = DEFECT.width_mm * 1e-3 / surface
+        drop = min(h, 0.5 * bp.scene.STANDARD_GRAVITY * tau**2)
+        ceiling = 2 * drop * duty
+        rows.append(dict(rpm=rpm, bpfi_hz=s.frequencies.bpfi, drop_um=h * 1e6,
+                         crossing_ms=tau * 1e3, free_fall_um=0.5 * 9.80665 * tau**2 * 1e6,
+                         duty=duty, ceiling_um=ceiling * 1e6,
+                         ceiling_any_drop_um=2 * h * duty * 1e6,
+                         paper_theory_um=theory_um, paper_measured_um=measured_um,
+                         theory_over_ceiling=theory_um / (ceiling * 1e6),
+                         bpfi_over_contact=s.frequencies.bpfi / f_c))
+    return pd.DataFrame(rows)
 
 
 def _sweep(base: bp.Scene, parameter: str, values, discard: float) -> pd.DataFrame:
@@ -217,11 +259,94 @@ def _print(df: pd.DataFrame, **kw) -> None:
     print(df.to_string(float_format=lambda v: f"{v:.3g}", **kw))
 
 
+#: CSVs in benchmarks/results/ the page is written from
+CSVS = {"solvers": "seed003_solvers.csv", "cost": "seed003_cost.csv",
+        "ceiling": "seed003_ceiling.csv", "lines": "seed003_lines.csv",
+        "clearance": "seed003_bifurcation_clearance.csv",
+        "speed": "seed003_bifurcation_speed.csv"}
+
+
+def _sections(df: pd.DataFrame) -> pd.DataFrame:
+    """Poincare sections summarised per parameter value."""
+    return df.groupby("parameter").agg(
+        points=("x_m", "size"), mean_x_um=("x_m", lambda v: v.mean() * 1e6),
+        spread_x_um=("x_m", lambda v: np.ptp(v) * 1e6),
+        spread_y_um=("y_m", lambda v: np.ptp(v) * 1e6), K=("K", "first")).reset_index()
+
+
+def _span(values, fmt: str = "{:.2g}") -> str:
+    return f"{fmt.format(min(values))}-{fmt.format(max(values))}"
+
+
+def page(d: dict) -> str:
+    """docs/seed003.md from the tables of one run (``CSVS``)."""
+    from ballpass.diagnose.report import markdown_table
+
+    sol = d["solvers"].copy()
+    err = {(r.scene, r.solver.split()[0]): r for r in sol.itertuples()}
+    for col in ("err_50ms", "err_full"):
+        sol[col] = sol[col].map(lambda v: f"{v:.2g}")
+    sol = sol.rename(columns={"err_50ms": "error, 50 ms", "err_full": "error, 0.3 s",
+                              "wall_s": "wall (s)", "ref_wall_s": "reference wall (s)"})
+    sol["scene"] = sol["scene"].str.replace("seed set-up", "paper's set-up")
+    cost = d["cost"].set_index("model")
+    ceil = d["ceiling"][["rpm", "bpfi_hz", "crossing_ms", "free_fall_um", "ceiling_um",
+                         "ceiling_any_drop_um", "paper_theory_um", "paper_measured_um",
+                         "theory_over_ceiling", "bpfi_over_contact"]]
+    lines = d["lines"].copy()
+    lines["setup"] = lines["setup"].str.replace("seed set-up", "paper's set-up")
+    seed = lines[lines.setup.str.startswith("paper")]
+    regular = lines[lines.setup.str.startswith("regular")]
+    lines = lines[["setup", "rpm", "bpfi_hz", "line_hz", "line_um", "seed_theory_um",
+                   "seed_measured_um", "largest_line_hz", "largest_line_um", "p2p_x_um"]
+                  ].rename(columns={"seed_theory_um": "paper theory (um)",
+                                    "seed_measured_um": "paper measured (um)"})
+    clear, speed = _sections(d["clearance"]), _sections(d["speed"])
+    small = clear[clear.parameter > 0].iloc[0]
+    k = speed["K"].dropna()
+    dt = {key: float(r.step.split()[2]) for key, r in err.items() if r.step.startswith("dt")}
+    measured = d["ceiling"]["paper_measured_um"] / d["ceiling"]["ceiling_um"]
+    values = dict(
+        sol_tab=markdown_table(sol), ceil_tab=markdown_table(ceil),
+        lines_tab=markdown_table(lines), clear_tab=markdown_table(clear),
+        speed_tab=markdown_table(speed),
+        pp=f"{_span(seed.p2p_x_um, '{:.0f}')} µm",
+        seed_lines=" / ".join(f"{v:.2f}" for v in seed.line_um),
+        ceilings=" / ".join(f"{v:.2g}" for v in d["ceiling"]["ceiling_um"]),
+        ratios=" / ".join(f"{v:.2g}" for v in d["ceiling"]["theory_over_ceiling"]),
+        c_small=small.spread_x_um, c_small_mm=small.parameter,
+        c_big=clear.spread_x_um.iloc[-1], k_range=_span(k),
+        dt_reg=dt[("regular, healthy", "rk4")],
+        e_reg_h=err[("regular, healthy", "rk4")].err_50ms,
+        e_reg_d=err[("regular, inner defect", "rk4")].err_50ms,
+        d_h=err[("seed set-up, healthy", "dopri5")].err_50ms,
+        dt_nm=dt[("seed set-up, inner defect", "newmark")],
+        e_nm=err[("seed set-up, inner defect", "newmark")].err_50ms,
+        dt_seed=dt[("seed set-up, inner defect", "rk4")],
+        e_rk=err[("seed set-up, inner defect", "rk4")].err_50ms,
+        c_r2=cost.loc["rotor2", "median_s"], s_r2=cost.loc["rotor2", "spread_s"],
+        c_sr5=cost.loc["sr5", "median_s"], s_sr5=cost.loc["sr5", "spread_s"],
+        c_ratio=cost.loc["rotor2", "median_s"] / cost.loc["sr5", "median_s"],
+        r_t=_span(d["ceiling"]["theory_over_ceiling"], "{:.2g}") + "x",
+        r_m=_span(measured, "{:.2g}") + "x",
+        seed_range=_span(seed.line_um, "{:.1f}"),
+        ceil_range=_span(d["ceiling"]["ceiling_um"]),
+        reg_range=_span(regular.line_um),
+        s_range=_span(speed.spread_x_um, "{:.0f}"))
+    return PAGE.format(**values)
+
+
+#: the page's text (a template: ``page`` fills in the tables and the numbers quoted in
+#: the prose from the CSVs)
+PAGE = (Path(__file__).resolve().parent / "seed003_page.md").read_text()
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--quick", action="store_true", help="shorter records, fewer values")
     ap.add_argument("--replot", action="store_true",
-                    help="redraw the bifurcation figure from the CSVs (no simulation)")
+                    help="redraw the bifurcation figure and rewrite docs/seed003.md from "
+                         "the CSVs (no simulation)")
     args = ap.parse_args()
     RESULTS.mkdir(parents=True, exist_ok=True)
     import matplotlib
@@ -247,6 +372,9 @@ def main() -> None:
                      ).to_csv(RESULTS / "seed003_cost.csv", index=False)
         print("cost (median, spread) s:", cost, "rotor2/sr5 =",
               cost["rotor2"][0] / cost["sr5"][0])
+        ceil = line_ceiling()
+        ceil.to_csv(RESULTS / "seed003_ceiling.csv", index=False)
+        _print(ceil, index=False)
         tab, spectra = lines(args.quick)
         tab.to_csv(RESULTS / "seed003_lines.csv", index=False)
         _print(tab, index=False)
@@ -260,6 +388,7 @@ def main() -> None:
         _print(df.groupby("parameter").agg(points=("x_m", "size"),
                                            spread_um=("x_m", lambda v: np.ptp(v) * 1e6),
                                            K=("K", "first")))
+    (DOCS / "seed003.md").write_text(page({k: pd.read_csv(RESULTS / f) for k, f in CSVS.items()}))
     print(f"total {time.perf_counter() - t0:.0f} s")
 
 

@@ -1206,6 +1206,185 @@ def _dopri5_second_order(p, minv, y0, h_out, n_out, rtol, atol, h_max, max_steps
     return STATUS_OK, n_acc, n_rej, h_min, t
 
 
+#: gap left on each side of a break by :func:`rk4_for`'s integrator, s: the last step
+#: before a break ends this far ahead of it and the next starts as far after it, so no
+#: stage evaluates f on the far side of a jump (the state is carried over unchanged)
+EVENT_GAP = 1e-11
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _minv_times(minv, f, out):
+    """out = -M^-1 f: the acceleration of M a + f = 0."""
+    n = f.shape[0]
+    for i in range(n):
+        s = 0.0
+        for j in range(n):
+            s -= minv[i, j] * f[j]
+        out[i] = s
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _quintic_out(t0, h, x0, v0, a0, x1, v1, a1, tk, k, with_xv, out_x, out_v, out_a):
+    """Record at tk in [t0, t0 + h] the quintic Hermite interpolant of a step's end
+    states (x, v, a): its second derivative (the acceleration, accurate to O(h^4), the
+    order of the method) and, if ``with_xv``, its value and first derivative."""
+    s = (tk - t0) / h
+    s2 = s * s
+    s3 = s2 * s
+    h2 = h * h
+    # weights of x0 - x1, h v0, h v1, h^2 a0, h^2 a1 in h^2 a
+    a_0, a_1 = -60.0 * s + 180.0 * s2 - 120.0 * s3, -36.0 * s + 96.0 * s2 - 60.0 * s3
+    a_2, a_3 = -24.0 * s + 84.0 * s2 - 60.0 * s3, 1.0 - 9.0 * s + 18.0 * s2 - 10.0 * s3
+    a_4 = 3.0 * s - 12.0 * s2 + 10.0 * s3
+    for i in range(x0.shape[0]):
+        out_a[k, i] = (a_0 * (x0[i] - x1[i]) + h * (a_1 * v0[i] + a_2 * v1[i])
+                       + h2 * (a_3 * a0[i] + a_4 * a1[i])) / h2
+    if not with_xv:
+        return
+    s4 = s3 * s
+    s5 = s4 * s
+    # ... in x (plus x1) and in h v
+    x_0, x_1 = 1.0 - 10.0 * s3 + 15.0 * s4 - 6.0 * s5, s - 6.0 * s3 + 8.0 * s4 - 3.0 * s5
+    x_2, x_3 = -4.0 * s3 + 7.0 * s4 - 3.0 * s5, 0.5 * (s2 - 3.0 * s3 + 3.0 * s4 - s5)
+    x_4 = 0.5 * (s3 - 2.0 * s4 + s5)
+    v_0, v_1 = -30.0 * s2 + 60.0 * s3 - 30.0 * s4, 1.0 - 18.0 * s2 + 32.0 * s3 - 15.0 * s4
+    v_2 = -12.0 * s2 + 28.0 * s3 - 15.0 * s4
+    v_3 = 0.5 * (2.0 * s - 9.0 * s2 + 12.0 * s3 - 5.0 * s4)
+    v_4 = 0.5 * (3.0 * s2 - 8.0 * s3 + 5.0 * s4)
+    for i in range(x0.shape[0]):
+        dp, m0, m1, c0, c1 = x0[i] - x1[i], h * v0[i], h * v1[i], h2 * a0[i], h2 * a1[i]
+        out_x[k, i] = x1[i] + x_0 * dp + x_1 * m0 + x_2 * m1 + x_3 * c0 + x_4 * c1
+        out_v[k, i] = (v_0 * dp + v_1 * m0 + v_2 * m1 + v_3 * c0 + v_4 * c1) / h
+
+
+def _rk4_second_order(p, minv, x0, v0, h_out, n_out, breaks, seg_dt, bound, x_scale,
+                      xv_every, out_x, out_v, out_a):
+    """Classical fixed-step Runge-Kutta 4 on M a + f(t, x, v) = 0 (the bound ``force``,
+    see :func:`rk4_for`), restarted at known non-smooth points of f.
+
+    The time axis [0, (n_out - 1) h_out] is cut at ``breaks`` (sorted times where f
+    is not smooth in t: fault edges and ramp ends); segment i (between break i - 1 and
+    break i) is covered in equal steps no longer than ``seg_dt[i]``, its last step ending
+    :data:`EVENT_GAP` before the break and the next segment starting as far after it,
+    with f re-evaluated there (so the method keeps its fourth order across a sharp
+    edge). Steps are independent of the output grid: the outputs at t = k h_out are the
+    quintic Hermite interpolant of the step ends (x, v and the acceleration a = -M^-1 f,
+    which is the next step's first stage: four evaluations of f per step).
+
+    Parameters
+    ----------
+    p : ndarray
+        Parameters passed to ``force``.
+    minv : ndarray (n, n)
+        Inverse mass matrix, 1/kg.
+    x0, v0 : ndarray (n,)
+        Initial displacement (m) and velocity (m/s).
+    h_out : float
+        Output spacing, s.
+    n_out : int
+        Number of output points.
+    breaks : ndarray (n_breaks,)
+        Sorted break times in (0, (n_out - 1) h_out), s.
+    seg_dt : ndarray (n_breaks + 1,)
+        Largest step of each segment, s (> 0).
+    bound : float
+        The state is declared unbounded when |x_i| > bound * x_scale_i.
+    x_scale : ndarray (n,)
+        Characteristic displacement of each coordinate, m (> 0).
+    xv_every : int
+        Record x and v only at every ``xv_every``-th output time (k a multiple of it;
+        the other rows are left as they are); a at every one.
+    out_x, out_v, out_a : ndarray (n_out, n)
+        Filled with the displacement, velocity and acceleration at the output times.
+
+    Returns
+    -------
+    status : int
+        0 ok, 1 non-finite or unbounded state.
+    n_steps : int
+        Steps taken.
+    t_fail : float
+        Time reached, s.
+    """
+    n = x0.shape[0]
+    f = np.zeros(n)
+    kx = np.zeros((n, n))
+    kv = np.zeros((n, n))
+    x = x0.copy()
+    v = v0.copy()
+    a = np.zeros(n)
+    xs = np.zeros(n)
+    vs = np.zeros(n)
+    x1 = np.zeros(n)
+    v1 = np.zeros(n)
+    a1 = np.zeros(n)
+    a2 = np.zeros(n)
+    a3 = np.zeros(n)
+    a4 = np.zeros(n)
+    t_end = (n_out - 1) * h_out
+    n_steps = 0
+    k = 0  # next output index
+    t = 0.0
+    for seg in range(breaks.shape[0] + 1):
+        t_stop = breaks[seg] - EVENT_GAP if seg < breaks.shape[0] else t_end
+        if seg > 0:
+            t = breaks[seg - 1] + EVENT_GAP
+        # f changes at a break: the first stage is evaluated afresh after it
+        force(t, x, v, p, f, kx, kv)  # noqa: F821 (bound by _bind)
+        _minv_times(minv, f, a)
+        if k == 0:
+            for i in range(n):
+                out_x[0, i] = x[i]
+                out_v[0, i] = v[i]
+                out_a[0, i] = a[i]
+            k = 1
+        span = t_stop - t
+        if span <= 0.0:
+            continue
+        n_sub = max(1, int(math.ceil(span / seg_dt[seg] - 1e-9)))
+        h = span / n_sub
+        for s in range(n_sub):
+            t0 = t
+            t1 = t_stop if s == n_sub - 1 else t0 + h
+            # stage 2 and 3 at the midpoint, stage 4 at the end (y' = (v, a))
+            for i in range(n):
+                xs[i] = x[i] + 0.5 * h * v[i]
+                vs[i] = v[i] + 0.5 * h * a[i]
+            force(t0 + 0.5 * h, xs, vs, p, f, kx, kv)  # noqa: F821
+            _minv_times(minv, f, a2)
+            for i in range(n):
+                xs[i] = x[i] + 0.5 * h * vs[i]
+                vs[i] = v[i] + 0.5 * h * a2[i]
+            force(t0 + 0.5 * h, xs, vs, p, f, kx, kv)  # noqa: F821
+            _minv_times(minv, f, a3)
+            for i in range(n):
+                x1[i] = x[i] + h * vs[i]
+                v1[i] = v[i] + h * a3[i]
+            force(t1, x1, v1, p, f, kx, kv)  # noqa: F821
+            _minv_times(minv, f, a4)
+            for i in range(n):
+                x1[i] = x[i] + h / 6.0 * (v[i] + 2.0 * (v[i] + 0.5 * h * a[i])
+                                          + 2.0 * vs[i] + v1[i])
+                v1[i] = v[i] + h / 6.0 * (a[i] + 2.0 * a2[i] + 2.0 * a3[i] + a4[i])
+            force(t1, x1, v1, p, f, kx, kv)  # noqa: F821
+            _minv_times(minv, f, a1)
+            for i in range(n):
+                if not (abs(x1[i]) <= bound * x_scale[i] and math.isfinite(v1[i])
+                        and math.isfinite(a1[i])):
+                    return STATUS_NONFINITE, n_steps, t1
+            n_steps += 1
+            while k < n_out and k * h_out <= t1 + GRID_TOL * h_out:
+                _quintic_out(t0, t1 - t0, x, v, a, x1, v1, a1, min(k * h_out, t1), k,
+                             k % xv_every == 0, out_x, out_v, out_a)
+                k += 1
+            for i in range(n):
+                x[i] = x1[i]
+                v[i] = v1[i]
+                a[i] = a1[i]
+            t = t1
+    return STATUS_OK, n_steps, t_end
+
+
 _BOUND: dict = {}
 
 
@@ -1266,3 +1445,24 @@ def dopri5_for(force, *, cache: bool = True):
     rhs = _bind(_second_order_rhs, force, f"rhs_{force.__name__}", cache)
     return _bind(_dopri5_second_order, force, f"dopri5_{force.__name__}", cache,
                  _second_order_rhs=rhs)
+
+
+def rk4_for(force, *, cache: bool = True):
+    """Fixed-step Runge-Kutta 4, restarted at known breaks, compiled for one model's
+    force function.
+
+    Parameters
+    ----------
+    force : numba function
+        As for :func:`newmark_for`.
+    cache : bool, optional
+        As for :func:`newmark_for`.
+
+    Returns
+    -------
+    callable
+        ``rk4(p, minv, x0, v0, h_out, n_out, breaks, seg_dt, bound, x_scale, xv_every,
+        out_x, out_v, out_a) -> (status, n_steps, t_fail)``; see
+        :func:`_rk4_second_order`.
+    """
+    return _bind(_rk4_second_order, force, f"rk4_{force.__name__}", cache)

@@ -1,26 +1,26 @@
-"""``rotor2``: the rigid rotor on a cylindrical roller bearing of seed 003.
+"""``rotor2``: the rigid rotor on a cylindrical roller bearing of the NJ 305 paper.
 
 A rigid rotor of mass m (2 DOF: x along the load line, y perpendicular, in the
 bearing plane) runs on the Z rollers of a cylindrical roller bearing whose outer ring
-is fixed to a rigid housing. Seed 003 ("Dynamic behaviour of rotor roller bearing
-system with bearing defects", NJ 305) section 3.5:
+is fixed to a rigid housing. The NJ 305 paper ("Dynamic behaviour of rotor roller bearing
+system with bearing defects"; authors and year not printed), section 3.5:
 
     m x'' + c x' + sum_j Q_j cos(phi_j) = F_r + m g + m_u e (w^2 cos(theta) + w' sin(theta))
     m y'' + c y' + sum_j Q_j sin(phi_j) =             m_u e (w^2 sin(theta) - w' cos(theta))
 
-with c = 200 N s/m the bearing damping of seed 003 section 3.6 (the lumped viscous
-damping of Harsha's 2-DOF rotor models, which seed 003 follows), theta the shaft angle,
-w = theta' and the unbalance term m_u e w^2 the seed's equation needs (it prints m w^2,
-without the unbalance mass and eccentricity; see shared/seeds/DIGEST.md section 1.4).
+with c = 200 N s/m the bearing damping of the paper's section 3.6 (the lumped viscous
+damping of Harsha's 2-DOF rotor models, which the paper follows), theta the shaft angle,
+w = theta' and the unbalance term m_u e w^2 the paper's equation needs (it prints m w^2,
+without the unbalance mass and eccentricity).
 Roller j sits at phi_j = phi_0 + 2 pi j / Z + (1 - r) theta / 2 (rigid cage at the fundamental train
 frequency, r = d cos(alpha) / d_p) and is compressed by
 
     delta_j = x cos(phi_j) + y sin(phi_j) - c_r - h_j(t)
 
 with c_r the radial clearance (negative: preload) and h_j the depth of any localized
-defect under the roller. Its load is the Palmgren line contact (seed 003 eqs. 1-2,
-6), optionally with the constant contact damping c_d of seed 003 section 2.3
-(``Rotor2Parameters.contact_damping_ns_m``, default 0 so that the seed's damping is
+defect under the roller. Its load is the Palmgren line contact (the paper's eqs. 1-2,
+6), optionally with the constant contact damping c_d of the paper's section 2.3
+(``Rotor2Parameters.contact_damping_ns_m``, default 0 so that the paper's damping is
 not counted twice):
 
     Q_j = max(0, K delta_j^(10/9) + c_d (x' cos(phi_j) + y' sin(phi_j)))  for delta_j > 0,
@@ -29,7 +29,7 @@ not counted twice):
 K the load-deflection constant of one roller between both races
 (:meth:`ballpass.Bearing.hertz_stiffness`: Palmgren delta = 3.84e-5 Q^0.9 / l^0.8 per
 contact, inner and outer in series). With a misalignment gamma the roller is sliced
-into k laminae of width w = l / k (seed 003 section 3.4.2, eq. 6): lamina lambda at
+into k laminae of width w = l / k (the paper's section 3.4.2, eq. 6): lamina lambda at
 axial position s_lambda from the roller centre is compressed by
 delta_j + s_lambda gamma cos(phi_j) and carries (K / k) delta^(10/9), which sums to
 Palmgren's law when gamma = 0 (the laminae then collapse to one exact term).
@@ -38,7 +38,7 @@ Ball bearings run the same equations with Hertz point contacts, Q = K delta^(3/2
 K from :meth:`ballpass.Bearing.hertz_stiffness` (the 2-DOF rotor of Harsha's papers,
 DIGEST.md section 4 item 3); laminae need rollers, so a misalignment is refused there.
 
-Assumptions (where seed 003 is silent or garbled):
+Assumptions (where the paper is silent or garbled):
 
 * Rigid housing and outer ring; the sensor signal ``res.accel`` is the rotor's
   (journal's) acceleration projected on each sensor's radial direction,
@@ -46,21 +46,21 @@ Assumptions (where seed 003 is silent or garbled):
   so rotor2 does not represent ``envelope`` and ignores ``Scene.resonance_hz`` and the
   sensors' ``attenuation``.
 * Rigid cage, no slip (``Scene.slip`` is ignored): the model is deterministic, as the
-  seed's, so that Poincare sections show the dynamics, not the slip.
-* Damping: the seed's rotor equation has one viscous term c Y2' with c = 200 N s/m;
+  paper's, so that Poincare sections show the dynamics, not the slip.
+* Damping: the paper's rotor equation has one viscous term c Y2' with c = 200 N s/m;
   it acts on the rotor in both directions whether rollers touch or not. Per-contact
   damping (section 2.3) acts only along loaded rollers: alone it leaves the rotor's
   sideways rolling over a roller almost undamped (its lines of action are nearly
   radial), so it is an option, not the default. Rollers have no mass of their own
-  (no centrifugal load, seed 003 eq. 10 is dropped) and the roller-race contacts are
+  (no centrifugal load, the paper's eq. 10 is dropped) and the roller-race contacts are
   lumped into one series contact.
 * Defects are the :class:`~ballpass.Fault` depth profiles shared with ``sr5``: a
   notch of effective depth min(h, d/2 (1 - sqrt(1 - (w/d)^2))) (the drop of a
   cylinder of diameter d into a notch of width w is the same as a ball's), sharp or
   with half-cosine ramps; inner-race defects turn with the shaft, roller defects spin
-  at the roller spin frequency and meet both races. Seed 003's sinusoidal roller
+  at the roller spin frequency and meet both races. The paper's sinusoidal roller
   profile (eqs. 4-5) is not used: its constants A_1, R_r/D_L are undefined there.
-* Roller tilt: only a prescribed misalignment gamma (``Rotor2Parameters``); the seed's
+* Roller tilt: only a prescribed misalignment gamma (``Rotor2Parameters``); the paper's
   thrust-driven tilt needs an axial load the Scene does not have.
 * The run starts at the quasi-static equilibrium of the healthy bearing under
   F_r + m g (:meth:`ballpass.Bearing.load_distribution`), at rest.
@@ -68,10 +68,20 @@ Assumptions (where seed 003 is silent or garbled):
   the kinematics in closed form (rollers keep the kinematic cage speed, no slip); they
   equal sr5's at ``slip=0`` (tests/test_rotor2.py).
 
-Solvers: ``newmark`` (default; average acceleration with Newton iterations on the
-contact forces, :func:`._integrators.newmark`) and ``dopri5`` (adaptive
-Dormand-Prince on the same equations, :func:`._integrators.dopri5_second_order`), so
-each checks the other (tests/test_rotor2.py, docs/seed003.md).
+Solvers: ``rk4`` (default; classical Runge-Kutta 4 at dt = ``DT_RK4_OMEGA`` /
+omega_c, omega_c the linearised contact frequency, steps independent of the output
+grid, restarted at the fault edges and ramp ends, which follow from the kinematics in
+closed form, with ``RK4_RAMP_STEPS`` steps across each ramp;
+:func:`._integrators.rk4_for`), ``newmark`` (the paper's method: average acceleration
+with Newton iterations on the contact forces, :func:`._integrators.newmark_for`) and
+``dopri5`` (adaptive Dormand-Prince on the same equations), so each checks the others
+(tests/test_rotor2.py). Newmark's average-acceleration scheme is unconditionally
+stable, but second order: the contact mode rings for ~15 periods after every roller
+pass and impact and its phase error, (omega dt)^2 / 12 per radian, accumulates, so the
+output acceleration is within 1e-2 of dopri5 only for omega_c dt <~ 0.05 (about one
+step per 5 us output sample at 48 kHz). RK4 reaches it at omega_c dt = 0.35-0.4;
+the default 0.3 gives 3e-3 to 4e-3 on the 6205 reference scene with and without a
+defect (docs/rotor2_step.md).
 """
 
 from __future__ import annotations
@@ -100,17 +110,24 @@ from ._shared import (
 from .result import FaultCrossings, GroundTruth, SimulationResult
 from .sr5 import MAX_DEFLECTION_RATIO, _fault_table
 
-__all__ = ["Rotor2Parameters", "ROTOR2", "SOLVERS", "DT_NEWMARK_OMEGA", "RAMP_STEPS",
+__all__ = ["Rotor2Parameters", "ROTOR2", "SOLVERS", "DT_RK4_OMEGA", "RK4_RAMP_STEPS",
+           "DT_NEWMARK_OMEGA", "RAMP_STEPS",
            "elastic_limit_m",
            "contact_omega"]
 
 #: solver name -> description
 SOLVERS = {
+    "rk4": "classical Runge-Kutta 4, fixed step DT_RK4_OMEGA / omega_c, restarted at the "
+           "fault edges and ramp ends (known in closed form); output by quintic Hermite "
+           "interpolation",
     "newmark": "Newmark-beta, average acceleration (gamma 1/2, beta 1/4), Newton "
                "iterations on the contact forces with their tangent stiffness; fixed step",
     "dopri5": "Dormand-Prince 5(4) on the same equations, adaptive step with error control",
 }
 
+#: default rk4 step = DT_RK4_OMEGA / omega_c (see :func:`_rk4_breaks` for the steps on
+#: defect ramps)
+DT_RK4_OMEGA = 0.3
 #: default Newmark step = DT_NEWMARK_OMEGA / omega_c, omega_c the linearised contact
 #: natural frequency (rad/s) at the static equilibrium (about 1.2 us for the NJ 305 at
 #: 500 N); the average-acceleration scheme's relative period error is
@@ -120,10 +137,12 @@ DT_NEWMARK_OMEGA = 0.025
 #: defect deep enough to unload it (depth beyond the static contact deflection; a sharp
 #: edge counts the whole notch): its impacts are stiffer than the static contact. With
 #: both limits the dynamic part of the displacement stays within a relative L2 error of
-#: 1e-2 of dopri5 at rtol 1e-10 on the seed-003 scenes for as long as the motion is not
+#: 1e-2 of dopri5 at rtol 1e-10 on the NJ 305 paper's scenes for as long as the motion is not
 #: chaotic (benchmarks/seed003.py, docs/seed003.md; where it is, no two solvers agree
 #: for long)
 RAMP_STEPS = 128
+#: rk4 steps across each defect ramp (a half-cosine in time)
+RK4_RAMP_STEPS = 8
 
 # parameter vector: the sr5 kernel's speed/cage/contact slots (so _kernels'
 # shaft_angle, shaft_rate and profile apply) and rotor2's own slots after them
@@ -141,27 +160,27 @@ P_FAULTS = _K.N_PARAMS + 9   # fault table (sr5 layout), row after row
 
 @dataclass(frozen=True)
 class Rotor2Parameters:
-    """Structural parameters of the ``rotor2`` model (defaults: seed 003 section 3.6).
+    """Structural parameters of the ``rotor2`` model (defaults: the paper, section 3.6).
 
     Parameters
     ----------
     rotor_mass_kg : float, optional
         Mass m of the rigid rotor with the inner ring, kg, in (0, 1e4]. Default 1.0
-        ("the mass of the rotor roller bearing system is 1 kg", seed 003 section 3.6).
+        ("the mass of the rotor roller bearing system is 1 kg", the paper's section 3.6).
     bearing_damping_ns_m : float, optional
         Viscous damping c of the rotor in the bearing, N s/m, in [0, 1e6], the c Y2'
-        of the seed's rotor equation (section 3.5). Default 200 ("damping factor of the
-        bearing is 200 N.s/m", seed 003 section 3.6).
+        of the paper's rotor equation (section 3.5). Default 200 ("damping factor of the
+        bearing is 200 N.s/m", the paper's section 3.6).
     contact_damping_ns_m : float, optional
         Viscous damping c_d of each loaded roller contact along its line of action,
-        N s/m, in [0, 1e6] (the constant lubricant damping of seed 003 section 2.3).
-        Default 0: the seed's 200 N s/m is the bearing damping above.
+        N s/m, in [0, 1e6] (the constant lubricant damping of the paper's section 2.3).
+        Default 0: the paper's 200 N s/m is the bearing damping above.
     unbalance_mass_kg : float, optional
-        Unbalance mass m_u, kg, in [0, rotor_mass_kg]. Default 0.05 (seed 003 section
+        Unbalance mass m_u, kg, in [0, rotor_mass_kg]. Default 0.05 (the paper's section
         3.6: 50 g).
     unbalance_eccentricity_m : float, optional
-        Its eccentricity e, m, in [0, 0.1]. Default 20e-6 (seed 003 section 3.6). The
-        unbalance force is m_u e w^2 (the seed's eq. prints m w^2).
+        Its eccentricity e, m, in [0, 0.1]. Default 20e-6 (the paper's section 3.6). The
+        unbalance force is m_u e w^2 (the paper's eq. prints m w^2).
     unbalance_phase_deg : float, optional
         Angle of the unbalance at t = 0, degrees from the load line. Default 0.
     misalignment_rad : float, optional
@@ -169,7 +188,7 @@ class Rotor2Parameters:
         to the load line, rad, with abs(gamma) <= 0.01. Default 0 (aligned; the laminae
         collapse to Palmgren's law exactly).
     n_laminae : int, optional
-        Laminae k per roller when ``misalignment_rad`` is not 0 (seed 003 eq. 6), in
+        Laminae k per roller when ``misalignment_rad`` is not 0 (the paper's eq. 6), in
         [1, 100]. Default 10.
     cage_angle_deg : float, optional
         Angle of roller 0 at t = 0, degrees from the load line. Default 0 (a roller on
@@ -211,11 +230,11 @@ class Rotor2Parameters:
 
 
 # ---------------------------------------------------------------------- kernels
-@njit(cache=True, error_model="numpy")
-def _defect_depth(j, phi, theta, p):
+@njit(cache=True, error_model="numpy", inline="always")
+def _defect_depth(j, phi, theta, n_faults, p):
     """Depth of the defects under roller j at roller angle phi, shaft angle theta, m."""
     depth = 0.0
-    for i in range(int(p[P_NF])):
+    for i in range(n_faults):
         r = P_FAULTS + i * _K.N_FCOLS
         kind = int(p[r + _K.F_KIND])
         half, d, ramp = p[r + _K.F_HALF], p[r + _K.F_DEPTH], p[r + _K.F_RAMP]
@@ -232,69 +251,105 @@ def _defect_depth(j, phi, theta, p):
     return depth
 
 
-@njit(cache=True, error_model="numpy")
-def _roller(j, t, x, v, p):
-    """Roller j at time t for rotor state (x, v): load Q (N), dQ/d(delta) (N/m), and
-    the cos and sin of its angle. Exactly 0 load when separated."""
-    z = p[_K.P_Z]
-    theta = _K.shaft_angle(t, p)
-    phi = p[P_PHI0] + _K.TWO_PI * j / z + p[_K.P_CAGE] * theta
-    cs, sn = math.cos(phi), math.sin(phi)
-    delta = x[0] * cs + x[1] * sn - p[_K.P_CLEAR] - _defect_depth(j, phi, theta, p)
+@njit(cache=True, error_model="numpy", inline="always")
+def _contact(j, delta, vn, tilt, phi, theta, n_faults, n_lam, p):
+    """Roller j at angle phi and shaft angle theta: its load Q (N), dQ/d(delta) (N/m)
+    and contact damping (N s/m), given its rigid approach delta = x cos(phi) +
+    y sin(phi) - c_r (m), the rotor's velocity along it vn (m/s) and the tilt across its
+    length l gamma cos(phi) (m). Exactly 0 load when separated; the defect depth is only
+    looked up for a roller the approach (the largest over its laminae) brings into
+    contact, since a defect only deepens the gap. ``n_faults`` and ``n_lam`` are
+    ``p[P_NF]`` and ``p[P_NLAM]`` as ints."""
+    if delta + 0.5 * abs(tilt) <= 0.0:
+        return 0.0, 0.0, 0.0
+    if n_faults > 0:
+        delta -= _defect_depth(j, phi, theta, n_faults, p)
     n = p[_K.P_NH]
-    n_lam = int(p[P_NLAM])
-    k_lam = p[_K.P_KH] / n_lam
-    q = 0.0
-    dq = 0.0
-    for lam in range(n_lam):
-        d = delta
-        if n_lam > 1:
-            d += ((lam + 0.5) / n_lam - 0.5) * p[P_LEN] * p[P_TILT] * cs
-        if d > 0.0:
-            q += k_lam * d ** n
-            dq += n * k_lam * d ** (n - 1.0)
-    if q == 0.0:
-        return 0.0, 0.0, 0.0, cs, sn
+    if n_lam == 1:  # aligned: one Palmgren (or Hertz) term
+        if delta <= 0.0:
+            return 0.0, 0.0, 0.0
+        # Hertz's 3/2 as delta sqrt(delta): a pow costs several times a square root
+        q = p[_K.P_KH] * (delta * math.sqrt(delta) if n == 1.5 else delta ** n)
+        dq = n * q / delta
+    else:
+        k_lam = p[_K.P_KH] / n_lam
+        q = 0.0
+        dq = 0.0
+        for lam in range(n_lam):
+            d = delta + ((lam + 0.5) / n_lam - 0.5) * tilt
+            if d > 0.0:
+                q_lam = k_lam * d ** n
+                q += q_lam
+                dq += n * q_lam / d
+        if q == 0.0:
+            return 0.0, 0.0, 0.0
     damping = p[P_CD]
-    q += damping * (v[0] * cs + v[1] * sn)
+    q += damping * vn
     if q <= 0.0:  # the damping would pull: the contact lets go
-        return 0.0, 0.0, 0.0, cs, sn
-    return q, dq, damping, cs, sn
+        return 0.0, 0.0, 0.0
+    return q, dq, damping
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def rotor2_force(t, x, v, p, f, kx, kv):
     """Generalised force of M a + f = 0 (contacts minus loads) and its tangents, for
-    :func:`._integrators.newmark` and :func:`._integrators.dopri5_second_order`."""
-    for i in range(2):
-        f[i] = 0.0
-        for k in range(2):
-            kx[i, k] = 0.0
-            kv[i, k] = 0.0
-    for j in range(int(p[_K.P_Z])):
-        q, dq, c, cs, sn = _roller(j, t, x, v, p)
+    the integrators of :mod:`._integrators`. The roller angles phi_j = phi_0 +
+    2 pi j / Z + c theta are stepped by a rotation of 2 pi / Z (two sines and cosines
+    per call instead of two per roller)."""
+    z = int(p[_K.P_Z])
+    theta = _K.shaft_angle(t, p)
+    phi = p[P_PHI0] + p[_K.P_CAGE] * theta
+    cs, sn = math.cos(phi), math.sin(phi)
+    pitch = _K.TWO_PI / z
+    cz, sz = p[_K.P_COS_STEP], p[_K.P_SIN_STEP]
+    clear = p[_K.P_CLEAR]
+    length_tilt = p[P_LEN] * p[P_TILT]
+    n_faults, n_lam = int(p[P_NF]), int(p[P_NLAM])
+    x0, x1, v0, v1 = x[0], x[1], v[0], v[1]
+    # sums in scalars (stores into f, kx, kv may alias x and v for the compiler)
+    f0 = f1 = kxx = kxy = kyy = cxx = cxy = cyy = 0.0
+    for j in range(z):
+        q, dq, c = _contact(j, x0 * cs + x1 * sn - clear, v0 * cs + v1 * sn,
+                            length_tilt * cs, phi, theta, n_faults, n_lam, p)
         if q > 0.0:
-            f[0] += q * cs
-            f[1] += q * sn
-            kx[0, 0] += dq * cs * cs
-            kx[0, 1] += dq * cs * sn
-            kx[1, 1] += dq * sn * sn
-            kv[0, 0] += c * cs * cs
-            kv[0, 1] += c * cs * sn
-            kv[1, 1] += c * sn * sn
-    kx[1, 0] = kx[0, 1]
-    kv[1, 0] = kv[0, 1]
+            f0 += q * cs
+            f1 += q * sn
+            kxx += dq * cs * cs
+            kxy += dq * cs * sn
+            kyy += dq * sn * sn
+            cxx += c * cs * cs
+            cxy += c * cs * sn
+            cyy += c * sn * sn
+        cs, sn = cs * cz - sn * sz, sn * cz + cs * sz
+        phi += pitch
     c_r = p[P_CR]
-    for i in range(2):
-        f[i] += c_r * v[i]
-        kv[i, i] += c_r
-    theta = _K.shaft_angle(t, p) + p[P_UPH]
+    theta += p[P_UPH]
     w = _K.shaft_rate(t, p)
     dw = (p[_K.P_W1] - p[_K.P_W0]) / p[_K.P_T]
     mue = p[P_MUE]
-    f[0] -= p[_K.P_FR] + p[_K.P_MS] * p[_K.P_G] + mue * (w * w * math.cos(theta)
-                                                        + dw * math.sin(theta))
-    f[1] -= mue * (w * w * math.sin(theta) - dw * math.cos(theta))
+    cu, su = math.cos(theta), math.sin(theta)
+    f[0] = f0 + c_r * v0 - p[_K.P_FR] - p[_K.P_MS] * p[_K.P_G] - mue * (w * w * cu + dw * su)
+    f[1] = f1 + c_r * v1 - mue * (w * w * su - dw * cu)
+    kx[0, 0] = kxx
+    kx[0, 1] = kx[1, 0] = kxy
+    kx[1, 1] = kyy
+    kv[0, 0] = cxx + c_r
+    kv[0, 1] = kv[1, 0] = cxy
+    kv[1, 1] = cyy + c_r
+
+
+@njit(cache=True, error_model="numpy")
+def _roller(j, t, x, v, p):
+    """Roller j at time t for rotor state (x, v): load Q (N), dQ/d(delta) (N/m), contact
+    damping (N s/m) and the cos and sin of its angle (one roller at a time; the force
+    kernel steps all rollers by a rotation)."""
+    theta = _K.shaft_angle(t, p)
+    phi = p[P_PHI0] + _K.TWO_PI * j / p[_K.P_Z] + p[_K.P_CAGE] * theta
+    cs, sn = math.cos(phi), math.sin(phi)
+    q, dq, c = _contact(j, x[0] * cs + x[1] * sn - p[_K.P_CLEAR], v[0] * cs + v[1] * sn,
+                        p[P_LEN] * p[P_TILT] * cs, phi, theta, int(p[P_NF]),
+                        int(p[P_NLAM]), p)
+    return q, dq, c, cs, sn
 
 
 @njit(cache=True, error_model="numpy")
@@ -308,6 +363,7 @@ def _loads_many(t, x, v, p, out):
 #: the integrators compiled for rotor2's force
 _newmark = _I.newmark_for(rotor2_force)
 _dopri5 = _I.dopri5_for(rotor2_force)
+_rk4 = _I.rk4_for(rotor2_force)
 
 
 # ---------------------------------------------------------------------- binding
@@ -327,6 +383,7 @@ class _Bound:
     omega: float
     mass: float
     t_impact: float
+    t_ramp: np.ndarray
     levels: np.ndarray
 
 
@@ -399,6 +456,8 @@ def _bind(scene: Scene, params: Rotor2Parameters) -> _Bound:
     p[_K.P_CAGE] = cage_ratio
     p[_K.P_SPIN] = orders.bsf / orders.ftf
     p[_K.P_Z] = z
+    p[_K.P_COS_STEP] = math.cos(2.0 * math.pi / z)
+    p[_K.P_SIN_STEP] = math.sin(2.0 * math.pi / z)
     p[P_MUE] = params.unbalance_mass_kg * params.unbalance_eccentricity_m
     p[P_UPH] = math.radians(params.unbalance_phase_deg)
     p[P_CD] = params.contact_damping_ns_m
@@ -418,8 +477,11 @@ def _bind(scene: Scene, params: Rotor2Parameters) -> _Bound:
     static = (ld.q_max_n / kh) ** (1.0 / b.load_exponent)
     t_impact = min((2.0 * row[_K.F_HALF] * (row[_K.F_RAMP] or 1.0) / rate[int(row[_K.F_KIND])]
                     for row in faults if row[_K.F_DEPTH] > static), default=math.inf)
+    # duration of each fault's ramps (0: sharp edges)
+    t_ramp = np.array([2.0 * row[_K.F_HALF] * row[_K.F_RAMP] / rate[int(row[_K.F_KIND])]
+                       for row in faults])
     return _Bound(p=p, x0=x0, x_scale=np.full(2, scale), omega=contact_omega(scene, params),
-                  mass=params.rotor_mass_kg, t_impact=t_impact, levels=levels)
+                  mass=params.rotor_mass_kg, t_impact=t_impact, t_ramp=t_ramp, levels=levels)
 
 
 def _crossings(scene: Scene, p: np.ndarray, levels: np.ndarray, t_end: float) -> FaultCrossings:
@@ -474,6 +536,36 @@ def _crossings(scene: Scene, p: np.ndarray, levels: np.ndarray, t_end: float) ->
                           edge=np.concatenate(edges)[order])
 
 
+def _rk4_breaks(scene: Scene, bound: _Bound, t_end: float, dt_max: float):
+    """Breaks of the rk4 solver and the largest step between them.
+
+    The breaks are the fault-edge and ramp-end crossings of :func:`_crossings` (where
+    the defect depth under a roller is not smooth in time); a segment that lies on a
+    ramp (from an ``entry`` or ``ramp_start`` crossing to the ramp's end) takes steps
+    of at most 1 / :data:`RK4_RAMP_STEPS` of the ramp's duration, the others
+    ``dt_max``.
+    """
+    cr = _crossings(scene, bound.p, bound.levels, t_end)
+    keep = (cr.time_s > 0.0) & (cr.time_s < t_end)
+    breaks = np.unique(cr.time_s[keep])
+    seg_dt = np.full(breaks.size + 1, dt_max)
+    if breaks.size:
+        starts = np.concatenate(([0.0], breaks))
+        ends = np.concatenate((breaks, [t_end]))
+        mid = 0.5 * (starts + ends)
+        ramp_in = np.isin(cr.edge, ("entry", "ramp_start"))
+        for i in np.unique(cr.fault):
+            sel = ramp_in & (cr.fault == i)
+            t_ramp = bound.t_ramp[i]
+            if not sel.any() or not t_ramp > 0.0:
+                continue
+            t0 = np.sort(cr.time_s[sel])
+            j = np.searchsorted(t0, mid, side="right") - 1
+            on = (j >= 0) & (mid < t0[np.maximum(j, 0)] + t_ramp)
+            seg_dt[on] = np.minimum(seg_dt[on], t_ramp / RK4_RAMP_STEPS)
+    return breaks, seg_dt
+
+
 def _accepts(scene: Scene) -> str | None:
     """rotor2 takes roller (line contact) and ball (point contact) bearings whose
     clearance stays elastic."""
@@ -491,7 +583,7 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
     """Simulate ``scene`` with rotor2 (arguments validated by :func:`simulate`)."""
     # again with the resolved solver: simulate() checks "auto" before resolving it, so
     # rtol with the default newmark would pass silently
-    check_solver_args("rotor2", solver, tuple(SOLVERS), ("newmark",), dt, rtol, atol,
+    check_solver_args("rotor2", solver, tuple(SOLVERS), ("rk4", "newmark"), dt, rtol, atol,
                       oversample)
     if params is None:
         params = Rotor2Parameters()
@@ -506,7 +598,19 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
     mass = np.eye(2) * bound.mass
     info = {"solver": solver, "internal_fs": 1.0 / h_out,
             "contact_hz": bound.omega / (2.0 * math.pi)}
-    if solver == "newmark":
+    if solver == "rk4":
+        dt_max = dt if dt is not None else DT_RK4_OMEGA / bound.omega
+        t_end = (n_out - 1) * h_out
+        breaks, seg_dt = _rk4_breaks(scene, bound, t_end, dt_max)
+        xs = np.empty((n_out, 2))
+        vs = np.empty((n_out, 2))
+        acc = np.empty((n_out, 2))
+        status, n_steps, t_fail = _rk4(bound.p, np.linalg.inv(mass), bound.x0, np.zeros(2),
+                                       h_out, n_out, breaks, seg_dt, 1e4, bound.x_scale,
+                                       oversample, xs, vs, acc)
+        info.update(n_steps=int(n_steps), n_rejected=0, dt_s=dt_max, n_events=breaks.size)
+        step_text = f"dt = {dt_max:.3g} s"
+    elif solver == "newmark":
         dt_req = dt if dt is not None else min(DT_NEWMARK_OMEGA / bound.omega,
                                                bound.t_impact / RAMP_STEPS)
         n_sub = max(1, math.ceil(h_out / dt_req - 1e-9))
@@ -579,19 +683,19 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
 #: the registry entry
 ROTOR2 = Model(
     name="rotor2",
-    description="seed 003 rigid rotor (2 DOF) on a roller (Palmgren line contacts) or ball "
-                "(Hertz) bearing: clearance, unbalance, gravity, localized defects; "
-                "Newmark-beta",
+    description="the NJ 305 paper's rigid rotor (2 DOF) on a roller (Palmgren line "
+                "contacts) or ball (Hertz) bearing: clearance, unbalance, gravity, "
+                "localized defects; RK4 (Newmark-beta as in the paper on request)",
     represents=frozenset({"rotor_dynamics", "contact_dynamics", "contact_forces",
                           "varying_speed"}),
-    # wall time per simulated second against sr5, side by side: 25x on the 6205 reference
-    # scene of benchmarks/models_cost.py at 48 kHz (docs/models_cost.md, after sr5's mass
-    # change made sr5 faster); 7.2-8.7x on a healthy NJ 305 before it (docs/seed003.md)
-    relative_cost=25.0,
+    # wall time per simulated second against sr5, side by side: 2.05x (11 interleaved
+    # rounds, range 1.8-2.6) on the 6205 reference scene at 48 kHz with the rk4 default
+    # (benchmarks/rotor2_step.py, docs/rotor2_step.md); 25x with the old Newmark step
+    relative_cost=2.0,
     solvers=tuple(SOLVERS),
-    fixed_step_solvers=("newmark",),
+    fixed_step_solvers=("rk4", "newmark"),
     reference="Dynamic behaviour of rotor roller bearing system with bearing defects "
-              "(seed 003, NJ 305; shared/seeds/DIGEST.md section 1.4); Palmgren (1959) line "
+              "(NJ 305; authors and year not printed); Palmgren (1959) line "
               "contact; Newmark (1959)",
     accepts=_accepts,
     run=_run,
