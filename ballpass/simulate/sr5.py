@@ -90,23 +90,23 @@ class SR5Parameters:
         Hunt-Crossley factor alpha, s/m, >= 0: each contact carries
         Q = K delta^n (1 + alpha d(delta)/dt), never negative (Hunt & Crossley 1975).
         The damping force alpha K delta^n d(delta)/dt grows with the load, as the
-        lubricated-contact damping of Kong et al. 2019 (seed 002 section 4.5) does, and
+        lubricated-contact damping of Kong et al. 2019 (as Wrzochal & Adamczak review it) does, and
         vanishes on separation with the contact itself (no jump at contact). The factor
         follows from the coefficient of restitution e at an impact speed v as
         alpha = 3 (1 - e) / (2 v) (Hunt & Crossley); Kong et al.'s dependence on speed
-        and lubricant viscosity is not modelled (their formula is not in the seed).
+        and lubricant viscosity is not modelled (the review does not print their formula).
         Default 0 (no contact damping, as Sawalhi & Randall).
-    lubricant_viscosity_pa_s, pressure_viscosity_per_pa : float
-        Lubricant dynamic viscosity (Pa s, > 0) and Barus pressure-viscosity
-        coefficient (1/Pa, > 0) of the EHL film, used only when the scene needs
-        ``"ehl_film"``. Defaults 0.060 and 2.2e-8: an ISO VG 68 mineral oil at 40 C
-        (:mod:`ballpass.lubrication`).
     shaft_support : {"loaded", "free"}
         Where the shaft support spring k_s rests. ``"loaded"`` (default): at the loaded
         static position, so the bearing carries all of F_r and the shaft's weight.
         ``"free"``: at the unloaded position, as in Sawalhi & Randall 2008, so k_s
         carries part of the static load (for a 6205 at 500 N about a third, see
         docs/sim2real.md) and the load zone shrinks.
+    lubricant_viscosity_pa_s, pressure_viscosity_per_pa : float
+        Lubricant dynamic viscosity (Pa s, > 0) and Barus pressure-viscosity
+        coefficient (1/Pa, > 0) of the EHL film, used only when the scene needs
+        ``"ehl_film"``. Defaults 0.060 and 2.2e-8: an ISO VG 68 mineral oil at 40 C
+        (:mod:`ballpass.lubrication`).
 
     Examples
     --------
@@ -128,9 +128,9 @@ class SR5Parameters:
     pedestal_damping: float = 2210.7
     contact_stiffness: float | None = None
     contact_damping: float = 0.0
+    shaft_support: str = "loaded"
     lubricant_viscosity_pa_s: float = VISCOSITY_PA_S
     pressure_viscosity_per_pa: float = PRESSURE_VISCOSITY_PER_PA
-    shaft_support: str = "loaded"
 
     def __post_init__(self) -> None:
         if self.shaft_support not in ("loaded", "free"):
