@@ -122,6 +122,7 @@ def test_film_lifts_the_shaft(clearance_um):
         return float(np.mean(u_s - u_p))
 
     shift = mean_gap(scene) - mean_gap(wet)
+    assert bp.simulate(wet.replace(duration_s=0.005)).info["ehl_film_m"] == h
     # 3 % of the bracket's width beyond it: the dynamic mean differs from either
     # static layout by the response to the varying compliance, same in both runs
     # to first order; a film of the wrong sign moves the shaft the other way (-h)

@@ -409,6 +409,8 @@ def _run(scene: Scene, solver: str, *, resonator: bool, dt=None, rtol=None, atol
     )
     info["wall_time_s"] = time.perf_counter() - t_wall
     info["compile_time_s"] = compile_s
+    if bm.film_m:
+        info["ehl_film_m"] = bm.film_m
     return SimulationResult(
         accel=accel[0] if n_sensors == 1 else accel,
         fs=scene.fs,

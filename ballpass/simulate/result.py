@@ -187,7 +187,9 @@ class SimulationResult:
         step) or ``dt_min_s`` (adaptive), ``rtol``, ``internal_fs`` (Hz), ``wall_time_s``,
         ``n_events``. sr5/sr4 also report ``compile_time_s``: the time the first call in a
         process spent compiling (or loading from numba's cache) the integrator, s, 0.0
-        afterwards; ``wall_time_s`` and ``integration_time_s`` leave it out.
+        afterwards; ``wall_time_s`` and ``integration_time_s`` leave it out. With the EHL
+        film (a scene that needs ``"ehl_film"``) they report ``ehl_film_m``, the film
+        h_i + h_o added to every contact approach, m.
 
     Examples
     --------
