@@ -58,7 +58,12 @@ import numpy as np
 from scipy import optimize
 
 from .._validation import check_number
-from ..lubrication import PRESSURE_VISCOSITY_PER_PA, VISCOSITY_PA_S, film_thickness_m
+from ..lubrication import (
+    FILM_KINDS,
+    PRESSURE_VISCOSITY_PER_PA,
+    VISCOSITY_PA_S,
+    film_thickness_m,
+)
 from ..scene import STANDARD_GRAVITY, Scene
 from . import _kernels as K
 
@@ -174,7 +179,8 @@ class BearingModel:
         Largest contact deflection at the static equilibrium, m.
     film_m : float
         EHL film thickness h_i + h_o added to every contact approach (Liu & Shao
-        2015), m; 0 unless the scene needs ``"ehl_film"``.
+        2015) at the mean speed, m; 0 unless the scene needs ``"ehl_film"`` (then the
+        last row of ``faults``, scaled with the speed of a ramp).
 
     Examples
     --------
@@ -413,9 +419,7 @@ def build_model(scene: Scene, params: SR5Parameters | None = None, *,
     p[K.P_CP] = params.pedestal_damping
     p[K.P_KH] = kh
     p[K.P_NH] = b.load_exponent
-    bearing_load = scene.radial_load_n + params.shaft_mass * g
-    film = _film_m(scene, params, bearing_load) if "ehl_film" in scene.needs else 0.0
-    p[K.P_CLEAR] = clearance - film  # Liu & Shao 2015 eq. 19: the film adds to the approach
+    p[K.P_CLEAR] = clearance
     p[K.P_FR] = scene.radial_load_n
     p[K.P_G] = g
     p[K.P_W0] = speed.rpm_start * math.pi / 30.0
@@ -434,8 +438,16 @@ def build_model(scene: Scene, params: SR5Parameters | None = None, *,
     slip_seed, _noise, _lines, fault_seed = np.random.SeedSequence(scene.seed).spawn(4)
     walk = _slip_walk(scene, cage_ratio, np.random.default_rng(slip_seed))
     psi0 = K.element_angles_many(np.zeros(1), p, walk, b.n_elements)[0]
+    bearing_load = scene.radial_load_n + params.shaft_mass * g
     faults, levels = _fault_table(scene, psi0, kh, bearing_load,
                                   np.random.default_rng(fault_seed))
+    film = 0.0
+    if "ehl_film" in scene.needs:
+        film = _film_m(scene, params, bearing_load)
+        row = np.zeros((1, K.N_FCOLS))
+        row[0, [K.F_KIND, K.F_CENTRE, K.F_HALF, K.F_DEPTH]] = (
+            K.KIND_FILM, scene.speed.mean_rpm * math.pi / 30.0, FILM_KINDS["central"][1], film)
+        faults = np.concatenate((faults, row))
     sensors = _sensor_table(scene)
     n_res = len(scene.sensors) if resonator else 0
 
@@ -451,11 +463,11 @@ def _film_m(scene: Scene, params: SR5Parameters, bearing_load: float) -> float:
     report it) add to every contact approach: Hamrock & Dowson's central film
     (:func:`ballpass.lubrication.film_thickness_m`) at the inner and the outer contact.
 
-    Evaluated once per scene: at the mean shaft speed and at Stribeck's load of the
-    most loaded element, Q_max = 4.37 F / Z (the film varies as Q^-0.067, so the
-    lighter contacts' films are within a few per cent of it). The film's change with
-    the speed of a ramp (as u^0.67) and with the curvature of a wavy surface, which
-    Liu & Shao include, is not modelled.
+    Evaluated at the mean shaft speed and at Stribeck's load of the most loaded
+    element, Q_max = 4.37 F / Z (the film varies as Q^-0.067, so the lighter contacts'
+    films are within a few per cent of it); the kernel scales it with the speed of a
+    ramp as Hamrock & Dowson's u^0.67 (:func:`._kernels.film`). Its change with the
+    curvature of a wavy surface, which Liu & Shao include, is not modelled.
     """
     b = scene.bearing
     q_ref = max(STRIBECK_FACTOR * bearing_load / b.n_elements, 1.0)
