@@ -61,7 +61,7 @@ N_SCOLS = 4
 # rows of the kinematics scratch; row K_CACHE holds the last cage angle, its cos and
 # sin, the number of rotations since they were last computed exactly, the cage speed
 # (rad/s, column KC_RATE), whether an element is on a defect ramp (KC_RAMP) and whether
-# the depths can be non-zero: a path inside a localized defect, or waviness (KC_INSIDE)
+# the depths can be non-zero: a path inside a localized defect, waviness or a film (KC_INSIDE)
 K_PSI, K_COS, K_SIN, K_DEPTH, K_DDEPTH, K_Q, K_CACHE = 0, 1, 2, 3, 4, 5, 6
 N_KIN = 7
 KC_RATE, KC_RAMP, KC_INSIDE = 4, 5, 6
