@@ -45,6 +45,9 @@ PHENOMENA: dict[str, str] = {
                         "main resonance (Scene(resonances=...))",
     "pit_faults": "round EDM pits narrower than the contact ellipse, which unload the "
                   "contact only partly (Fault(geometry='pit'))",
+    "ehl_film": "the elastohydrodynamic lubricant film of Liu & Shao (2015): its "
+                "thickness at the inner and outer contacts adds to every contact "
+                "approach (Scene(needs=(..., 'ehl_film')))",
     "intermittent_faults": "ball defects that meet the races on some revolutions only, "
                            "as a ball's spin axis wanders (Fault(engagement<1))",
 }

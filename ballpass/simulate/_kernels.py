@@ -61,7 +61,7 @@ N_SCOLS = 4
 # rows of the kinematics scratch; row K_CACHE holds the last cage angle, its cos and
 # sin, the number of rotations since they were last computed exactly, the cage speed
 # (rad/s, column KC_RATE), whether an element is on a defect ramp (KC_RAMP) and whether
-# the depths can be non-zero: a path inside a localized defect, or waviness (KC_INSIDE)
+# the depths can be non-zero: a path inside a localized defect, waviness or a film (KC_INSIDE)
 K_PSI, K_COS, K_SIN, K_DEPTH, K_DDEPTH, K_Q, K_CACHE = 0, 1, 2, 3, 4, 5, 6
 N_KIN = 7
 KC_RATE, KC_RAMP, KC_INSIDE = 4, 5, 6
@@ -69,9 +69,12 @@ KC_RATE, KC_RAMP, KC_INSIDE = 4, 5, 6
 #: (each rotation may add a rounding; 64 bound the drift to ~1e-14)
 CACHE_REFRESH = 64
 
-# fault kinds (codes in the F_KIND column): localized defects, then waviness rows
+# fault kinds (codes in the F_KIND column): localized defects, then waviness rows, then
+# the EHL film row (F_DEPTH the film h_i + h_o in m at the shaft speed F_CENTRE in
+# rad/s, F_HALF its speed exponent)
 KIND_OUTER, KIND_INNER, KIND_BALL = 0, 1, 2
 KIND_WAVY_OUTER, KIND_WAVY_INNER, KIND_WAVY_BALL = 3, 4, 5
+KIND_FILM = 6
 
 N_CORE = 8
 TWO_PI = 2.0 * math.pi
@@ -304,6 +307,20 @@ def waviness(faults, i, p, kin, th, w, cage_rate, rates):
 
 
 @njit(cache=True, error_model="numpy")
+def film(faults, i, p, kin, w, rates):
+    """EHL film row i at shaft speed w (rad/s): every element's approach gains the film
+    h = h_ref (w / w_ref)^e (Liu & Shao 2015 eq. 19, as Wrzochal & Adamczak report it;
+    Hamrock & Dowson's film grows as the entrainment speed to the power e), so its extra
+    clearance ``kin[K_DEPTH, j]`` loses it; with ``rates`` also dh/dt = e h w' / w."""
+    expo = faults[i, F_HALF]
+    h = faults[i, F_DEPTH] * (w / faults[i, F_CENTRE]) ** expo
+    dh = expo * h * (p[P_W1] - p[P_W0]) / (p[P_T] * w) if rates else 0.0
+    for j in range(int(p[P_Z])):
+        kin[K_DEPTH, j] -= h
+        kin[K_DDEPTH, j] -= dh
+
+
+@njit(cache=True, error_model="numpy")
 def fault_depths(t, p, faults, kin, cage_rate, rates):
     """Extra clearance opened by the defects for each element at time t (m) into
     ``kin[K_DEPTH]``; with ``rates`` (always with contact damping, which needs them)
@@ -311,7 +328,7 @@ def fault_depths(t, p, faults, kin, cage_rate, rates):
     Needs the element angles in ``kin``. Sets ``kin[K_CACHE, KC_RAMP]`` to 1 when an
     element is on a defect ramp, and ``kin[K_CACHE, KC_INSIDE]`` to 1 when some path
     lies inside a localized defect (|offset| < half extent) or the table has waviness
-    rows: otherwise every depth and rate written is exactly zero. Both flags change
+    or film rows: otherwise every depth and rate written is exactly zero. Both flags change
     only at fault-edge crossings, which the integrators step to: read between two
     crossings, they hold from one to the next.
 
@@ -319,7 +336,8 @@ def fault_depths(t, p, faults, kin, cage_rate, rates):
     element e: its spin phase advances at the ball spin rate relative to the cage
     (rolling without slip on the element's own path), facing the outer race at phase 0
     and the inner race at phase pi; it meets the races only on the spin revolutions
-    drawn by :func:`engaged`. Waviness rows: :func:`waviness`.
+    drawn by :func:`engaged`. Waviness rows: :func:`waviness`; the film row:
+    :func:`film`.
     """
     z = int(p[P_Z])
     rates = rates or p[P_CD] != 0.0
@@ -332,6 +350,10 @@ def fault_depths(t, p, faults, kin, cage_rate, rates):
     w = shaft_rate(t, p)
     for i in range(faults.shape[0]):
         kind = int(faults[i, F_KIND])
+        if kind == KIND_FILM:
+            film(faults, i, p, kin, w, rates)
+            inside = 1.0
+            continue
         if kind >= KIND_WAVY_OUTER:
             waviness(faults, i, p, kin, th, w, cage_rate, rates)
             inside = 1.0

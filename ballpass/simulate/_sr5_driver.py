@@ -409,6 +409,8 @@ def _run(scene: Scene, solver: str, *, resonator: bool, dt=None, rtol=None, atol
     )
     info["wall_time_s"] = time.perf_counter() - t_wall
     info["compile_time_s"] = compile_s
+    if bm.film_m:
+        info["ehl_film_m"] = bm.film_m
     return SimulationResult(
         accel=accel[0] if n_sensors == 1 else accel,
         fs=scene.fs,
@@ -429,7 +431,11 @@ def _run_sr4(scene: Scene, solver: str, **kwargs) -> SimulationResult:
 
 
 def _accepts(scene: Scene) -> str | None:
-    """sr4/sr5 take every scene: balls or rollers, any sensors, constant or ramped speed."""
+    """sr4/sr5 take every scene (balls or rollers, any sensors, constant or ramped
+    speed) but an EHL film on rollers: the film formula is for point contacts."""
+    if "ehl_film" in scene.needs and scene.bearing.element != "ball":
+        return ("the EHL film (needs 'ehl_film') is modelled for point contacts only; "
+                f"bearing {scene.bearing.name!r} has rollers")
     return None
 
 
@@ -438,10 +444,10 @@ _REFERENCE = ("N. Sawalhi, R. B. Randall, 'Simulating gear and bearing interacti
               "seed 004, with the sprung mass restored; see ballpass.simulate.sr5)")
 
 #: the scene options the sr5 kernels and driver honour (``Scene.clearance_um`` and
-#: ``resonances``, pit faults, intermittent ball defects); sr4 has no resonator to add
-#: modes to
+#: ``resonances``, pit faults, intermittent ball defects, the EHL film); sr4 has no
+#: resonator to add modes to
 SR5_SCENE_OPTIONS = frozenset({"mounted_clearance", "structural_modes", "pit_faults",
-                               "intermittent_faults"})
+                               "intermittent_faults", "ehl_film"})
 
 #: the 5-DOF model with the high-frequency resonator per sensor
 SR5 = Model(

@@ -188,7 +188,9 @@ class SimulationResult:
         step) or ``dt_min_s`` (adaptive), ``rtol``, ``internal_fs`` (Hz), ``wall_time_s``,
         ``n_events``. sr5/sr4 also report ``compile_time_s``: the time the first call in a
         process spent compiling (or loading from numba's cache) the integrator, s, 0.0
-        afterwards; ``wall_time_s`` and ``integration_time_s`` leave it out.
+        afterwards; ``wall_time_s`` and ``integration_time_s`` leave it out. With the EHL
+        film (a scene that needs ``"ehl_film"``) they report ``ehl_film_m``, the film
+        h_i + h_o added to every contact approach, m.
 
     Examples
     --------
@@ -209,6 +211,42 @@ class SimulationResult:
     sensor_names: tuple[str, ...]
     truth: GroundTruth
     info: dict = field(default_factory=dict)
+
+    @property
+    def velocity(self) -> np.ndarray:
+        """Velocity at the sensors, m/s, shape of ``accel``: what the electrodynamic
+        velocity pick-up of a factory's end-of-line bearing test reads (Wrzochal &
+        Adamczak).
+
+        The antiderivative of ``accel`` on the record, taken in the frequency domain:
+        V(f) = A(f) / (i 2 pi f) for 0 < f < fs/2, with no DC (the sensors are
+        AC-coupled: ``accel`` has zero mean, so its integral returns to its start and the
+        record holds a whole period of it) and no Nyquist line (whose derivative a
+        sampled signal cannot carry). Exact for every line of the record, so unlike a
+        cumulative sum it neither drifts nor bends the resonance (a trapezoidal sum
+        attenuates 15 kHz at 48 kHz sampling by a third). Noise added by ``snr_db`` or
+        ``noise_rms`` is integrated with the signal, as by an integrating accelerometer.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> import ballpass as bp
+        >>> res = bp.simulate(bp.Scene("6205", rpm=1797, fault=bp.Fault("outer"),
+        ...                            duration_s=0.1), model="impulse")
+        >>> v = res.velocity
+        >>> v.shape == res.accel.shape, bool(abs(v.mean()) < 1e-12)
+        (True, True)
+        """
+        accel = np.asarray(self.accel, dtype=np.float64)
+        n = accel.shape[-1]
+        spectrum = np.fft.rfft(accel, axis=-1)
+        omega = 2.0 * np.pi * np.fft.rfftfreq(n, d=1.0 / self.fs)
+        keep = omega > 0.0
+        if n % 2 == 0:
+            keep[-1] = False  # the Nyquist line
+        spectrum[..., ~keep] = 0.0
+        spectrum[..., keep] /= 1j * omega[keep]
+        return np.fft.irfft(spectrum, n=n, axis=-1)
 
     def channel(self, name: str) -> np.ndarray:
         """The signal of one sensor by name, (n_samples,), m/s^2.

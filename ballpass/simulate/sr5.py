@@ -28,20 +28,24 @@ deviations from the paper, stated:
   1984), so loaded- and unloaded-zone sensors differ; with kappa = 0 it is the pedestal
   acceleration projected on the sensor axis;
 * sensors are AC-coupled: the mean of each output channel is removed;
-* the balls are massless (quasi-static), there is no centrifugal or gyroscopic load
-  and no lubricant film; contact damping is an option (``contact_damping``, Hunt &
-  Crossley), off by default as in the paper;
+* the balls are massless (quasi-static), there is no centrifugal or gyroscopic load;
+  contact damping is an option (``contact_damping``, Hunt & Crossley), off by default
+  as in the paper; so is the EHL lubricant film of Liu & Shao 2015 (a scene that
+  needs ``"ehl_film"``): Hamrock & Dowson's central film at the inner and outer
+  contacts, h_i + h_o, added to every contact approach (a loss of clearance);
 * the shaft support spring k_s rests at the loaded static position, so the bearing
   carries all of F_r and the shaft's weight (``shaft_support="loaded"``, default). In
   the paper the spring rests at the unloaded position and shares the static load;
   ``shaft_support="free"`` does that (see :class:`SR5Parameters` for what it changes).
 
-Options of seed 002 (section 4): race and ball waviness (``Scene(waviness=...)``,
-:func:`._kernels.waviness`), blunted defect edges (``Fault(edge="blunt")``), contact
-damping (``SR5Parameters(contact_damping=...)``). Realism options of the scene:
-mounted clearance or preload (``Scene(clearance_um=...)``), round EDM pits that unload
-the contact only partly (``Fault(geometry="pit")``), ball defects that meet the races
-intermittently (``Fault(engagement=...)``), several structural modes
+Options from Wrzochal & Adamczak's review (docs/review.md): race and ball waviness
+(``Scene(waviness=...)``, :func:`._kernels.waviness`), blunted defect edges
+(``Fault(edge="blunt")``), contact damping (``SR5Parameters(contact_damping=...)``),
+the EHL film (``Scene(needs=(..., "ehl_film"))``, lubricant in
+``SR5Parameters(lubricant_viscosity_pa_s=..., pressure_viscosity_per_pa=...)``).
+Realism options of the scene: mounted clearance or preload (``Scene(clearance_um=...)``),
+round EDM pits that unload the contact only partly (``Fault(geometry="pit")``), ball
+defects that meet the races intermittently (``Fault(engagement=...)``), several structural modes
 (``Scene(resonances=...)``), coloured background and shaft lines.
 """
 
@@ -54,6 +58,12 @@ import numpy as np
 from scipy import optimize
 
 from .._validation import check_number
+from ..lubrication import (
+    FILM_KINDS,
+    PRESSURE_VISCOSITY_PER_PA,
+    VISCOSITY_PA_S,
+    film_thickness_m,
+)
 from ..scene import STANDARD_GRAVITY, Scene
 from . import _kernels as K
 
@@ -85,11 +95,11 @@ class SR5Parameters:
         Hunt-Crossley factor alpha, s/m, >= 0: each contact carries
         Q = K delta^n (1 + alpha d(delta)/dt), never negative (Hunt & Crossley 1975).
         The damping force alpha K delta^n d(delta)/dt grows with the load, as the
-        lubricated-contact damping of Kong et al. 2019 (seed 002 section 4.5) does, and
+        lubricated-contact damping of Kong et al. 2019 (as Wrzochal & Adamczak review it) does, and
         vanishes on separation with the contact itself (no jump at contact). The factor
         follows from the coefficient of restitution e at an impact speed v as
         alpha = 3 (1 - e) / (2 v) (Hunt & Crossley); Kong et al.'s dependence on speed
-        and lubricant viscosity is not modelled (their formula is not in the seed).
+        and lubricant viscosity is not modelled (the review does not print their formula).
         Default 0 (no contact damping, as Sawalhi & Randall).
     shaft_support : {"loaded", "free"}
         Where the shaft support spring k_s rests. ``"loaded"`` (default): at the loaded
@@ -97,6 +107,11 @@ class SR5Parameters:
         ``"free"``: at the unloaded position, as in Sawalhi & Randall 2008, so k_s
         carries part of the static load (for a 6205 at 500 N about a third, see
         docs/sim2real.md) and the load zone shrinks.
+    lubricant_viscosity_pa_s, pressure_viscosity_per_pa : float
+        Lubricant dynamic viscosity (Pa s, > 0) and Barus pressure-viscosity
+        coefficient (1/Pa, > 0) of the EHL film, used only when the scene needs
+        ``"ehl_film"``. Defaults 0.060 and 2.2e-8: an ISO VG 68 mineral oil at 40 C
+        (:mod:`ballpass.lubrication`).
 
     Examples
     --------
@@ -119,6 +134,8 @@ class SR5Parameters:
     contact_stiffness: float | None = None
     contact_damping: float = 0.0
     shaft_support: str = "loaded"
+    lubricant_viscosity_pa_s: float = VISCOSITY_PA_S
+    pressure_viscosity_per_pa: float = PRESSURE_VISCOSITY_PER_PA
 
     def __post_init__(self) -> None:
         if self.shaft_support not in ("loaded", "free"):
@@ -160,6 +177,10 @@ class BearingModel:
         Angular offsets (rad) marking fault edges and ramp ends.
     static_deflection : float
         Largest contact deflection at the static equilibrium, m (NaN without it).
+    film_m : float
+        EHL film thickness h_i + h_o added to every contact approach (Liu & Shao
+        2015) at the mean speed, m; 0 unless the scene needs ``"ehl_film"`` (then the
+        last row of ``faults``, scaled with the speed of a ramp).
 
     Examples
     --------
@@ -182,6 +203,7 @@ class BearingModel:
     scale: np.ndarray | None
     levels: np.ndarray
     static_deflection: float
+    film_m: float = 0.0
 
     @property
     def n_state(self) -> int:
@@ -421,8 +443,16 @@ def build_model(scene: Scene, params: SR5Parameters | None = None, *,
     slip_seed, _noise, _lines, fault_seed = np.random.SeedSequence(scene.seed).spawn(4)
     walk = _slip_walk(scene, cage_ratio, np.random.default_rng(slip_seed))
     psi0 = K.element_angles_many(np.zeros(1), p, walk, b.n_elements)[0]
-    faults, levels = _fault_table(scene, psi0, kh, scene.radial_load_n + params.shaft_mass * g,
+    bearing_load = scene.radial_load_n + params.shaft_mass * g
+    faults, levels = _fault_table(scene, psi0, kh, bearing_load,
                                   np.random.default_rng(fault_seed))
+    film = 0.0
+    if "ehl_film" in scene.needs:
+        film = _film_m(scene, params, bearing_load)
+        row = np.zeros((1, K.N_FCOLS))
+        row[0, [K.F_KIND, K.F_CENTRE, K.F_HALF, K.F_DEPTH]] = (
+            K.KIND_FILM, scene.speed.mean_rpm * math.pi / 30.0, FILM_KINDS["central"][1], film)
+        faults = np.concatenate((faults, row))
     sensors = _sensor_table(scene)
     n_res = len(scene.sensors) if resonator else 0
 
@@ -430,7 +460,26 @@ def build_model(scene: Scene, params: SR5Parameters | None = None, *,
                                            kh) if equilibrium else (None, None, math.nan))
     return BearingModel(scene=scene, params=params, n_res=n_res, p=p, walk=walk, psi0=psi0,
                         faults=faults, sensors=sensors, y0=y0, scale=scale, levels=levels,
-                        static_deflection=deflection)
+                        static_deflection=deflection, film_m=film)
+
+
+def _film_m(scene: Scene, params: SR5Parameters, bearing_load: float) -> float:
+    """EHL film h_i + h_o (m) that Liu & Shao (2015, eq. 19 as Wrzochal & Adamczak
+    report it) add to every contact approach: Hamrock & Dowson's central film
+    (:func:`ballpass.lubrication.film_thickness_m`) at the inner and the outer contact.
+
+    Evaluated at the mean shaft speed and at Stribeck's load of the most loaded
+    element, Q_max = 4.37 F / Z (the film varies as Q^-0.067, so the lighter contacts'
+    films are within a few per cent of it); the kernel scales it with the speed of a
+    ramp as Hamrock & Dowson's u^0.67 (:func:`._kernels.film`). Its change with the
+    curvature of a wavy surface, which Liu & Shao include, is not modelled.
+    """
+    b = scene.bearing
+    q_ref = max(STRIBECK_FACTOR * bearing_load / b.n_elements, 1.0)
+    return sum(film_thickness_m(b, race, q_ref, scene.speed.mean_rpm,
+                                viscosity_pa_s=params.lubricant_viscosity_pa_s,
+                                pressure_viscosity_per_pa=params.pressure_viscosity_per_pa)
+               for race in ("inner", "outer"))
 
 
 #: largest static contact deflection the model accepts, as a fraction of the element
