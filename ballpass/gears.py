@@ -1,5 +1,5 @@
 """Gear pairs: involute geometry, contact ratios, mesh stiffness, transmission error and
-tooth faults, for the ``gearbox`` simulation model (seed 004, Tran, Furch & Cu).
+tooth faults, for the ``gearbox`` simulation model (Tran, Furch & Cu).
 
 A :class:`GearPair` is a pinion (``teeth[0]``) on the shaft of the scene's bearing and
 a gear (``teeth[1]``) on a second shaft; ``Scene(gears=GearPair(...))`` simulates both
@@ -23,7 +23,7 @@ alternates between floor(eps_alpha) + 1 pairs (double contact, a fraction
 frac(eps_alpha) of each mesh period) and floor(eps_alpha) pairs (single contact); a
 helical pair is a stack of spur slices staggered by eps_beta mesh periods across the
 face, so the rectangular wave is averaged over a window of eps_beta periods. Its
-ripple vanishes when eps_beta is an integer (the 15/32 pair of seed 004 has
+ripple vanishes when eps_beta is an integer (the 15/32 pair of Tran, Furch & Cu has
 eps_beta = 1.02: an almost constant stiffness, a quiet helical mesh). k_mean defaults to
 the ISO 6336-1 mesh stiffness c_gamma = 20 N/(mm um) per unit face width.
 
@@ -126,9 +126,9 @@ class GearPair:
     teeth : (int, int)
         Teeth of the pinion (on the bearing's shaft) and of the gear, each >= 6.
     module_mm : float, optional
-        Normal module m_n, mm, in (0, 50]. Default 3 (seed 004 Table 1).
+        Normal module m_n, mm, in (0, 50]. Default 3 (Tran, Furch & Cu Table 1).
     face_width_mm : float, optional
-        Face width b, mm, > 0. Default 20 (seed 004 Table 1).
+        Face width b, mm, > 0. Default 20 (Tran, Furch & Cu Table 1).
     helix_angle_deg : float, optional
         Helix angle beta, degrees in [0, 45); 0 = spur. Default 0.
     pressure_angle_deg : float, optional
@@ -144,7 +144,7 @@ class GearPair:
         Damping ratio of the mesh mode, c_m = 2 zeta sqrt(k_mean m_e) with the
         equivalent mass m_e = 1 / (r_b1^2 / I_1 + r_b2^2 / I_2); in [0, 1). Default 0.07
         (the 0.03-0.17 range of Kasuba & Evans 1981, reviewed by Özgüven & Houser 1988,
-        seed 004 ref. [9]).
+        Tran, Furch & Cu ref. [9]).
     transmission_error_um : sequence of float, optional
         Static transmission error (profile and pitch deviations) at the mesh frequency
         and its harmonics: peak amplitudes of harmonics 1, 2, ..., um along the line of
@@ -257,7 +257,7 @@ class GearPair:
         Parameters
         ----------
         name : str
-            ``"seed004"`` (the constant mesh of seed 004 Table 1) or ``"seed004-1st"``,
+            ``"seed004"`` (the constant mesh of Tran, Furch & Cu Table 1) or ``"seed004-1st"``,
             ``"seed004-2nd"``, ``"seed004-3rd"``, ``"seed004-reverse"``.
         **changes
             Fields to override (e.g. ``torque_nm=100``).
@@ -400,7 +400,7 @@ def _seed004(teeth, module, face, helix) -> dict:
     return dict(teeth=teeth, module_mm=module, face_width_mm=face, helix_angle_deg=helix)
 
 
-#: seed 004 (Tran, Furch & Cu) Table 1: the gear pairs of the vehicle gearbox; pressure
+#: Tran, Furch & Cu Table 1: the gear pairs of the vehicle gearbox; pressure
 #: angle not printed, the ISO 53 basic rack's 20 deg assumed
 GEAR_PRESETS: dict[str, dict] = {
     "seed004": _seed004((15, 32), 3.0, 20.0, 28.85),        # constant mesh

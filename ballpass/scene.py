@@ -72,7 +72,8 @@ class Fault:
     depth_mm : float, optional
         Depth of the defect, mm, > 0 (default 0.1). A rolling element cannot reach the
         bottom of a defect narrower than itself: the simulator uses
-        ``min(depth, d/2 (1 - sqrt(1 - (w/d)^2)))`` for ``w < d`` (seed 001 eq. 26 with the
+        ``min(depth, d/2 (1 - sqrt(1 - (w/d)^2)))`` for ``w < d`` (Nabhan & Rashed (2020) eq. 26
+        with the
         ball diameter d, not the printed pitch diameter).
     angle_deg : float, optional
         Outer race: position of the defect centre. Inner race: position of the defect
@@ -84,8 +85,9 @@ class Fault:
         Depth profile across the defect. ``"ramped"`` (default) lets the depth rise and
         fall as half-cosine ramps over ``ramp_fraction`` of the defect's angular extent at
         entry and exit, the shape of public Sawalhi-Randall implementations; ``"sharp"``
-        is the rectangular notch of seed 004 eq. (15); ``"blunt"`` is a notch whose edges
-        repeated impacts have cut flat (Liu & Shao 2014, seed 002 section 4.2): the ball
+        is the rectangular notch of Tran, Furch & Cu eq. (15); ``"blunt"`` is a notch whose edges
+        repeated impacts have cut flat (Liu & Shao 2014, Wrzochal & Adamczak's review section 4.2):
+        the ball
         rolls on the flat cut, so its centre drops *linearly* over ``ramp_fraction`` of
         the extent and meets the far edge's cut at the angle atan(depth / cut length)
         instead of a vertical wall. (Liu & Shao's explicit forms H_1-H_4 are not in the
@@ -193,7 +195,7 @@ class Fault:
 
         ``min(h, d/2 (1 - sqrt(1 - (w/d)^2)))`` for a defect narrower than the element
         diameter d; a defect at least as wide as the element lets it reach depth h
-        (seed 001 eq. 26, with d_b in place of the printed d_p).
+        (Nabhan & Rashed (2020) eq. 26, with d_b in place of the printed d_p).
 
         Examples
         --------

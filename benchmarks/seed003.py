@@ -1,7 +1,7 @@
-"""Seed 003 reproduction: the rotor on an NJ 305 roller bearing (model ``rotor2``).
+"""The NJ 305 rotor paper reproduction: the rotor on an NJ 305 roller bearing (model ``rotor2``).
 
-Seed 003 ("Dynamic behaviour of rotor roller bearing system with bearing defects";
-shared/seeds/DIGEST.md section 1.4) simulates a 1 kg rigid rotor on an NJ 305 with
+The NJ 305 rotor paper ("Dynamic behaviour of rotor roller bearing system with bearing defects";
+our digest of the papers) simulates a 1 kg rigid rotor on an NJ 305 with
 0.25 mm diametral clearance, 200 N s/m damping, a 50 g x 20 um unbalance and a 0.5 x 0.5
 mm inner-race defect, integrated with Newmark-beta. It reports (section 5) the inner-race
 line at 166.73/100.04/66.69/55.55 Hz at 1500/900/600/500 rpm, displacement amplitudes of
@@ -41,13 +41,14 @@ from ballpass.simulate import Rotor2Parameters
 ROOT = Path(__file__).resolve().parent.parent
 RESULTS = ROOT / "benchmarks" / "results"
 DOCS = ROOT / "docs"
-#: seed 003 section 5.1, verbatim: rpm -> (theoretical Hz, theoretical um, measured Hz,
+#: the NJ 305 rotor paper section 5.1, verbatim: rpm -> (theoretical Hz, theoretical um, measured
+# Hz,
 #: measured um)
 SEED_TABLE = {1500: (166.7, 4.0, 167.75, 3.5), 900: (99.43, 1.67, 101.75, 2.5),
               600: (65.6, 2.0, 67.0, 1.5), 500: (55.0, 1.3, 56.25, 0.7)}
-#: seed 003 section 5 (computed with the BPFI formula)
+#: the NJ 305 rotor paper section 5 (computed with the BPFI formula)
 SEED_SECTION5 = {1500: 166.73, 900: 100.04, 600: 66.69, 500: 55.55}
-DEFECT = bp.Fault("inner", width_mm=0.5, depth_mm=0.5)  # seed 003 section 3.6
+DEFECT = bp.Fault("inner", width_mm=0.5, depth_mm=0.5)  # the NJ 305 rotor paper section 3.6
 
 
 def scene(clearance_mm: float, load_n: float, rpm: float, duration: float, fs: float,

@@ -1,7 +1,7 @@
-"""Seed 004 reproduction: a 6208 inner-race fault inside a gearbox, found after
+"""Tran, Furch & Cu reproduction: a 6208 inner-race fault inside a gearbox, found after
 discrete/random separation.
 
-Seed 004 (Tran, Furch & Cu; DIGEST section 1.5) simulates the input shaft of a vehicle
+Tran, Furch & Cu (Tran, Furch & Cu; DIGEST section 1.5) simulates the input shaft of a vehicle
 gearbox: an SKF 6208 with an inner-race spall (4 mm wide, 2 mm deep) at 2000 rpm, the
 constant-mesh pair 15/32 (module 3, face 20 mm, helix 28.85 deg) on the same shaft. It
 reports the spectrum and a BPFI of 159.98 Hz "calculated" and 169.25 Hz simulated; the
@@ -172,7 +172,7 @@ def fault_study(repeats: int) -> tuple[pd.DataFrame, dict]:
 
 
 def cost(repeats: int) -> pd.DataFrame:
-    """Wall time of gearbox against sr5 on the seed 004 scene without gears, healthy and
+    """Wall time of gearbox against sr5 on the Tran, Furch & Cu scene without gears, healthy and
     with the seed's spall (which costs sr5 many fault-edge events), side by side."""
     out = {}
     for label, spall in (("healthy", None), ("spall", SPALLS["paper (4 x 2 mm)"])):

@@ -185,7 +185,8 @@ def profile(offset, half, depth, ramp, shape=RAMP_COSINE):
     ``half`` is the half extent (rad), ``ramp`` the fraction of the extent taken by each
     ramp (0 = sharp rectangular notch), ``shape`` the ramp's form: RAMP_COSINE, a
     half-cosine (smooth at both ends), or RAMP_LINEAR, a blunted edge (Liu & Shao 2014,
-    seed 002 section 4.2: the ball rolls on the flat cut of the edge, so its centre
+    Wrzochal & Adamczak's review section 4.2: the ball rolls on the flat cut of the edge, so its
+    centre
     drops linearly from the edge to the ramp end).
     """
     a = abs(offset)
@@ -279,7 +280,8 @@ def waviness(faults, i, p, kin, th, w, cage_rate, rates):
 
     A race (or ball) surface raised by r(phi) = A cos(q phi + phase) (order q, amplitude
     A, m) closes the gap of the contact at that point: the deflection of element j
-    gains r, i.e. ``kin[K_DEPTH, j]`` (the extra clearance) loses it (seed 002 section
+    gains r, i.e. ``kin[K_DEPTH, j]`` (the extra clearance) loses it (Wrzochal & Adamczak's review
+    section
     4.4, Liu & Shao 2015 eq. 19: delta_j = ... + Pi_j). phi is the contact's angle on
     the wavy body: psi_j on the outer race, psi_j - theta on the inner race; on ball e
     its spin phase s at the outer-race contact and s + pi at the inner-race one.
@@ -432,7 +434,7 @@ def contact_load(j, du, dv, ddu, ddv, p, kin):
     with contact damping (``p[P_CD] = alpha > 0``), never negative.
 
     delta = du cos psi + dv sin psi - c - depth (Sawalhi & Randall 2008 eq. 12 as
-    printed in seed 004); d(delta)/dt = ddu cos psi + ddv sin psi + (dv cos psi -
+    printed in Tran, Furch & Cu); d(delta)/dt = ddu cos psi + ddv sin psi + (dv cos psi -
     du sin psi) psi' - d(depth)/dt. The damping force alpha Q_hertz d(delta)/dt grows
     with the load and vanishes on separation with it (Hunt & Crossley 1975): no jump
     at contact, and a receding contact never pulls. Separated contacts carry exactly

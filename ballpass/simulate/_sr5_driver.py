@@ -53,7 +53,7 @@ SOLVERS = {
 #: rounded down to the internal output grid. Checked by work-precision like sr5's
 #: (benchmarks/gearbox_step.py, benchmarks/results/gearbox_step.md): at the rule's worst
 #: case (one step per grid interval, omega dt = 0.35 exactly) the output's relative L2
-#: error against 1/32 of the step is 3.5e-6 to 9.6e-5 on seed 004's helical and spur
+#: error against 1/32 of the step is 3.5e-6 to 9.6e-5 on Tran, Furch & Cu's helical and spur
 #: pairs, healthy, with a tooth fault, a bearing fault or both (goal 1e-3, met up to
 #: omega dt = 1.0: 5.2e-4); kept at 0.35 for the margin (a stiffer pair or sharper
 #: edges than these scenes)
@@ -441,7 +441,7 @@ def _accepts(scene: Scene) -> str | None:
 
 _REFERENCE = ("N. Sawalhi, R. B. Randall, 'Simulating gear and bearing interactions in the "
               "presence of faults: Part I', MSSP 22 (2008) 1924-1951 (equations as printed in "
-              "seed 004, with the sprung mass restored; see ballpass.simulate.sr5)")
+              "Tran, Furch & Cu, with the sprung mass restored; see ballpass.simulate.sr5)")
 
 #: the scene options the sr5 kernels and driver honour (``Scene.clearance_um`` and
 #: ``resonances``, pit faults, intermittent ball defects, the EHL film); sr4 has no

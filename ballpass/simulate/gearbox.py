@@ -1,5 +1,5 @@
 """The ``gearbox`` model: a gear pair coupled to the sr5 bearing-pedestal model
-(seed 004, Tran, Furch & Cu; Sawalhi & Randall 2008).
+(Tran, Furch & Cu; Sawalhi & Randall 2008).
 
 The gearbox model
 -----------------
@@ -8,7 +8,7 @@ The scene's bearing carries the input shaft, and the pinion of ``scene.gears`` (
 supported shaft. Degrees of freedom (kernels in :mod:`._gear_kernels`):
 
 * bearing: the sr5 shaft/inner ring u_s, v_s and pedestal/outer ring u_p, v_p with Hertz
-  contacts, clearance, slip and localized faults (seed 004 eqs. 7-16 with the shaft
+  contacts, clearance, slip and localized faults (Tran, Furch & Cu eqs. 7-16 with the shaft
   damping, gravity, radial load and the sprung mass of eq. 11 restored; see
   :mod:`.sr5`). The pinion's lateral motion is the shaft's, and its mass is added to
   the shaft's;
@@ -36,7 +36,7 @@ housing through the sr5 transmission weighting and Sawalhi & Randall's resonator
 discretisation of its base-excitation transfer function to the housing acceleration on
 the internal grid.
 
-Assumptions and deviations from seed 004, stated:
+Assumptions and deviations from Tran, Furch & Cu, stated:
 
 * the friction forces F_p, F_g and moments M_p, M_g of eqs. 1-6 are neglected, so the
   gear's motion across the line of action (y_g in eqs. 2, 4) is not excited and is not
@@ -49,9 +49,9 @@ Assumptions and deviations from seed 004, stated:
   mesh but not at bearing fault edges (the sr5 driver's event handling is not repeated
   here): keep the default ``"ramped"`` fault edges, or a small ``dt`` for sharp ones.
   Against scipy's DOP853 at rtol 1e-11 the mesh force's largest error is 3e-4 of its
-  standard deviation for the helical seed 004 pair and 2.3e-3 for the 15/29 spur pair
+  standard deviation for the helical Tran, Furch & Cu pair and 2.3e-3 for the 15/29 spur pair
   (whose jumps ring the mesh mode), 2e-7 at dt = 0.5 us (``tests/test_gearbox.py``);
-  the output's relative L2 error at the default step is below 1e-4 on seed 004's
+  the output's relative L2 error at the default step is below 1e-4 on Tran, Furch & Cu's
   scenes (benchmarks/gearbox_step.py);
 * the simulation starts from the static equilibrium under the mean mesh force; the
   torsional modes' start-up transient decays within a few ms (5-7 % damping).
@@ -339,7 +339,7 @@ def _accepts(scene: Scene) -> str | None:
     return None
 
 
-#: seed 004's gear pair on the sr5 bearing-pedestal model
+#: Tran, Furch & Cu's gear pair on the sr5 bearing-pedestal model
 GEARBOX = Model(
     name="gearbox",
     description="gear pair (pinion on the bearing's shaft, gear on an elastic shaft; "
@@ -349,13 +349,13 @@ GEARBOX = Model(
     # table) and the further structural modes follow its resonator as in sr5
     represents=SR5.represents | {"gear_mesh"},
     # side by side with sr5 on the same 6208 scene without gears (1 s at 48 kHz, inner
-    # fault, seed 004 helical pair): 16x after sr5's mass change (10x before, and 3x with
+    # fault, Tran, Furch & Cu helical pair): 16x after sr5's mass change (10x before, and 3x with
     # the seed's spall: docs/seed004.md)
     relative_cost=16.0,
     solvers=("rk4",),
     fixed_step_solvers=("rk4",),
     reference="C. V. Tran, J. Furch, X. P. Cu, 'Simulation of vibration propagated by rolling "
-              "element bearings in mechanical gearbox' (seed 004), eqs. 1-16; N. Sawalhi, "
+              "element bearings in mechanical gearbox' (Tran, Furch & Cu), eqs. 1-16; N. Sawalhi, "
               "R. B. Randall, MSSP 22 (2008) 1924-1951",
     accepts=_accepts,
     run=_run,

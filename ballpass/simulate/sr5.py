@@ -7,7 +7,7 @@ Shaft/inner ring (u_s, v_s) on a support spring k_s, c_s; pedestal/outer ring (u
 on k_p, c_p; between them Z rolling elements with Hertz contact
 Q_j = K max(delta_j, 0)^n, n = 3/2 (balls) or 10/9 (rollers),
 delta_j = (u_s - u_p) cos psi_j + (v_s - v_p) sin psi_j - c - d_j(t)
-(Sawalhi & Randall 2008, eqs. 7-14 as printed in seed 004, with the shaft damping,
+(Sawalhi & Randall 2008, eqs. 7-14 as printed in Tran, Furch & Cu, with the shaft damping,
 gravity and radial load that the print omits, and eq. 11 — the sprung mass — restored).
 The radial load F_r and gravity act along the load line u (angle 0 = centre of the load
 zone). Element angles psi_j follow the cage kinematics with random slip (see
