@@ -35,7 +35,7 @@ separation simply unloads the mesh) and no tooth friction.
 Examples
 --------
 >>> import ballpass as bp
->>> g = bp.GearPair.preset("seed004")
+>>> g = bp.GearPair.preset("tran-furch-cu")
 >>> g.teeth, round(g.mesh_frequency(2000 / 60), 2)
 ((15, 32), 500.0)
 >>> round(g.contact_ratio, 3), round(g.overlap_ratio, 3)
@@ -49,7 +49,7 @@ from dataclasses import dataclass, field, replace
 
 from ._validation import check_number
 
-__all__ = ["GearPair", "GearFault", "GEAR_PRESETS", "STEEL_DENSITY"]
+__all__ = ["GearPair", "GearFault", "GEAR_PRESETS", "PRESET_ALIASES", "STEEL_DENSITY"]
 
 #: density of gear steel, kg/m^3 (the masses and inertias of the default solid discs)
 STEEL_DENSITY = 7850.0
@@ -257,20 +257,23 @@ class GearPair:
         Parameters
         ----------
         name : str
-            ``"seed004"`` (the constant mesh of Tran, Furch & Cu Table 1) or ``"seed004-1st"``,
-            ``"seed004-2nd"``, ``"seed004-3rd"``, ``"seed004-reverse"``.
+            ``"tran-furch-cu"`` (the constant mesh of Tran, Furch & Cu Table 1) or
+            ``"tran-furch-cu-1st"``, ``"-2nd"``, ``"-3rd"``, ``"-reverse"`` (the other pairs of
+            that table); the former names ``"seed004"``, ``"seed004-1st"``, ... still work.
         **changes
             Fields to override (e.g. ``torque_nm=100``).
 
         Examples
         --------
         >>> from ballpass import GearPair
-        >>> GearPair.preset("seed004-1st").teeth
+        >>> GearPair.preset("tran-furch-cu-1st").teeth
         (15, 29)
         """
-        if not isinstance(name, str) or name.lower() not in GEAR_PRESETS:
+        key = name.lower() if isinstance(name, str) else None
+        key = PRESET_ALIASES.get(key, key)
+        if key not in GEAR_PRESETS:
             raise ValueError(f"unknown gear preset {name!r}; presets: {', '.join(GEAR_PRESETS)}")
-        return cls(name=name.lower(), **{**GEAR_PRESETS[name.lower()], **changes})
+        return cls(name=key, **{**GEAR_PRESETS[key], **changes})
 
     def replace(self, **changes) -> GearPair:
         """A validated copy with some fields changed.
@@ -278,7 +281,7 @@ class GearPair:
         Examples
         --------
         >>> import ballpass as bp
-        >>> g = bp.GearPair.preset("seed004").replace(teeth=(16, 32))
+        >>> g = bp.GearPair.preset("tran-furch-cu").replace(teeth=(16, 32))
         >>> g.teeth, g.ratio
         ((16, 32), 2.0)
         """
@@ -379,7 +382,7 @@ class GearPair:
         Examples
         --------
         >>> import ballpass as bp
-        >>> bp.GearPair.preset("seed004").mesh_frequency(shaft_hz=25.0)     # 15 teeth x 25 Hz
+        >>> bp.GearPair.preset("tran-furch-cu").mesh_frequency(shaft_hz=25.0)     # 15 teeth x 25 Hz
         375.0
         """
         return self.teeth[0] * shaft_hz
@@ -390,22 +393,24 @@ class GearPair:
         Examples
         --------
         >>> import ballpass as bp
-        >>> bp.GearPair.preset("seed004").gear_shaft_hz(32.0)               # 32 Hz x 15/32
+        >>> bp.GearPair.preset("tran-furch-cu").gear_shaft_hz(32.0)               # 32 Hz x 15/32
         15.0
         """
         return shaft_hz * self.teeth[0] / self.teeth[1]
 
 
-def _seed004(teeth, module, face, helix) -> dict:
+def _tran_furch_cu(teeth, module, face, helix) -> dict:
     return dict(teeth=teeth, module_mm=module, face_width_mm=face, helix_angle_deg=helix)
 
 
 #: Tran, Furch & Cu Table 1: the gear pairs of the vehicle gearbox; pressure
 #: angle not printed, the ISO 53 basic rack's 20 deg assumed
 GEAR_PRESETS: dict[str, dict] = {
-    "seed004": _seed004((15, 32), 3.0, 20.0, 28.85),        # constant mesh
-    "seed004-1st": _seed004((15, 29), 3.5, 20.0, 0.0),
-    "seed004-2nd": _seed004((21, 26), 3.0, 20.0, 28.85),
-    "seed004-3rd": _seed004((27, 20), 3.0, 20.0, 28.85),
-    "seed004-reverse": _seed004((15, 19), 3.5, 15.0, 0.0),
+    "tran-furch-cu": _tran_furch_cu((15, 32), 3.0, 20.0, 28.85),        # constant mesh
+    "tran-furch-cu-1st": _tran_furch_cu((15, 29), 3.5, 20.0, 0.0),
+    "tran-furch-cu-2nd": _tran_furch_cu((21, 26), 3.0, 20.0, 28.85),
+    "tran-furch-cu-3rd": _tran_furch_cu((27, 20), 3.0, 20.0, 28.85),
+    "tran-furch-cu-reverse": _tran_furch_cu((15, 19), 3.5, 15.0, 0.0),
 }
+#: Former names of the presets, still accepted: ``"seed004"`` is ``"tran-furch-cu"``.
+PRESET_ALIASES = {name.replace("tran-furch-cu", "seed004"): name for name in GEAR_PRESETS}

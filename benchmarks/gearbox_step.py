@@ -61,16 +61,17 @@ def scenes() -> dict[str, dict]:
         return bp.GearPair.preset(preset, eccentricity_um=(5.0, 5.0), fault=fault)
 
     return {
-        "helical, healthy": dict(gears=pair("seed004")),
-        "spur, healthy": dict(gears=pair("seed004-1st")),
-        "helical, pinion crack": dict(gears=pair("seed004", crack)),
-        "spur, pinion spall": dict(gears=pair("seed004-1st", spall)),
+        "helical, healthy": dict(gears=pair("tran-furch-cu")),
+        "spur, healthy": dict(gears=pair("tran-furch-cu-1st")),
+        "helical, pinion crack": dict(gears=pair("tran-furch-cu", crack)),
+        "spur, pinion spall": dict(gears=pair("tran-furch-cu-1st", spall)),
         "helical, inner spall 4x2 mm (Tran, Furch & Cu)": dict(
-            gears=pair("seed004"), fault=bp.Fault("inner", width_mm=4.0, depth_mm=2.0)),
+            gears=pair("tran-furch-cu"), fault=bp.Fault("inner", width_mm=4.0, depth_mm=2.0)),
         "spur, inner 0.5x0.1 mm": dict(
-            gears=pair("seed004-1st"), fault=bp.Fault("inner", width_mm=0.5, depth_mm=0.1)),
+            gears=pair("tran-furch-cu-1st"), fault=bp.Fault("inner", width_mm=0.5, depth_mm=0.1)),
         "helical crack + outer 0.5x0.1 mm": dict(
-            gears=pair("seed004", crack), fault=bp.Fault("outer", width_mm=0.5, depth_mm=0.1)),
+            gears=pair("tran-furch-cu", crack),
+            fault=bp.Fault("outer", width_mm=0.5, depth_mm=0.1)),
     }
 
 

@@ -46,7 +46,8 @@ ROOT = Path(__file__).resolve().parent.parent
 RPM = 2000.0
 FS = 48_000.0
 SPALLS = {"paper (4 x 2 mm)": (4.0, 2.0), "small (0.5 x 0.1 mm)": (0.5, 0.1)}
-PAIRS = {"constant mesh 15/32 helical": "seed004", "1st speed 15/29 spur": "seed004-1st"}
+PAIRS = {"constant mesh 15/32 helical": "tran-furch-cu",
+         "1st speed 15/29 spur": "tran-furch-cu-1st"}
 RESONANCES_HZ = (15_000.0, 3_000.0)
 RUNOUT_UM = (5.0, 5.0)
 
@@ -136,7 +137,7 @@ def paper_findings(repeats: int) -> pd.DataFrame:
     rows = []
     for seed in range(repeats):
         for label, spall in (("healthy", None), ("spall", SPALLS["paper (4 x 2 mm)"])):
-            sc = scene("seed004", spall, 15_000.0, seed)
+            sc = scene("tran-furch-cu", spall, 15_000.0, seed)
             x = bp.simulate(sc).accel
             steady = x[int(0.5 * FS):]  # the paper's analysis window 0.5-1 s
             f, a = envelope_spectrum(steady, FS, band=sc.demodulation_band)
@@ -164,7 +165,7 @@ def fault_study(repeats: int) -> tuple[pd.DataFrame, dict]:
                         rows.append({"pair": pair_name, "resonance_hz": res_hz,
                                      "spall": spall_name, "seed": seed, "method": method,
                                      "prominence": prom, "peak_hz": peak})
-                    if seed == 0 and preset == "seed004-1st" and res_hz == 3000.0 \
+                    if seed == 0 and preset == "tran-furch-cu-1st" and res_hz == 3000.0 \
                             and spall == (0.5, 0.1):
                         example = {"scene": sc, "raw": x,
                                    "tsa": separations(x, sc)["tsa"]}
@@ -176,7 +177,7 @@ def cost(repeats: int) -> pd.DataFrame:
     with the seed's spall (which costs sr5 many fault-edge events), side by side."""
     out = {}
     for label, spall in (("healthy", None), ("spall", SPALLS["paper (4 x 2 mm)"])):
-        sc = scene("seed004", spall, 15_000.0, 0)
+        sc = scene("tran-furch-cu", spall, 15_000.0, 0)
         plain = sc.replace(gears=None)
         bp.simulate(sc), bp.simulate(plain)  # compile
         t_gear, t_sr5 = [], []
@@ -334,7 +335,7 @@ They show the waveform and spectrum with the 1x line and a BPFI peak, "calculate
 179.72 Hz** at 2000 rpm: 159.98 Hz would need 1780 rpm. ballpass uses the geometry.
 
 ballpass reproduces the set-up with the `gearbox` model
-(`bp.Scene(bearing="6208", rpm=2000, gears="seed004", fault=...)`): the gear pair of
+(`bp.Scene(bearing="6208", rpm=2000, gears="tran-furch-cu", fault=...)`): the gear pair of
 the paper's eqs. 1–6 (pinion on the bearing's shaft, torsional and lateral degrees of
 freedom, time-varying mesh stiffness, static transmission error, runout) coupled to the
 Sawalhi–Randall bearing-pedestal model of its eqs. 7–16, with sr5's current parameters

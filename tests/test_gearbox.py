@@ -484,3 +484,13 @@ def test_seed004_page_is_written_from_its_csvs():
 
     frames = {k: pd.read_csv(root / "docs" / f) for k, f in mod.CSVS.items()}
     assert mod.page(frames) == (root / "docs" / "seed004.md").read_text()
+
+
+def test_presets_are_named_after_the_paper_and_the_former_names_still_work():
+    # Tran, Furch & Cu Table 1 under the paper's name; "seed004..." resolves to the same pair
+    for old, new in bp.gears.PRESET_ALIASES.items():
+        assert new.startswith("tran-furch-cu") and old.startswith("seed004")
+        assert bp.GearPair.preset(old) == bp.GearPair.preset(new)
+    assert bp.GearPair.preset("seed004-1st").name == "tran-furch-cu-1st"
+    with pytest.raises(ValueError, match="presets: tran-furch-cu"):
+        bp.GearPair.preset("seed005")

@@ -10,7 +10,7 @@ examples:
   ballpass simulate --bearing 6205 --fault inner --width 0.53 --depth 0.1 \\
       --fs 12000 --resonance 3000 --duration 2 --out inner.csv
   ballpass simulate --fault ball --sensors loaded unloaded --snr 10 --out ball.parquet
-  ballpass simulate --bearing 6208 --rpm 2000 --fault inner --gears seed004-1st \\
+  ballpass simulate --bearing 6208 --rpm 2000 --fault inner --gears tran-furch-cu-1st \\
       --torque 80 --fs 24000 --resonance 3000 --out gearbox.npz
 """
 
@@ -27,9 +27,9 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     add_scene_arguments(p)
-    from ..gears import GEAR_PRESETS
+    from ..gears import GEAR_PRESETS, PRESET_ALIASES
 
-    p.add_argument("--gears", choices=sorted(GEAR_PRESETS), default=None,
+    p.add_argument("--gears", choices=[*GEAR_PRESETS, *PRESET_ALIASES], default=None,
                    help="a gear pair whose pinion sits on the bearing's shaft (Tran, Furch & Cu "
                    "Table 1 presets); runs the gearbox model")
     p.add_argument("--torque", type=float, default=None,

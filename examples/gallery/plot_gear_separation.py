@@ -14,7 +14,7 @@ import matplotlib.pyplot as plt
 import ballpass as bp
 
 scene = bp.Scene(bearing="6208", rpm=2000, fault=bp.Fault("inner", width_mm=0.5, depth_mm=0.1),
-                 gears=bp.GearPair.preset("seed004-1st", eccentricity_um=(5, 5)),
+                 gears=bp.GearPair.preset("tran-furch-cu-1st", eccentricity_um=(5, 5)),
                  resonance_hz=3000, fs=24_000, duration_s=1.0, seed=0)
 # a light shaft (1 kg) and pedestal (6 kg): with sr5's sourced 3.26 kg shaft the spall's
 # impacts stand above the mesh lines even unseparated (docs/seed004.md says where
