@@ -23,6 +23,9 @@ FEATURE_SETS = {
     "all": "every indicator (also RMS, peak, peak-to-peak in m/s^2) and the fault bands",
     "bands": "fault-band SES levels only (dB)",
     "indicators": "statistical indicators only",
+    "evidence": "the diagnoser's evidence: each family's line levels in dB over their "
+                "background in the band its evidence picks, and the SES on an order axis in "
+                "dB over its median; nothing in absolute units",
 }
 
 #: Model name -> description: the physics-based diagnoser and the learned pipelines.
