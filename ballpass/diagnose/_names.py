@@ -28,10 +28,17 @@ FEATURE_SETS = {
                 "dB over its median; nothing in absolute units",
 }
 
+#: The learned pipeline the docs recommend for simulation-to-real, (classifier, feature
+#: set): chosen on simulations and the shared CWRU records (docs/sim2real.md), never on
+#: a test set.
+RECOMMENDED = ("random_forest", "evidence")
+
 #: Model name -> description: the physics-based diagnoser and the learned pipelines.
 MODELS = {
     "envelope": "EnvelopeDiagnoser (physics; thresholds calibrated on healthy training rows)",
     **CLASSIFIERS,
+    "recommended": f"the pipeline recommended for simulation-to-real: {RECOMMENDED[0]} on "
+                   f"the `{RECOMMENDED[1]}` features, whatever --features says",
 }
 
 #: Split name -> what it measures (``random`` is optimistic).

@@ -40,13 +40,15 @@ from sklearn.metrics import accuracy_score, confusion_matrix, f1_score, recall_s
 from sklearn.model_selection import StratifiedGroupKFold, StratifiedKFold
 from tqdm.auto import tqdm
 
-from ._names import LABELS, MODELS, SPLITS
+from ._names import LABELS, MODELS, RECOMMENDED, SPLITS
 from .pipelines import make_features, make_pipeline
 from .rules import EnvelopeDiagnoser
 
 __all__ = ["SPLITS", "MODELS", "BenchmarkResult", "split_indices", "run_benchmark"]
 
 _OPTIMISTIC = {"random"}
+#: the classes of the three-class (normal, inner, outer) score
+THREE_CLASSES = ("healthy", "outer", "inner")
 
 
 @dataclass
@@ -61,13 +63,23 @@ class BenchmarkResult:
         rows) and ``recall_<label>`` for each of :data:`~ballpass.diagnose.LABELS`
         (NaN when the class is absent from the test rows). Scores pool the
         out-of-fold predictions of all folds.
+        Also ``balanced_accuracy`` (the mean recall over the classes present: four
+        classes where all are), ``accuracy_3class`` (over the normal, outer- and
+        inner-race rows; a "ball" answer on them is an error) and
+        ``balanced_accuracy_3class`` (the mean recall of those three).
     confusion : dict of (str, str) to ndarray of int, shape (4, 4)
         Confusion matrix per (split, model); rows true, columns predicted, in the order
         of :data:`~ballpass.diagnose.LABELS`.
     predictions : pandas.DataFrame
         Every out-of-fold prediction: ``split``, ``model``, ``fold``, ``row`` (index in
         the test dataset: the real one for ``sim2real``), ``group``, ``y_true``,
-        ``y_pred``.
+        ``y_pred``, and ``file`` where the test rows have one (real recordings). One
+        row per test row and model: for ``sim2real``, the predictions of the first
+        training seed.
+    spread : pandas.DataFrame
+        ``sim2real`` only: the scores of every model for each training seed
+        (``seed`` = the classifiers' ``random_state``; the envelope diagnoser has no
+        seed and appears once), columns as ``table``.
     skipped : dict of str to str
         Splits that could not be formed on this dataset, with the reason.
     info : dict
@@ -102,6 +114,7 @@ class BenchmarkResult:
     predictions: pd.DataFrame
     skipped: dict = field(default_factory=dict)
     info: dict = field(default_factory=dict)
+    spread: pd.DataFrame = field(default_factory=pd.DataFrame)
 
 
 def _check_meta(meta: pd.DataFrame, n: int, name: str) -> None:
@@ -240,6 +253,14 @@ def _scores(y_true, y_pred) -> dict:
     }
     row.update({f"recall_{c}": (r if c in present else np.nan)
                 for c, r in zip(LABELS, recall, strict=True)})
+    row["balanced_accuracy"] = float(np.mean([row[f"recall_{c}"] for c in present]))
+    three = np.isin(y_true, THREE_CLASSES)
+    row["accuracy_3class"] = (accuracy_score(np.asarray(y_true)[three],
+                                             np.asarray(y_pred)[three])
+                              if three.any() else np.nan)
+    present3 = [c for c in THREE_CLASSES if c in present]
+    row["balanced_accuracy_3class"] = (float(np.mean([row[f"recall_{c}"] for c in present3]))
+                                       if present3 else np.nan)
     return row
 
 
@@ -263,6 +284,7 @@ def run_benchmark(
     band=None,
     harmonics: int = 3,
     random_state=0,
+    seeds: int = 5,
     progress: bool = False,
 ) -> BenchmarkResult:
     """Cross-validate the envelope diagnoser and the classifier pipelines.
@@ -280,7 +302,9 @@ def run_benchmark(
     splits : sequence of str, optional
         Names from :data:`SPLITS`; default all that the data can form.
     models : sequence of str, optional
-        Names from :data:`MODELS`; default all.
+        Names from :data:`MODELS`; default all. ``"recommended"`` is the pipeline
+        :data:`~ballpass.diagnose._names.RECOMMENDED` (its own feature set, whatever
+        ``features`` is).
     features : str, optional
         Feature set of the pipelines (default ``"dimensionless"``; see
         :func:`ballpass.diagnose.make_features`).
@@ -293,6 +317,12 @@ def run_benchmark(
         Harmonics of each fault line (default 3).
     random_state : int or None, optional
         Seed of the fold shuffling and the randomised classifiers (default 0).
+    seeds : int, optional
+        Training seeds of the ``sim2real`` split (default 5): each learned model is
+        trained with ``random_state``, ``random_state + 1``, ... and every seed's scores
+        go to :attr:`BenchmarkResult.spread`; the table and the predictions are the
+        first seed's. A new simulated dataset (another root seed of the grid) moves the
+        scores more: benchmark several for that.
     progress : bool, optional
         Show a progress bar over (split, model) pairs on stderr (default False).
 
@@ -330,6 +360,8 @@ def run_benchmark(
             or n_splits < 2:
         raise ValueError(f"n_splits (--folds) must be an int >= 2: k-fold cross-validation "
                          f"needs two folds at least, got {n_splits!r}")
+    if isinstance(seeds, bool) or not isinstance(seeds, (int, np.integer)) or seeds < 1:
+        raise ValueError(f"seeds (--train-seeds) must be an int >= 1, got {seeds!r}")
     X = np.asarray(X)
     _check_meta(meta, len(X), "meta")
     meta = meta.reset_index(drop=True)
@@ -357,15 +389,20 @@ def run_benchmark(
                                  f"dataset {value!r}")
         datasets["real"] = (Xr, meta_r)
 
-    learned = [m for m in models if m != "envelope"]
-    feats = {}
-    if learned:
-        union = make_features(features, bearing=bearing, fs=fs, band=band, harmonics=harmonics)
-        with sklearn.config_context(enable_metadata_routing=True):
-            feats = {k: union.transform(x, rpm=m["rpm"].to_numpy(float))
-                     for k, (x, m) in datasets.items()}
+    def pipeline_of(model):
+        """(classifier, feature set) of a learned model."""
+        return RECOMMENDED if model == "recommended" else (model, features)
 
-    def fit_predict(model, train, test, test_set):
+    learned = [m for m in models if m != "envelope"]
+    feats = {}  # feature set -> dataset name -> matrix
+    for feature_set in dict.fromkeys(pipeline_of(m)[1] for m in learned):
+        union = make_features(feature_set, bearing=bearing, fs=fs, band=band,
+                              harmonics=harmonics)
+        with sklearn.config_context(enable_metadata_routing=True):
+            feats[feature_set] = {k: union.transform(x, rpm=m["rpm"].to_numpy(float))
+                                  for k, (x, m) in datasets.items()}
+
+    def fit_predict(model, train, test, test_set, seed=random_state):
         x_tr, m_tr = datasets["sim"][0][train], meta.iloc[train]
         x_te, m_te = datasets[test_set][0][test], datasets[test_set][1].iloc[test]
         y_tr = m_tr["label"].to_numpy()
@@ -374,13 +411,15 @@ def run_benchmark(
             if (y_tr == "healthy").any():
                 est.fit(x_tr, y_tr, rpm=m_tr["rpm"].to_numpy(float))
             return est.predict(x_te, rpm=m_te["rpm"].to_numpy(float))
-        est = clone(make_pipeline(model, features=features, random_state=random_state)[1:])
+        name, feature_set = pipeline_of(model)
+        est = clone(make_pipeline(name, features=feature_set, random_state=seed)[1:])
         classifier = est.steps[-1][1]
         if hasattr(classifier, "n_neighbors"):  # kNN: no more neighbours than training rows
             classifier.set_params(n_neighbors=min(classifier.n_neighbors, len(train)))
-        return est.fit(feats["sim"][train], y_tr).predict(feats[test_set][test])
+        x = feats[feature_set]
+        return est.fit(x["sim"][train], y_tr).predict(x[test_set][test])
 
-    rows, confusion, predictions, skipped = [], {}, [], {}
+    rows, confusion, predictions, skipped, spread = [], {}, [], {}, []
     groups = meta["group"].to_numpy()
     bar = tqdm(total=len(splits) * len(models), desc="benchmark", unit="fit", file=sys.stderr,
                disable=not progress, leave=False)
@@ -406,8 +445,20 @@ def run_benchmark(
                     "group": test_meta["group"].to_numpy()[test],
                     "y_true": test_meta["label"].to_numpy()[test],
                     "y_pred": fit_predict(model, train, test, test_set),
+                    **({"file": test_meta["file"].to_numpy()[test]}
+                       if "file" in test_meta else {}),
                 }))
             pred = pd.concat(parts, ignore_index=True)
+            if split == "sim2real":  # the spread over training seeds
+                extra = range(1, seeds) if model != "envelope" else range(0)
+                (train, test), = folds
+                spread.append({"split": split, "model": model, "seed": random_state,
+                               **_scores(pred["y_true"], pred["y_pred"])})
+                for k in extra:
+                    seed = None if random_state is None else random_state + k
+                    y = fit_predict(model, train, test, test_set, seed=seed)
+                    spread.append({"split": split, "model": model, "seed": seed,
+                                   **_scores(pred["y_true"], y)})
             predictions.append(pred)
             confusion[split, model] = confusion_matrix(pred["y_true"], pred["y_pred"],
                                                        labels=list(LABELS))
@@ -418,6 +469,7 @@ def run_benchmark(
     info = {
         "rows": len(X), "groups": int(meta["group"].nunique()), "bearing": bearing, "fs": fs,
         "samples_per_row": int(X.shape[1]), "features": features, "n_splits": n_splits,
+        "seeds": seeds if "sim2real" in splits else 1,
         "labels": meta["label"].value_counts().to_dict(),
     }
     if real is not None:
@@ -429,4 +481,5 @@ def run_benchmark(
         predictions=pd.concat(predictions, ignore_index=True) if predictions else pd.DataFrame(),
         skipped=skipped,
         info=info,
+        spread=pd.DataFrame(spread),
     )
