@@ -21,6 +21,7 @@ SUBCOMMANDS = {
     "plot": "plot",
     "diagnose": "diagnose",
     "generate": "generate",
+    "examples": "examples",
     "info": "info",
     "benchmark": "benchmark",
     "work-precision": "work_precision",

@@ -30,7 +30,15 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["waveform", "envelope_spectrum", "kurtogram", "signal_overview"]
+__all__ = [
+    "waveform",
+    "spectrum",
+    "psd",
+    "spectrogram",
+    "envelope_spectrum",
+    "kurtogram",
+    "signal_overview",
+]
 
 #: Marker style per fault line: (label, colour).
 LINE_STYLE = {
@@ -125,6 +133,174 @@ def waveform(x, fs_or_t, *, channels=None, unit="m/s²", ax=None):
     return ax
 
 
+def _one_signal(x, fs) -> tuple[np.ndarray, float]:
+    """``x`` as a finite 1-D float array of at least 16 samples and ``fs`` > 0, or a
+    ValueError naming the argument."""
+    from .features._validation import check_fs
+
+    fs = check_fs(fs)
+    x = np.asarray(x, dtype=float)
+    if x.ndim != 1 or x.size < 16 or not np.all(np.isfinite(x)):
+        raise ValueError(
+            f"x must be one finite signal of at least 16 samples, got shape {x.shape}"
+            + ("" if np.all(np.isfinite(x)) else " with NaN or inf")
+        )
+    return x, fs
+
+
+def spectrum(x, fs: float, *, db: bool = False, fmax: float | None = None, unit="m/s²",
+             ax=None):
+    """Plot the one-sided amplitude spectrum of a signal (Hann window).
+
+    A sinusoid of amplitude ``A`` on a bin reads ``A`` (the window's coherent gain is
+    divided out), so the plot reads in the signal's unit.
+
+    Parameters
+    ----------
+    x : array_like, shape (n_samples,)
+        Signal, e.g. acceleration in m/s^2; at least 16 samples.
+    fs : float
+        Sampling frequency, Hz.
+    db : bool, optional
+        Plot ``20 log10(amplitude)`` (dB re 1 unit) instead of the amplitude.
+    fmax : float, optional
+        Upper frequency limit, Hz (default fs/2).
+    unit : str, optional
+        Unit of ``x`` for the y label.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on (default: a new figure).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ballpass.plot import spectrum
+    >>> t = np.arange(4800) / 4800.0
+    >>> ax = spectrum(2.0 * np.sin(2 * np.pi * 300 * t), 4800.0)
+    >>> f, a = ax.lines[0].get_data()
+    >>> float(f[np.argmax(a)]), round(float(a.max()), 3)
+    (300.0, 2.0)
+    """
+    x, fs = _one_signal(x, fs)
+    window = np.hanning(x.size + 1)[:-1]  # periodic Hann
+    amp = 2.0 * np.abs(np.fft.rfft((x - x.mean()) * window)) / window.sum()
+    freqs = np.fft.rfftfreq(x.size, 1.0 / fs)
+    ax = _axes(ax)
+    ax.plot(freqs, 20 * np.log10(np.maximum(amp, 1e-300)) if db else amp, lw=0.8, color="k")
+    ax.set_xlim(0, fs / 2 if fmax is None else fmax)
+    ax.set_xlabel("Frequency (Hz)")
+    ax.set_ylabel(f"Amplitude (dB re 1 {unit})" if db else f"Amplitude ({unit})")
+    ax.grid(True, alpha=0.3)
+    return ax
+
+
+def psd(x, fs: float, *, nperseg: int | None = None, unit="m/s²", ax=None):
+    """Plot the power spectral density of a signal (Welch, Hann, 50 % overlap), log scale.
+
+    Parameters
+    ----------
+    x : array_like, shape (n_samples,)
+        Signal, e.g. acceleration in m/s^2; at least 16 samples.
+    fs : float
+        Sampling frequency, Hz.
+    nperseg : int, optional
+        Segment length, samples (default: the power of two nearest ``fs / 8``, so the
+        resolution is about 8 Hz, capped at the signal length).
+    unit : str, optional
+        Unit of ``x`` for the y label (the PSD is in unit^2/Hz).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on (default: a new figure).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+
+    Examples
+    --------
+    The PSD of white noise of variance 1 integrates to 1:
+
+    >>> import numpy as np
+    >>> from ballpass.plot import psd
+    >>> ax = psd(np.random.default_rng(0).standard_normal(48_000), 12_000.0)
+    >>> f, p = ax.lines[0].get_data()
+    >>> round(float(np.sum(p) * (f[1] - f[0])), 1)
+    1.0
+    """
+    import scipy.signal
+
+    x, fs = _one_signal(x, fs)
+    if nperseg is None:
+        nperseg = min(x.size, 2 ** max(4, round(np.log2(fs / 8))))
+    elif isinstance(nperseg, bool) or not isinstance(nperseg, numbers.Integral) or not (
+        16 <= nperseg <= x.size
+    ):
+        raise ValueError(f"nperseg must be an int in [16, n_samples={x.size}], got {nperseg!r}")
+    freqs, density = scipy.signal.welch(x, fs, nperseg=int(nperseg))
+    ax = _axes(ax)
+    ax.semilogy(freqs, np.maximum(density, 1e-300), lw=0.8, color="k")
+    ax.set_xlim(0, fs / 2)
+    ax.set_xlabel("Frequency (Hz)")
+    ax.set_ylabel(f"PSD (({unit})²/Hz)")
+    ax.grid(True, which="both", alpha=0.3)
+    return ax
+
+
+def spectrogram(x, fs: float, *, nperseg: int = 256, fmax: float | None = None,
+                colorbar: bool = True, ax=None):
+    """Plot the spectrogram of a signal (Hann, 75 % overlap), in dB.
+
+    Parameters
+    ----------
+    x : array_like, shape (n_samples,)
+        Signal, e.g. acceleration in m/s^2; at least ``nperseg`` samples.
+    fs : float
+        Sampling frequency, Hz.
+    nperseg : int, optional
+        Segment length, samples (default 256: 21 ms at 12 kHz).
+    fmax : float, optional
+        Upper frequency limit, Hz (default fs/2).
+    colorbar : bool, optional
+        Add a colour bar (default True).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on (default: a new figure).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from ballpass.plot import spectrogram
+    >>> t = np.arange(12_000) / 12_000.0
+    >>> ax = spectrogram(np.sin(2 * np.pi * (500 * t + 1000 * t**2)), 12_000.0)
+    >>> ax.get_ylabel()
+    'Frequency (Hz)'
+    """
+    import scipy.signal
+
+    x, fs = _one_signal(x, fs)
+    if isinstance(nperseg, bool) or not isinstance(nperseg, numbers.Integral) or not (
+        16 <= nperseg <= x.size
+    ):
+        raise ValueError(f"nperseg must be an int in [16, n_samples={x.size}], got {nperseg!r}")
+    freqs, times, power = scipy.signal.spectrogram(
+        x, fs, window="hann", nperseg=int(nperseg), noverlap=3 * int(nperseg) // 4
+    )
+    ax = _axes(ax)
+    mesh = ax.pcolormesh(times, freqs, 10 * np.log10(np.maximum(power, 1e-300)),
+                         shading="nearest", cmap="magma")
+    ax.set_ylim(0, fs / 2 if fmax is None else fmax)
+    ax.set_xlabel("Time (s)")
+    ax.set_ylabel("Frequency (Hz)")
+    if colorbar:
+        ax.figure.colorbar(mesh, ax=ax, label="PSD (dB re 1 unit²/Hz)", pad=0.01)
+    return ax
+
+
 def _fault_lines(frequencies, lines) -> dict[str, float]:
     """``{name: Hz}`` of the lines to mark, from BearingFrequencies or a dict."""
     if frequencies is None:
@@ -156,7 +332,11 @@ def envelope_spectrum(
     """Plot an envelope spectrum with labelled fault-frequency markers.
 
     Each fault line gets a colour and dashed markers at harmonics ``1..harmonics``,
-    numbered at the top; the legend gives its name and frequency.
+    numbered at the top; the legend gives its name and frequency. The range shown
+    reaches a little above the highest of them, and the defect families (BPFO, BPFI,
+    2xBSF, BSF) are marked at every harmonic inside it, so no line of theirs in view
+    is left unmarked beside another family's marker; shaft and cage lines keep
+    ``harmonics``.
 
     Parameters
     ----------
@@ -169,7 +349,8 @@ def envelope_spectrum(
         Known names (``shaft``, ``ftf``, ``bpfo``, ``bpfi``, ``bsf``, ``ball_defect``)
         get fixed colours and labels.
     harmonics : int, optional
-        Harmonics to mark per line (default 3).
+        Harmonics to mark per line (default 3); with the default ``fmax`` the plot
+        reaches 1.1 times the highest of them.
     lines : sequence of str, optional
         Which entries of ``frequencies`` to mark (default: shaft, FTF, BPFO, BPFI and
         2×BSF for BearingFrequencies; every entry of a dict).
@@ -224,7 +405,8 @@ def envelope_spectrum(
     for i, (name, f0) in enumerate(marks.items()):
         text, colour = LINE_STYLE.get(name, (name, f"C{i % 10}"))
         minor = name in ("shaft", "ftf")
-        for h in range(1, harmonics + 1):
+        last = harmonics if minor else max(harmonics, int(fmax // f0))
+        for h in range(1, last + 1):
             if h * f0 > fmax:
                 break
             ax.axvline(
@@ -257,12 +439,15 @@ def envelope_spectrum(
     return ax
 
 
-def kurtogram(result, *, ax=None, colorbar: bool = True):
+def kurtogram(result, *, ax=None, colorbar: bool = True, band_used=None, legend: bool = True):
     """Plot a fast-kurtogram heat map with the selected band outlined.
 
     Bands without content (power density below the result's ``floor_db``) are grey
     and excluded from the colour scale; the other bands the automatic choice skips
-    (too narrow, or reaching fs/2) are drawn faded.
+    (too narrow, reaching fs/2, or below the fault lines) are drawn faded. A note
+    under the map says so. The kurtogram's best band is outlined in white; a band
+    that was used instead (``band_used``, e.g. one given by the caller) is outlined
+    dashed.
 
     Parameters
     ----------
@@ -272,6 +457,11 @@ def kurtogram(result, *, ax=None, colorbar: bool = True):
         Axes to draw on (default: a new figure).
     colorbar : bool, optional
         Add a colour bar (default True).
+    band_used : (float, float), optional
+        A demodulation band, Hz, used instead of the best band: outlined dashed across
+        the map's height, and named in the title.
+    legend : bool, optional
+        Write the note that explains the grey and faded cells (default True).
 
     Returns
     -------
@@ -316,12 +506,18 @@ def kurtogram(result, *, ax=None, colorbar: bool = True):
     lo, hi = result.best_band
     row = int(np.flatnonzero(np.isclose(result.levels, result.best_level))[0])
     ax.add_patch(_rectangle((lo, row - 0.5), hi - lo, 1.0))
+    title = f"Kurtogram: best band {lo:.0f}–{hi:.0f} Hz, SK = {result.best_kurtosis:.2f}"
+    if band_used is not None and tuple(map(float, band_used)) != (float(lo), float(hi)):
+        used_lo, used_hi = map(float, band_used)
+        ax.add_patch(_rectangle((used_lo, -0.5), used_hi - used_lo, n_rows, ls="--"))
+        title += f"\n(dashed: band used, {used_lo:.0f}–{used_hi:.0f} Hz)"
     ax.set_xlabel("Frequency (Hz)")
     ax.set_ylabel("Level (bandwidth)")
-    ax.set_title(
-        f"Kurtogram: best band {lo:.0f}–{hi:.0f} Hz, SK = {result.best_kurtosis:.2f}",
-        fontsize="medium",
-    )
+    ax.set_title(title, fontsize="medium")
+    if legend:
+        ax.text(0.0, -0.18, f"grey: no content (< {result.floor_db:g} dB of the mean density)\n"
+                "faded: skipped (too narrow, at fs/2, or below the fault lines)",
+                transform=ax.transAxes, fontsize="x-small", va="top")
     if colorbar:
         ax.figure.colorbar(image, ax=ax, label="Spectral kurtosis", pad=0.01)
     return ax
@@ -331,10 +527,10 @@ def _hz(value: float) -> str:
     return f"{value / 1000:.3g} kHz" if value >= 1000 else f"{value:.3g} Hz"
 
 
-def _rectangle(xy, width, height):
+def _rectangle(xy, width, height, ls="-"):
     from matplotlib.patches import Rectangle
 
-    return Rectangle(xy, width, height, fill=False, edgecolor="white", lw=1.8)
+    return Rectangle(xy, width, height, fill=False, edgecolor="white", lw=1.8, ls=ls)
 
 
 def signal_overview(
@@ -353,7 +549,11 @@ def signal_overview(
     """One figure: waveform, squared envelope spectrum with fault markers, kurtogram.
 
     The demodulation band of each channel is chosen by the fast kurtogram unless
-    ``band`` is given; the kurtogram of the first channel is drawn.
+    ``band`` is given; the kurtogram of the first channel is drawn, with the band its
+    spectrum used outlined (white: the kurtogram's choice; dashed: a given band).
+    With a bearing the kurtogram chooses among bands above the fault lines marked
+    (:func:`ballpass.features.envelope_analysis`). The spectrum's title says which rule
+    chose its band.
 
     Parameters
     ----------
@@ -406,15 +606,18 @@ def signal_overview(
         raise ValueError("bearing and shaft_hz go together: give both or neither")
     bearing = as_bearing(bearing) if bearing is not None else None
     marks = bearing.frequencies(float(shaft_hz)) if bearing is not None else None
+    lines = {} if bearing is None else {"rpm": 60.0 * float(shaft_hz), "bearing": bearing}
     if band is None:  # one envelope analysis per channel: kurtogram, band and SES
-        analyses = [features.envelope_analysis(row, fs) for row in data]
+        analyses = [features.envelope_analysis(row, fs, **lines) for row in data]
         result = analyses[0].kurtogram
         bands = [a.band for a in analyses]
         spectra = [(a.freqs, a.ses) for a in analyses]
+        rule = "the kurtogram's best" + (" above the fault lines" if lines else "")
     else:
-        result = features.fast_kurtogram(data[0], fs)
-        bands = [tuple(band)] * len(data)
+        result = features.envelope_analysis(data[0], fs, **lines).kurtogram
+        bands = [tuple(map(float, band))] * len(data)
         spectra = [features.envelope_spectrum(row, fs, band) for row in data]
+        rule = "given"
 
     fig = Figure(figsize=(12, 7.5), layout="constrained")
     grid = fig.add_gridspec(2, 2, height_ratios=(1, 1.35), width_ratios=(1.5, 1))
@@ -434,10 +637,11 @@ def signal_overview(
     distinct = list(dict.fromkeys((float(lo), float(hi)) for lo, hi in bands))
     band_text = ", ".join(f"{lo:.0f}–{hi:.0f} Hz" for lo, hi in distinct)
     ax_ses.set_title(
-        f"Squared envelope spectrum (band {band_text})", fontsize="medium", loc="left", pad=14
+        f"Squared envelope spectrum (band {band_text}: {rule})", fontsize="medium", loc="left",
+        pad=14,
     )
 
-    kurtogram(result, ax=fig.add_subplot(grid[1, 1]))
+    kurtogram(result, ax=fig.add_subplot(grid[1, 1]), band_used=bands[0])
     if title is None:
         parts = [f"fs {fs:g} Hz, {data.shape[-1] / fs:g} s"]
         if bearing is not None:

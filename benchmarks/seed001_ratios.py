@@ -9,7 +9,7 @@ This script simulates the same sweep with ballpass and draws the same figure.
 Set-up (stated in docs/seed001.md): 6004, 500 N radial load, notch depth 0.5 mm (the
 ball drops 2.5 / 9.9 / 22 um, seed 001 eq. 26 with the ball diameter), notch at the
 load line at t = 0, the Sawalhi-Randall 15 kHz / 5 % housing resonance at 48 kHz (as
-examples/seed001_speed_sweep.toml), sensors at 0 deg (loaded) and 180 deg (unloaded),
+the shipped grid speed_sweep_6004), sensors at 0 deg (loaded) and 180 deg (unloaded),
 and **white measurement noise of a fixed 0.5 m/s^2 RMS**, the same for healthy and
 faulty runs, so that a ratio compares machines, not signal-to-noise settings. Each
 ratio divides the mean of an indicator over ``--repeats`` faulty runs (own seeds) by its

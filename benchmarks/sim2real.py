@@ -2,7 +2,7 @@
 measure what each realism option of the simulator is worth.
 
 Every model is trained on simulated signals only — the runs of
-``examples/sim2real_cwru.toml`` (drive end, SKF 6205) or of its fan-end twin (SKF 6203,
+the shipped grid ``sim2real_cwru`` (drive end, SKF 6205) or of its fan-end twin (SKF 6203,
 the same grid with ``bearing = "6203"``) — and tested on the real recordings in
 ``shared/data/cwru`` cut into 1 s segments: the drive-end channel of the drive-end
 files (``real DE``) and the fan-end channel of the fan-end files, whose faulty bearing
@@ -64,7 +64,8 @@ from ballpass.diagnose import run_benchmark
 from ballpass.simulate import SR5Parameters
 
 ROOT = Path(__file__).resolve().parent.parent
-GRID = ROOT / "examples" / "sim2real_cwru.toml"
+#: the study's scene grid (the shipped grid before its axes were drawn per run)
+GRID = ROOT / "benchmarks" / "sim2real_study.toml"
 MODELS = ["envelope", "random_forest", "gradient_boosting", "svm", "knn", "logistic"]
 GOAL_LABELS = ("healthy", "inner", "outer")
 

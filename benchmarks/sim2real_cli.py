@@ -1,5 +1,5 @@
 """The shipped sim-to-real grid as a user runs it: ``ballpass generate
-examples/sim2real_cwru.toml`` and ``ballpass benchmark --real``, on both CWRU bearings
+sim2real_cwru`` and ``ballpass benchmark --real``, on both CWRU bearings
 and several training seeds.
 
 ``benchmarks/sim2real.py`` studies the simulator's realism options on a scene set of
@@ -40,13 +40,15 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 from diagnose_loro import _md
-from sim2real import GOAL_LABELS, GRID, MODELS, ROOT, score
+from sim2real import GOAL_LABELS, MODELS, ROOT, score
 
-from ballpass.datasets import generate, load
+from ballpass.datasets import example_grid, generate, load
 from ballpass.datasets.real import load_real
 from ballpass.diagnose import run_benchmark
 from ballpass.signalio import atomic_write
 
+#: the shipped grid
+GRID = example_grid("sim2real_cwru")
 #: CWRU end -> its bearing
 ENDS = {"DE": "6205", "FE": "6203"}
 #: options that set an axis of the shipped grid: flag -> (axis, example, default)
@@ -167,7 +169,7 @@ def markdown(table: pd.DataFrame, seconds: float) -> str:
         f"Produced by `PYTHONPATH=. python benchmarks/sim2real_cli.py --real ...` "
         f"({seconds / 60:.0f} min); do not edit by hand.",
         "",
-        "`examples/sim2real_cwru.toml` unchanged but for its root seed (and `bearing = "
+        "The shipped grid `sim2real_cwru` unchanged but for its root seed (and `bearing = "
         "\"6203\"` for the fan end), generated and benchmarked as `ballpass generate` and "
         "`ballpass benchmark --real` do; tested on the CWRU drive-end channel of the "
         "drive-end files and the fan-end channel of the fan-end files, with the healthy "

@@ -97,7 +97,8 @@ CASES = [
     (["benchmark", "ds", "--out", "afile/rep"], "afile is a file"),
     (["benchmark", "ds", "--out", "rep", "--folds", "1"], "n_splits (--folds) must be"),
     (["benchmark", "ds", "--out", "rep", "--real", "missing"], "no such file or folder"),
-    (["benchmark", "ds", "--out", "rep", "--real", "broken"], "no recording could be loaded"),
+    (["benchmark", "ds", "--out", "rep", "--real", "broken"],
+     "broken: none of its .mat files could be read"),
     (["benchmark", "ds", "--out", "rep", "--models", "nope"], "models must be"),
     (["benchmark", "nowhere", "--out", "rep"], "nowhere"),
     # work-precision: outputs first (the sweep takes seconds to minutes)

@@ -173,13 +173,16 @@ def test_dataset_folder(tmp_path, monkeypatch, capsys):
         (["features", "{tmp}"], "without manifest.json"),
         (["features", "{sig}", "--out", "t.xlsx"], ".csv or .parquet"),
         (["features", "{sig}", "--band", "5000", "9000"], "band must satisfy"),
-        (["features", "{odd}"], "INPUT must be"),
+        (["features", "{odd}"], "x.xlsx: a recording must be a .npz, .parquet, .csv, .npy, "
+                                ".wav or .mat file"),
+        (["features", "{cut}"], "x.wav: not a readable WAV file"),
     ],
 )
 def test_errors(tmp_path, outer_file, capsys, argv, message):
-    odd = tmp_path / "x.wav"
-    odd.write_bytes(b"RIFF")
-    argv = [a.format(tmp=tmp_path, sig=outer_file, odd=odd) for a in argv]
+    odd, cut = tmp_path / "x.xlsx", tmp_path / "x.wav"
+    odd.write_bytes(b"PK")
+    cut.write_bytes(b"RIFF")
+    argv = [a.format(tmp=tmp_path, sig=outer_file, odd=odd, cut=cut) for a in argv]
     assert main(argv) == 2
     assert message in capsys.readouterr().err
 
@@ -206,7 +209,10 @@ def test_plot_shows_progress_on_a_terminal_only(tmp_path, capsys, monkeypatch):
 
 
 def test_fs_for_a_signal_file_is_not_silently_dropped(outer_file, capsys):
-    """A signal file carries its rate; --fs (for .mat files) is ignored with a warning."""
-    with pytest.warns(UserWarning, match=r"outer.npz states its own rate, 12000 Hz: --fs 1000"):
-        assert main(["features", str(outer_file), "--fs", "1000"]) == 0
+    """A signal file carries its rate: a --fs that contradicts it is an error, one that
+    agrees is accepted."""
+    assert main(["features", str(outer_file), "--fs", "1000"]) == 2
+    assert ("outer.npz: fs 1000 Hz given, but the file states 12000 Hz"
+            in capsys.readouterr().err)
+    assert main(["features", str(outer_file), "--fs", str(FS)]) == 0
     assert set(pd.read_csv(io.StringIO(capsys.readouterr().out)).fs) == {FS}

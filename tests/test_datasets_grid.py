@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from ballpass.datasets import Grid, read_grid
+from ballpass.datasets import Grid, example_grid, read_grid
 from ballpass.datasets.grid import count_points, run_seed
 
 BASE = {
@@ -194,7 +194,7 @@ def test_fault_engagement_needs_a_ball_fault():
 
 
 def test_sim2real_example_counts_as_its_comment_says():
-    path = Path(__file__).parent.parent / "examples" / "sim2real_cwru.toml"
+    path = example_grid("sim2real_cwru")
     g = read_grid(path)
     assert g.n_runs == 4 * 40 == 160                   # 4 kinds x 40 draws
     # ball defects draw their engagement, race faults keep 1 (a race defect is always

@@ -307,3 +307,57 @@ def test_fast_kurtogram_equals_the_reference_on_real_recordings():
                                       "12k_DE_B021_0.mat")]
     X, _ = bp.datasets.load_cwru(files, fs=12_000)
     assert_matches_reference(X[::5].astype(float), 12_000.0)
+
+
+def _impacts_under_low_knocks():
+    """BPFI impacts of a 6205 at 1797 rpm ringing a 3 kHz resonance, plus two smooth
+    150 Hz knocks (Gaussian bursts, 10 ms: all their energy below 300 Hz) that are far
+    more impulsive than the fault: the kurtogram's largest kurtosis sits in 0-375 Hz,
+    below the fault's own lines."""
+    fs, n = 12_000.0, 12_000
+    t = np.arange(n) / fs
+    bpfi = 162.2
+    phase = (t * bpfi) % 1.0 / bpfi
+    x = np.exp(-900 * phase) * np.sin(2 * np.pi * 3000 * phase)
+    for t0 in (0.125, 0.61):
+        x += 20 * np.exp(-0.5 * ((t - t0) / 0.01) ** 2) * np.cos(2 * np.pi * 150 * (t - t0))
+    return x + 0.3 * np.random.default_rng(0).standard_normal(n), fs
+
+
+def test_band_lies_above_the_fault_lines_it_must_carry():
+    x, fs = _impacts_under_low_knocks()
+    # without the rule (every band admissible down to 0 Hz) the knocks' band wins
+    assert F.fast_kurtogram(x, fs, fault_hz=0.0).best_band == (0.0, 375.0)
+    # default: no band starting at 0 Hz below the full band (it has no carrier)
+    lo, hi = F.fast_kurtogram(x, fs).best_band
+    assert lo > 0 or hi == fs / 2
+    # with the highest line to read (3 x BPFI + a shaft order = 517 Hz at 1797 rpm) the
+    # band lies above it, and it holds the 3 kHz resonance the impacts ring
+    lo, hi = F.fast_kurtogram(x, fs, fault_hz=517.0).best_band
+    assert lo >= 517.0 and lo <= 3000.0 <= hi
+    # envelope_analysis with rpm and bearing applies it: BPFI reads > 10 dB above its
+    # background there, against < 6 dB (the diagnoser's threshold) in the default band
+    with_bearing = F.envelope_analysis(x, fs, rpm=1797.0, bearing="6205")
+    assert with_bearing.band == (lo, hi) and with_bearing.fault_bands["bpfi_1"] > 10
+    plain = F.envelope_analysis(x, fs)
+    levels = F.fault_band_levels(plain.freqs, plain.ses, "6205", 1797.0)
+    assert levels["bpfi_1"] < 6
+    # fault_band_features chooses the same band (0.2 dB: the circular against padded
+    # filtering of the two, as in test_features_analysis)
+    feats = F.fault_band_features(x, fs, "6205", 1797.0)
+    assert abs(feats["bpfi_1"] - with_bearing.fault_bands["bpfi_1"]) < 0.2
+
+
+def test_fault_hz_per_signal_and_its_fallback():
+    x, fs = _impacts_under_low_knocks()
+    res = F.fast_kurtogram(np.stack([x, x]), fs, fault_hz=[0.0, 517.0])
+    assert tuple(res.best_band[0]) == (0.0, 375.0) and res.best_band[1][0] >= 517.0
+    # no band above 5990 Hz has content and width: the full band is the fallback
+    assert F.fast_kurtogram(x, fs, fault_hz=5990.0).best_band == (0.0, fs / 2)
+
+
+@pytest.mark.parametrize("bad", [-1.0, np.nan, 6000.0, [100.0, 200.0, 300.0]])
+def test_fault_hz_is_validated(bad):
+    x, fs = _impacts_under_low_knocks()
+    with pytest.raises(ValueError, match="fault_hz"):
+        F.fast_kurtogram(np.stack([x, x]), fs, fault_hz=bad)

@@ -7,10 +7,11 @@ from pathlib import Path
 
 EXAMPLE = """\
 examples:
-  ballpass generate examples/quick.toml --out out/quick --jobs 2
+  ballpass generate quick --out out/quick --jobs 2
   ballpass benchmark out/quick --out out/quick-bench --models envelope,logistic
-  ballpass generate examples/sim2real_cwru.toml --out out/sim2real --jobs 2
+  ballpass generate sim2real_cwru --out out/sim2real --jobs 2
   ballpass benchmark out/sim2real --real path/to/cwru --out out/sim2real-bench
+  ballpass benchmark out/sim2real --real recordings.csv --out out/rig-bench  # a manifest
 
 Writes DIR/results.md, DIR/results.csv, DIR/predictions.csv and one confusion-matrix PNG
 per split. Splits never put rows of one run (or recording) on both sides, except
@@ -42,10 +43,12 @@ def add_parser(subparsers) -> None:
     )
     p.add_argument("dataset", metavar="DATASET", help="dataset folder (ballpass generate)")
     p.add_argument("--out", metavar="DIR", required=True, help="report folder (created)")
-    p.add_argument("--real", metavar="DIR",
-                   help="folder of CWRU or MFPT .mat recordings: adds the sim2real split "
-                        "(train on DATASET, test on them, resampled to DATASET's fs and cut "
-                        "into segments as long as DATASET's rows)")
+    p.add_argument("--real", metavar="DIR|MANIFEST",
+                   help="folder of CWRU or MFPT .mat recordings, or a manifest table of "
+                        "labelled recordings of any rig (path, fs, rpm, bearing, label per "
+                        "row): adds the sim2real split (train on DATASET, test on them, "
+                        "resampled to DATASET's fs and cut into segments as long as "
+                        "DATASET's rows)")
     p.add_argument("--channel", default="DE", choices=["DE", "FE", "BA"],
                    help="accelerometer of CWRU recordings for --real (default DE)")
     p.add_argument("--splits", type=_names, metavar="A,B",
@@ -102,8 +105,10 @@ def run(args) -> int:
     """Run ``ballpass benchmark``; returns the exit code."""
     import pandas as pd
 
+    from .._validation import check_segment
     from ..datasets import load
-    from ..datasets.real import load_real
+    from ..datasets.manifest import read_recordings
+    from ..datasets.real import segment_records
     from ..diagnose import run_benchmark, write_report
     from ._output import check_output_path, show_progress
 
@@ -118,7 +123,8 @@ def run(args) -> int:
             raise ValueError(f"{args.dataset} mixes sampling rates {rates} Hz; benchmark "
                              "needs one rate")
         fs = float(rates[0])
-        real = load_real(args.real, fs=fs, segment_s=X.shape[1] / fs, channel=args.channel)
+        found = read_recordings(args.real, channel=args.channel, require_label=True)
+        real = segment_records(found, fs, check_segment(X.shape[1] / fs, fs))
         bearings = sorted(meta["bearing"].astype(str).unique())
         if len(bearings) == 1:
             real = _same_bearing(real, bearings[0])

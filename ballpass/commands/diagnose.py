@@ -11,6 +11,8 @@ examples:
   ballpass diagnose 12k_DE_IR007_0.mat 12k_DE_OR007@6_0.mat
   ballpass diagnose 12k_FE_OR007@12_0.mat --channel FE  # the fan-end 6203 at its sensor
   ballpass diagnose cwru/ --out verdicts.csv            # every .mat file of a folder
+  ballpass diagnose rec.csv --fs 12000 --rpm 1797 --bearing 6205   # also .npy, .wav
+  ballpass diagnose recordings.csv    # a manifest: path, fs, rpm, bearing[, label] per row
   ballpass diagnose OuterRaceFault_vload_1.mat --segment 1
   ballpass diagnose 12k_DE_OR007@6_0.mat --plot figures/   # the SES behind each verdict
   ballpass diagnose cwru/ --segment 1 --baseline Normal_0.mat  # thresholds from healthy

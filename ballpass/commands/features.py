@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import argparse
 import math
-import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -14,10 +13,17 @@ examples:
   ballpass features 12k_DE_IR007_0.mat 12k_DE_OR007@6_0.mat --segment 1 --out cwru.csv
   ballpass features Normal_0_48k.mat --plot figs/      # fs 48 kHz from the file name
   ballpass features out/quick --out quick_features.parquet
+  ballpass features recordings.csv --out table.csv      # a manifest of recordings
+  ballpass features rec.wav --rpm 1797 --bearing 6205   # a plain recording
 
 inputs:
   .npz/.csv/.parquet  signal files written by `ballpass simulate` (one row per channel;
                       --bearing/--rpm default to the file's metadata)
+  .csv/.npy/.wav      a recording in a plain format: a CSV column of numbers (with or
+                      without header; --column NAME when there are several), a NumPy
+                      array (n_samples,) or (n_channels, n_samples), a WAV file (its own
+                      rate; integer PCM in fractions of full scale). Give --fs (not for
+                      .wav), --rpm and --bearing.
   .mat                CWRU Bearing Data Center or MFPT files (told apart by content).
                       Values are stored in g and are converted to m/s^2 (x 9.80665).
                       CWRU: fs comes from the file name or record number: 12k_* files
@@ -26,7 +32,11 @@ inputs:
                       comes from the file, else from the motor load (rpm_source says
                       which); the bearing defaults to the rig's (DE: 6205, FE: 6203).
                       MFPT: fs, rpm and load from the file's `bearing` struct; bearing
-                      MFPT-NICE.
+                      MFPT-NICE. Any other .mat file: --variable NAME and --fs.
+  MANIFEST            a .csv/.parquet table listing recordings of any rig, one row each:
+                      path (relative to the table's folder), fs, rpm, bearing; optional
+                      label, variable, column, channel, group, load (docs/datasets.md).
+                      Rows whose file cannot be read are skipped with a warning.
   DIR                 a dataset folder with _manifest.json (`ballpass generate`), or a
                       folder of .mat recordings (unreadable ones skipped with a warning)
 
@@ -68,14 +78,30 @@ def add_input_arguments(p: argparse.ArgumentParser,
         "inputs",
         nargs="+",
         metavar="INPUT",
-        help="signal file (.npz/.csv/.parquet), CWRU/MFPT .mat file, folder of .mat files "
-        "or dataset folder",
+        help="recording (.csv/.npy/.wav/.mat, or .npz/.parquet from `ballpass simulate`), "
+        "manifest table (.csv/.parquet with a path column) listing recordings, folder of "
+        "CWRU/MFPT .mat files, or dataset folder",
     )
     p.add_argument(
         "--fs",
         type=float,
         default=None,
-        help="sampling rate of .mat files, Hz (default: from the file name)",
+        help="sampling rate, Hz, of files that do not state it (plain .csv, .npy, a .mat "
+        "--variable; CWRU .mat files whose name does not); must agree with a rate the file "
+        "states (.wav, ballpass files, MFPT)",
+    )
+    p.add_argument(
+        "--column",
+        default=None,
+        metavar="NAME",
+        help="the signal's column in a plain .csv file with several numeric columns (a "
+        "header name, or an index from 0 when the file has no header)",
+    )
+    p.add_argument(
+        "--variable",
+        default=None,
+        metavar="NAME",
+        help="the signal's variable in a .mat file that is not a CWRU or MFPT recording",
     )
     p.add_argument(
         "--bearing", default=None, help="bearing for the fault frequencies (default: from the file)"
@@ -141,69 +167,36 @@ def is_known(value) -> bool:
     return value is not None and not (isinstance(value, float) and math.isnan(value))
 
 
-def _from_signal_file(path: Path, args) -> list[Signal]:
-    from ..signalio import read_signal
-
-    sig = read_signal(path)
-    if args.fs is not None and args.fs != sig.fs:
-        warnings.warn(f"{path.name} states its own rate, {sig.fs:g} Hz: --fs {args.fs:g} "
-                      "applies to .mat files only and is ignored for it", stacklevel=2)
-    bearing = args.bearing or sig.meta.get("bearing")
-    rpm = args.rpm if args.rpm is not None else sig.meta.get("rpm")
-    label = sig.meta.get("label")
-    return [
-        Signal(
-            f"{path.stem}_{name}" if len(sig.channels) > 1 else path.stem,
-            row,
-            sig.fs,
-            bearing,
-            rpm,
-            {"channel": name} | ({"label": label} if label else {}),
-        )
-        for name, row in zip(sig.channels, sig.accel, strict=True)
-    ]
+#: Columns of a recording's metadata copied into the feature table (when it has them).
+_RECORDING_COLUMNS = ("channel", "label", "group", "manifest_row", "load", "fault_width_mm",
+                      "fault_angle_deg", "load_hp", "load_lbs", "rpm_source", "rpm_mismatch")
 
 
-#: Columns of a real recording's metadata copied into the feature table.
-_MAT_COLUMNS = ("channel", "label", "fault_width_mm", "fault_angle_deg", "load_hp", "load_lbs",
-                "rpm_source", "rpm_mismatch")
+def _from_recordings(path: Path, args) -> list[Signal]:
+    """The signals of a recording file, a folder of .mat recordings or a manifest."""
+    from collections import Counter
 
+    from ..datasets.manifest import read_recordings
 
-def _from_mat(path: Path, args) -> list[Signal]:
-    from ..datasets.real import read_mat
-
-    rec = read_mat(path, channel=args.channel, fs=args.fs)
-    meta = rec.columns()
-    columns = {k: meta[k] for k in _MAT_COLUMNS if k in meta}
-    rpm = args.rpm if args.rpm is not None else rec.rpm
-    return [
-        Signal(
-            f"{path.stem}_{meta['channel']}",
-            rec.accel,
-            rec.fs,
-            args.bearing or rec.bearing,
-            rpm,
-            columns,
-        )
-    ]
-
-
-def _from_mat_folder(folder: Path, args) -> list[Signal]:
-    """Every readable .mat file of a folder of real recordings (others skipped, warned)."""
-    from ..datasets.real import read_all
-
-    if not any(folder.glob("*.mat")):
-        from ..signalio import SUFFIXES
-
-        files = sorted(p.name for p in folder.iterdir() if p.suffix.lower() in SUFFIXES)
-        hint = (f"; give its signal files as inputs ({folder / '*'}{Path(files[0]).suffix})"
-                if files else "")
-        raise ValueError(f"{folder} is a folder without manifest.json or .mat files: "
-                         f"neither a dataset nor a folder of recordings{hint}")
-    found = read_all(folder, lambda p: _from_mat(p, args))
-    if not found:
-        raise ValueError(f"{folder}: none of its .mat files could be read")
-    return [sig for _, signals in found for sig in signals]
+    found = read_recordings(path, fs=args.fs, column=getattr(args, "column", None),
+                            variable=getattr(args, "variable", None), channel=args.channel)
+    per_file = Counter(str(p) for p, _ in found)
+    names = []
+    for file, rec in found:  # CWRU/MFPT and multi-channel files name their channel
+        named = rec.info.get("dataset") in ("cwru", "mfpt") or per_file[str(file)] > 1
+        names.append(f"{rec.name}_{rec.channel}" if named else rec.name)
+    repeated = Counter(names)
+    signals = []
+    for name, (_, rec) in zip(names, found, strict=True):
+        meta = rec.columns()
+        if repeated[name] > 1 and "manifest_row" in meta:  # one file on several rows
+            name = f"{name}_row{meta['manifest_row']}"
+        columns = {k: meta[k] for k in _RECORDING_COLUMNS
+                   if k in meta and not (k == "label" and meta[k] == "unknown")}
+        rpm = args.rpm if args.rpm is not None else rec.rpm
+        signals.append(Signal(name, rec.accel, rec.fs, args.bearing or rec.bearing, rpm,
+                              columns))
+    return signals
 
 
 def _from_dataset(folder: Path, args) -> list[Signal]:
@@ -243,27 +236,16 @@ def load_inputs(args) -> list[Signal]:
 
 def load_records(args) -> list[Signal]:
     """Every signal of ``args.inputs``, whole, in input order."""
-    from ..signalio import SUFFIXES
-
     signals: list[Signal] = []
     for raw in args.inputs:
         path = Path(raw)
         if path.is_dir() and any((path / name).is_file()
                                  for name in ("_manifest.json", "manifest.json")):
             signals += _from_dataset(path, args)
-        elif path.is_dir():
-            signals += _from_mat_folder(path, args)
         elif not path.exists():
             raise FileNotFoundError(f"no such file or folder: {path}")
-        elif path.suffix.lower() == ".mat":
-            signals += _from_mat(path, args)
-        elif path.suffix.lower() in SUFFIXES:
-            signals += _from_signal_file(path, args)
         else:
-            raise ValueError(
-                f"{path.name}: INPUT must be a {', '.join(SUFFIXES)} or .mat file "
-                "or a dataset folder"
-            )
+            signals += _from_recordings(path, args)
     return signals
 
 

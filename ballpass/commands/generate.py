@@ -6,8 +6,8 @@ import argparse
 
 EXAMPLE = """\
 examples:
-  ballpass generate examples/quick.toml --out out/quick --jobs 2
-  ballpass generate examples/cwru_like_6205_12k.toml --out out/cwru --dry-run
+  ballpass generate quick --out out/quick --jobs 2      # a shipped grid (ballpass examples)
+  ballpass generate cwru_like_6205_12k --out out/cwru --dry-run
   ballpass generate grid.toml --out /shared/ds --scheduler tcp://head-node:8786
 
 Run the same command again to resume an interrupted dataset: complete shards are kept."""
@@ -30,7 +30,8 @@ def add_parser(subparsers) -> None:
         epilog=EXAMPLE,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
-    p.add_argument("grid", metavar="GRID", help="TOML grid file (see docs/datasets.md)")
+    p.add_argument("grid", metavar="GRID", help="TOML grid file (see docs/datasets.md), or "
+                   "the name of a grid shipped with ballpass (`ballpass examples` lists them)")
     p.add_argument("--out", metavar="DIR", help="dataset folder (created; resumed if it "
                    "holds this grid's dataset); required unless --dry-run")
     p.add_argument("--jobs", "-j", type=jobs, default=1, metavar="N",
@@ -48,12 +49,28 @@ def add_parser(subparsers) -> None:
     p.set_defaults(func=run)
 
 
+def resolve_grid(text: str):
+    """GRID as given: a file's path, or a shipped example's name (``quick``)."""
+    from pathlib import Path
+
+    from ..datasets import example_grid, example_grids
+
+    path = Path(text)
+    if path.exists() or path.suffix or len(path.parts) != 1:
+        return text
+    if text not in example_grids():
+        raise ValueError(f"GRID {text!r} is neither a file nor a grid shipped with ballpass "
+                         f"({', '.join(example_grids())}; `ballpass examples` lists them)")
+    return example_grid(text)
+
+
 def run(args) -> int:
     """Run ``ballpass generate``; returns the exit code."""
     from ..datasets import dry_run, generate, read_grid
     from ..datasets.grid import drawn_axes
     from ._output import compile_notice, show_progress
 
+    args.grid = resolve_grid(args.grid)
     compile_notice()  # both paths simulate (dry-run times one run per model)
     if args.dry_run:
         print(dry_run(args.grid, out_dir=args.out, n_jobs=args.jobs, force=args.force))

@@ -6,7 +6,7 @@ import argparse
 
 EXAMPLE = """\
 example:
-  ballpass generate examples/quick.toml --out out/quick && ballpass info out/quick"""
+  ballpass generate quick --out out/quick && ballpass info out/quick"""
 
 
 def add_parser(subparsers) -> None:

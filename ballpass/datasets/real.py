@@ -456,7 +456,8 @@ def segment_records(records, fs: float, length: int):
     X : ndarray of float32, shape (n_segments, length)
     meta : pandas.DataFrame
         ``record.columns()`` plus ``segment``, ``start_s``, ``duration_s``, ``fs``,
-        ``source_fs``, ``group`` (the file name) and ``file``.
+        ``source_fs``, ``group`` (the record's own ``group`` column, else the file name)
+        and ``file``.
     """
     import pandas as pd
     import scipy.signal
@@ -478,7 +479,8 @@ def segment_records(records, fs: float, length: int):
         columns = rec.columns()
         rows.extend(
             columns | {"segment": k, "start_s": k * length / fs, "duration_s": length / fs,
-                       "fs": float(fs), "source_fs": rec.fs, "group": rec.name,
+                       "fs": float(fs), "source_fs": rec.fs,
+                       "group": columns.get("group", rec.name),
                        "file": str(path)}
             for k in range(n)
         )

@@ -17,7 +17,7 @@ import scipy.fft
 import scipy.signal
 
 from ._validation import check_fs, check_rpm, check_signal
-from .bands import as_bearing, fault_band_levels
+from .bands import as_bearing, fault_band_levels, highest_fault_line
 from .envelope import _amplitude_spectrum, _sos
 from .indicators import _indicators
 from .kurtogram import FLOOR_DB, MIN_BANDWIDTH_HZ, KurtogramResult, _default_nlevel, _kurtogram
@@ -176,6 +176,9 @@ def envelope_analysis(x, fs: float, *, rpm=None, bearing=None, axis: int = -1):
     work shared between them:
 
     1. :func:`fast_kurtogram` (default settings) chooses the band (``best_band``);
+       with ``rpm`` and ``bearing`` its lower edge must lie above the highest line the
+       fault-band levels read (three harmonics of the highest defect frequency plus a
+       shaft-order sideband), so the band carries the fault lines as modulation;
     2. the SES in that band reuses the kurtogram's FFT of the signal: the band-pass
        is the zero-phase Butterworth filter of :func:`envelope_spectrum` (order 4,
        gain ``|H|^2``) applied as a product in the frequency domain, and the band's
@@ -260,7 +263,9 @@ def envelope_analysis(x, fs: float, *, rpm=None, bearing=None, axis: int = -1):
         rpm = check_rpm(rpm, xv.shape[:-1])
 
     n = xv.shape[-1]
-    kurt, spectrum = _kurtogram(xv, fs, _default_nlevel(n), MIN_BANDWIDTH_HZ, FLOOR_DB)
+    fault_hz = None if bearing is None else highest_fault_line(bearing, rpm, fs)
+    kurt, spectrum = _kurtogram(xv, fs, _default_nlevel(n), MIN_BANDWIDTH_HZ, FLOOR_DB,
+                                fault_hz)
     bands = np.reshape(kurt.best_band, (-1, 2))
     flat = spectrum.reshape(-1, spectrum.shape[-1])
     ses = np.stack(

@@ -16,7 +16,7 @@ import math
 import numpy as np
 
 from ..bearing import Bearing
-from ._validation import check_nonnegative, check_positive_int, check_rpm
+from ._validation import check_fs, check_nonnegative, check_positive_int, check_rpm, check_signal
 from .envelope import envelope_spectrum
 from .shaft import without_shaft_lines
 
@@ -211,6 +211,43 @@ def fault_band_levels(
     return {name: levels[..., j][()] for j, name in enumerate(fault_band_names(harmonics))}
 
 
+def highest_fault_line(bearing, rpm, fs: float, harmonics: int = 3) -> np.ndarray:
+    """Highest line the fault-band levels read, Hz: the envelope must carry it.
+
+    ``harmonics`` times the highest defect frequency (BPFO, BPFI, 2xBSF) plus one shaft
+    order (the sideband of a modulated line), capped just below ``fs / 2``. A
+    demodulation band chosen by the kurtogram must lie above it (``fault_hz`` of
+    :func:`ballpass.features.fast_kurtogram`).
+
+    Parameters
+    ----------
+    bearing : Bearing
+        The bearing.
+    rpm : float or ndarray
+        Shaft speed(s), rev/min.
+    fs : float
+        Sampling frequency, Hz.
+    harmonics : int, optional
+        Harmonics read (default 3, as :func:`fault_band_levels`).
+
+    Returns
+    -------
+    ndarray, shape of ``rpm``
+        Frequency, Hz.
+
+    Examples
+    --------
+    >>> import ballpass as bp
+    >>> from ballpass.features.bands import highest_fault_line
+    >>> round(float(highest_fault_line(bp.Bearing.catalog("6205"), 1797.0, 12_000.0)))
+    517
+    """
+    per_order = bearing.frequencies(1.0)  # every defect frequency scales with the speed
+    orders = harmonics * max(per_order.bpfo, per_order.bpfi, per_order.ball_defect) + 1.0
+    shaft_hz = np.asarray(rpm, dtype=float) / 60.0
+    return np.minimum(orders * shaft_hz, np.nextafter(fs / 2, 0))
+
+
 def fault_band_features(
     x,
     fs: float,
@@ -244,7 +281,7 @@ def fault_band_features(
         Shaft speed, rev/min, one per signal or one for all.
     band : (float, float) or None, optional
         Demodulation band, Hz; ``None`` (default) chooses it per signal with the
-        kurtogram.
+        kurtogram, among bands above the highest line read (:func:`highest_fault_line`).
     prewhiten : bool, optional
         Cepstrum pre-whitening before demodulation (default False).
     harmonics, tolerance, background_hz, shaft_guard
@@ -274,7 +311,13 @@ def fault_band_features(
     >>> bool(feats["bpfo_1"] > 10 > feats["bpfi_1"])
     True
     """
-    freqs, ses = envelope_spectrum(x, fs, band, squared=True, prewhiten=prewhiten, axis=axis)
+    fault_hz = None
+    if band is None:  # the kurtogram's band must carry the lines read
+        batch_shape = np.moveaxis(check_signal(x, axis), -1, -1).shape[:-1]
+        fault_hz = highest_fault_line(as_bearing(bearing), check_rpm(rpm, batch_shape),
+                                      check_fs(fs), harmonics)
+    freqs, ses = envelope_spectrum(x, fs, band, squared=True, prewhiten=prewhiten,
+                                   fault_hz=fault_hz, axis=axis)
     return fault_band_levels(
         freqs,
         np.moveaxis(ses, axis, -1),

@@ -143,13 +143,15 @@ def _prewhiten(x: np.ndarray) -> np.ndarray:
 
 
 def _envelope(
-    x: np.ndarray, fs: float, band, squared: bool, prewhiten: bool, order: int
+    x: np.ndarray, fs: float, band, squared: bool, prewhiten: bool, order: int,
+    fault_hz=None,
 ) -> np.ndarray:
-    """Envelope of validated ``x`` (samples last); ``band=None`` picks it per signal."""
+    """Envelope of validated ``x`` (samples last); ``band=None`` picks it per signal
+    (above ``fault_hz``, see :func:`fast_kurtogram`)."""
     if band is None:
         # The band is chosen on the raw signal, where the content floor of the
         # kurtogram is meaningful (pre-whitening flattens the spectrum).
-        bands = np.reshape(fast_kurtogram(x, fs).best_band, (-1, 2))
+        bands = np.reshape(fast_kurtogram(x, fs, fault_hz=fault_hz).best_band, (-1, 2))
     else:
         bands = np.array([check_band(band, fs)])
     if prewhiten:
@@ -206,6 +208,7 @@ def envelope(
     squared: bool = False,
     prewhiten: bool = False,
     order: int = 4,
+    fault_hz=None,
     axis: int = -1,
 ) -> np.ndarray:
     """Hilbert envelope of the band-passed signal.
@@ -226,6 +229,9 @@ def envelope(
         Apply :func:`cepstrum_prewhiten` before filtering (default False).
     order : int, optional
         Butterworth order (default 4).
+    fault_hz : float or array_like, optional
+        With ``band=None``: the highest fault line the envelope must carry, Hz; the
+        kurtogram's band lies above it (see :func:`fast_kurtogram`).
     axis : int, optional
         Sample axis (default -1).
 
@@ -249,7 +255,7 @@ def envelope(
     fs = check_fs(fs)
     xv = check_signal(x, axis)
     order = check_positive_int("order", order, 1)
-    return np.moveaxis(_envelope(xv, fs, band, squared, prewhiten, order), -1, axis)
+    return np.moveaxis(_envelope(xv, fs, band, squared, prewhiten, order, fault_hz), -1, axis)
 
 
 def envelope_spectrum(
@@ -261,6 +267,7 @@ def envelope_spectrum(
     prewhiten: bool = False,
     window="hann",
     order: int = 4,
+    fault_hz=None,
     axis: int = -1,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Envelope spectrum; by default the squared envelope spectrum (SES).
@@ -290,6 +297,9 @@ def envelope_spectrum(
         ``"hann"``; ``"boxcar"`` for none).
     order : int, optional
         Butterworth order (default 4).
+    fault_hz : float or array_like, optional
+        With ``band=None``: the highest fault line to be read, Hz; the kurtogram's band
+        lies above it (see :func:`fast_kurtogram`; :func:`fault_band_features` sets it).
     axis : int, optional
         Sample axis (default -1).
 
@@ -318,7 +328,7 @@ def envelope_spectrum(
     fs = check_fs(fs)
     xv = check_signal(x, axis)
     order = check_positive_int("order", order, 1)
-    e = _envelope(xv, fs, band, squared, prewhiten, order)
+    e = _envelope(xv, fs, band, squared, prewhiten, order, fault_hz)
     freqs, amp = _amplitude_spectrum(e, window, fs)
     return freqs, np.moveaxis(amp, -1, axis)
 

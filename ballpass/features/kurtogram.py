@@ -238,6 +238,7 @@ def fast_kurtogram(
     nlevel: int | None = None,
     min_bandwidth: float = MIN_BANDWIDTH_HZ,
     floor_db: float = FLOOR_DB,
+    fault_hz=None,
     axis: int = -1,
 ) -> KurtogramResult:
     """Fast kurtogram: spectral kurtosis on Antoni's 1/3-binary band tree.
@@ -266,10 +267,20 @@ def fast_kurtogram(
     * not reaching ``fs/2``: the band hugging Nyquist holds the transition band of
       the recorder's (or a simulator's) anti-aliasing filter. On simulated signals its
       sharp broadband clicks reach high kurtosis while the resonance band gives a
-      squared envelope spectrum with a fault line 9 dB stronger.
+      squared envelope spectrum with a fault line 9 dB stronger;
+    * above the fault lines it must carry: envelope analysis demodulates a carrier
+      (a structural resonance) that the impacts excite, so a band holding the fault
+      frequencies themselves returns them, and the shaft harmonics beside them, as
+      raw content, not as modulation. With ``fault_hz`` (the highest fault line the
+      envelope spectrum is read at, e.g. three times the highest defect frequency)
+      a band's lower edge must lie at or above it, so its centre lies at least half
+      a bandwidth above the fault lines. Without ``fault_hz`` only the bands starting
+      at 0 Hz are excluded (they have no carrier at all; on a CWRU inner-race record
+      the band 0-375 Hz won, below the fault's own lines).
 
-    The full band (level 0) is always admissible. Pass ``band`` explicitly to the
-    envelope functions to demodulate anywhere else.
+    The full band (level 0) is always admissible without ``fault_hz``; with it, only
+    when no band above the fault lines is. Pass ``band`` explicitly to the envelope
+    functions to demodulate anywhere else.
 
     Parameters
     ----------
@@ -286,6 +297,11 @@ def fast_kurtogram(
     floor_db : float, optional
         Content threshold for ``best_band``, dB relative to the average power
         density (default -20).
+    fault_hz : float or array_like of shape (...), optional
+        Highest fault-line frequency the envelope must carry, Hz (one value, or one
+        per signal): bands whose lower edge lies below it are not admissible for
+        ``best_band``. :func:`envelope_analysis` sets it from ``rpm`` and
+        ``bearing``. Default: only bands starting at 0 Hz are excluded.
     axis : int, optional
         Sample axis (default -1).
 
@@ -331,15 +347,38 @@ def fast_kurtogram(
     min_bandwidth = check_nonnegative("min_bandwidth", min_bandwidth)
     if not math.isfinite(floor_db):
         raise ValueError(f"floor_db must be a finite number of dB, got {floor_db!r}")
+    fault_hz = check_fault_hz(fault_hz, x.shape[:-1], fs)
 
-    return _kurtogram(x, fs, nlevel, min_bandwidth, float(floor_db))[0]
+    return _kurtogram(x, fs, nlevel, min_bandwidth, float(floor_db), fault_hz)[0]
+
+
+def check_fault_hz(fault_hz, batch_shape: tuple, fs: float):
+    """Validate ``fault_hz`` of :func:`fast_kurtogram`: None, or finite values in
+    ``[0, fs/2)`` broadcastable to the signals' batch shape; returned as an array of
+    that shape (or None)."""
+    if fault_hz is None:
+        return None
+    values = np.asarray(fault_hz, dtype=float)
+    if not np.all(np.isfinite(values)) or np.any(values < 0) or np.any(values >= fs / 2):
+        raise ValueError(
+            f"fault_hz must be finite frequencies in [0, fs/2 = {fs / 2:g}) Hz, got {fault_hz!r}"
+        )
+    try:
+        return np.broadcast_to(values, batch_shape)
+    except ValueError:
+        raise ValueError(
+            f"fault_hz must be one value or one per signal (shape {batch_shape}), "
+            f"got shape {values.shape}"
+        ) from None
 
 
 def _kurtogram(
-    x: np.ndarray, fs: float, nlevel: int, min_bandwidth: float, floor_db: float
+    x: np.ndarray, fs: float, nlevel: int, min_bandwidth: float, floor_db: float,
+    fault_hz: np.ndarray | None = None,
 ) -> tuple[KurtogramResult, np.ndarray]:
     """Fast kurtogram of validated ``x`` (samples last), and the one-sided spectrum of
-    ``x`` minus its mean (``scipy.fft.rfft``) it was computed from, for reuse."""
+    ``x`` minus its mean (``scipy.fft.rfft``) it was computed from, for reuse.
+    ``fault_hz``: validated, of the batch shape of ``x``, or None."""
     from ._kernels import band_moments, gather_bands  # numba, compiled on first use
 
     n = x.shape[-1]
@@ -374,8 +413,18 @@ def _kurtogram(
     bandwidths = 0.5 * fs / n_bands
     # Grid columns of each row's last band, the one that reaches fs/2.
     nyquist_band = np.arange(n_cols) >= n_cols - n_cols // n_bands[:, None]
+    # lower edge of the band each grid cell belongs to, Hz
+    low_edge = (np.arange(n_cols) // (n_cols // n_bands[:, None])) * bandwidths[:, None]
+    if fault_hz is None:
+        above_faults = low_edge > 0
+    else:
+        above_faults = low_edge >= fault_hz[..., None, None]
     ok = (dens >= floor_db) & ((bandwidths >= min_bandwidth)[:, None] & ~nyquist_band)
-    ok[..., 0, :] = True
+    ok = ok & above_faults
+    if fault_hz is None:
+        ok[..., 0, :] = True
+    else:  # the full band holds the fault lines: only when no band above them has content
+        ok[..., 0, :] |= ~ok.any(axis=(-2, -1))[..., None]
     flat = np.where(ok, kurt, -np.inf).reshape(x.shape[:-1] + (-1,))
     best = np.argmax(flat, axis=-1)
     row, col = np.divmod(best, n_cols)

@@ -38,10 +38,12 @@ A new model is one file that builds a :class:`Model` and one line in :data:`MODE
 
 from __future__ import annotations
 
+import logging
 import sys
+import time
 import types
 
-from ._cache import clear_stale_cache, source_fingerprint
+from ._cache import clear_stale_cache, has_compiled_kernels, source_fingerprint
 
 # before any kernel module is imported: numba must not load kernels compiled from
 # other sources (see ._cache)
@@ -279,6 +281,13 @@ def simulate(scene: Scene, model: str = "auto", solver: str = "auto", *, dt: flo
         ``accel`` in m/s^2, shape (n_samples,) or (n_sensors, n_samples);
         ``info["model"]`` and ``info["model_reason"]`` say which model ran and why.
 
+    Notes
+    -----
+    The kernels are numba code, compiled on first use and cached on disk. When the cache
+    holds none of them (the first simulation after installing or updating ballpass) the
+    ``"ballpass"`` logger says so at WARNING level before the 15-60 s of compilation,
+    and at INFO level how long that first simulation took.
+
     Raises
     ------
     ValueError
@@ -301,12 +310,43 @@ def simulate(scene: Scene, model: str = "auto", solver: str = "auto", *, dt: flo
     check_solver_args(chosen.name, solver, chosen.solvers, chosen.fixed_step_solvers,
                       dt, rtol, atol, oversample)
     solver = chosen.default_solver if solver == "auto" else solver
+    compiling = _announce_compilation()
+    start = time.perf_counter()
     res = chosen.run(scene, solver, dt=dt, rtol=rtol, atol=atol, params=params,
                      return_forces=return_forces, oversample=oversample)
+    if compiling:
+        _log.info("first simulation with compilation took %.1f s", time.perf_counter() - start)
     res.info["model"] = chosen.name
     res.info["model_reason"] = reason
     res.info.setdefault("solver", solver)
     return res
+
+
+_log = logging.getLogger("ballpass")
+#: whether this process has looked for compiled kernels yet (once per process)
+_compile_checked = False
+
+
+def _announce_compilation() -> bool:
+    """Say, once per process, that the kernels are being compiled when numba's cache
+    holds none of them (fresh install, update, empty ``NUMBA_CACHE_DIR``).
+
+    The record goes to the ``"ballpass"`` logger at WARNING level, so Python's default
+    handler prints it on stderr without any logging set-up; silence it with
+    ``logging.getLogger("ballpass").setLevel(logging.ERROR)``. Returns whether it was
+    said.
+    """
+    global _compile_checked
+    if _compile_checked:
+        return False
+    _compile_checked = True
+    if has_compiled_kernels():
+        return False
+    _log.warning(
+        "ballpass: compiling the simulator's numba kernels; the first simulation after "
+        "installing or updating ballpass takes 15-60 s, later ones reuse the compiled code"
+    )
+    return True
 
 
 from .work_precision import plot_work_precision, speedup, work_precision  # noqa: E402

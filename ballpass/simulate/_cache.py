@@ -16,7 +16,7 @@ import hashlib
 import os
 from pathlib import Path
 
-__all__ = ["source_fingerprint", "clear_stale_cache", "cache_dirs"]
+__all__ = ["source_fingerprint", "clear_stale_cache", "cache_dirs", "has_compiled_kernels"]
 
 #: the package whose sources define the compiled kernels
 PACKAGE_DIR = Path(__file__).resolve().parent
@@ -110,3 +110,24 @@ def clear_stale_cache(package_dir: Path = PACKAGE_DIR) -> list[Path]:
         except OSError:
             pass
     return deleted
+
+
+def has_compiled_kernels(package_dir: Path = PACKAGE_DIR) -> bool:
+    """Whether numba's on-disk cache holds any compiled kernel of the package.
+
+    ``False`` on a fresh install, after an update (:func:`clear_stale_cache` removed the
+    kernels of other sources) or with an empty ``NUMBA_CACHE_DIR``: the next simulation
+    compiles its kernels first, which takes tens of seconds once.
+
+    Parameters
+    ----------
+    package_dir : Path, optional
+        Package folder (default: ``ballpass/simulate``).
+
+    Returns
+    -------
+    bool
+    """
+    return any(
+        any(folder.glob("*.nbi")) for folder in cache_dirs(package_dir) if folder.is_dir()
+    )
