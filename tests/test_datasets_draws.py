@@ -199,6 +199,9 @@ def test_info_and_dry_run_show_the_ranges(tmp_path, capsys):
     grid["dataset"]["duration_s"] = 0.1
     out = tmp_path / "ds"
     generate(grid, out, progress=False)
+    # the stored grid (with its distributions) is the grid: a re-run resumes, all done
+    again = generate(grid, out, progress=False)
+    assert again.rows_written == 0 and again.shards_skipped > 0
     assert info(out)["drawn"] == {"resonance_hz": "uniform 2200 - 4600",
                                   "noise_rms": "log_uniform 0.005 - 0.02",
                                   "sensor_angle_deg": "uniform 150 - 210"}
