@@ -100,9 +100,9 @@ class EvidenceTransformer(TransformerMixin, BaseEstimator):
     harmonics : int, optional
         Harmonics 1..H of each family (default 3).
     max_order : float, optional
-        Highest shaft order of the order-normalized SES (default 12: the third BPFI
-        harmonic of a 6205 sits at 16.2, the 6205's BPFI at 5.4 and its sidebands up to
-        6.4).
+        Highest shaft order of the order-normalized SES (default 12: it holds two
+        harmonics of each family of a 6205 with their sidebands, BPFI 5.4 and 10.8 +- 1,
+        BPFO 3.6 and 7.2, 2xBSF 4.7 and 9.4; the line levels cover the third).
     order_step : float, optional
         Width of the SES order bins (default 0.25 orders: wider than the slip search at
         the fifth order, 2 % of 5 = 0.1, narrower than the gap between a 6205's BPFI and
