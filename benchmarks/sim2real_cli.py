@@ -40,13 +40,15 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 from diagnose_loro import _md
-from sim2real import GOAL_LABELS, GRID, MODELS, ROOT, score
+from sim2real import GOAL_LABELS, MODELS, ROOT, score
 
-from ballpass.datasets import generate, load
+from ballpass.datasets import example_grid, generate, load
 from ballpass.datasets.real import load_real
 from ballpass.diagnose import run_benchmark
 from ballpass.signalio import atomic_write
 
+#: the shipped grid
+GRID = example_grid("sim2real_cwru")
 #: CWRU end -> its bearing
 ENDS = {"DE": "6205", "FE": "6203"}
 #: options that set an axis of the shipped grid: flag -> (axis, example, default)

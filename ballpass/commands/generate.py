@@ -66,13 +66,18 @@ def resolve_grid(text: str):
 
 def run(args) -> int:
     """Run ``ballpass generate``; returns the exit code."""
-    from ..datasets import dry_run, generate
+    from ..datasets import dry_run, generate, read_grid
+    from ..datasets.grid import drawn_axes
     from ._output import compile_notice, show_progress
 
     args.grid = resolve_grid(args.grid)
     compile_notice()  # both paths simulate (dry-run times one run per model)
     if args.dry_run:
         print(dry_run(args.grid, out_dir=args.out, n_jobs=args.jobs, force=args.force))
+        grid = read_grid(args.grid)
+        for axis, description in drawn_axes(grid).items():
+            print(f"drawn     {axis}: {description} ({grid.dataset.get('draws', 1)} draw(s) per "
+                  "grid point)")
         return 0
     if args.out is None:
         raise ValueError("--out DIR is required (unless --dry-run)")

@@ -38,6 +38,8 @@ def run(args) -> int:
           f"{d['duration_s']:g} s, float32, m/s^2")
     print(f"size      {human_bytes(d['size_bytes'])} on disk"
           f"{'; with feature table' if d['features'] else ''}")
+    for axis, description in d["drawn"].items():
+        print(f"drawn     {axis}: {description}, one value per draw")
     if d["n_rows"]:
         print("\nrows per label")
         print(d["labels"].to_string())

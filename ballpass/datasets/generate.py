@@ -109,6 +109,7 @@ def _simulate_run(run: Run, solver: str, signal_length: int, n_segments: int):
         "model": res.info["model"],
         "solver": res.info["solver"],
         "scene": scene_json,
+        **run.columns,  # realism axes, and which draw of a drawn grid
     }
     signals, rows = [], []
     for k, sensor in enumerate(res.sensor_names):
@@ -119,7 +120,7 @@ def _simulate_run(run: Run, solver: str, signal_length: int, n_segments: int):
             rows.append({**per_run, "sensor": sensor, "segment": seg, "start_s": start / scene.fs,
                          # mean speed over the row: a linear ramp's value at its mid-time
                          "rpm": float(speed.rpm_at(t_mid, scene.duration_s))})
-    columns = {key: [row[key] for row in rows] for key in COLUMNS}
+    columns = {key: [row[key] for row in rows] for key in (*COLUMNS, *run.columns)}
     return np.asarray(signals, dtype=np.float32), columns
 
 

@@ -8,7 +8,9 @@ over the fault axes (width, depth, angle, engagement), and race-fault runs do no
 multiply over ``fault_engagement``, which only ball faults have (a race defect lies
 on the track on every pass; :class:`~ballpass.Fault` refuses ``engagement < 1`` for
 it). ``sensor`` is not an axis of the product: its values are the channels of one
-run (one simulation, one row per sensor, same ``run_id``).
+run (one simulation, one row per sensor, same ``run_id``). A numeric axis may also
+be a distribution, ``{uniform = [lo, hi]}``, drawn anew for each of ``[dataset]
+draws`` runs per grid point (domain randomization; see :func:`read_grid`).
 
 Everything is validated by :func:`read_grid` before any simulation work: unknown
 keys, empty lists, reversed or non-positive ranges, wrong types and values a
@@ -50,9 +52,10 @@ import numpy as np
 from .._validation import check_segment
 from ..phenomena import check_needs
 from ..scene import Fault, Scene, Sensor
+from .distributions import DISTRIBUTIONS, Distribution, is_distribution, parse_distribution
 
 __all__ = ["Grid", "Run", "read_grid", "run_seed", "scene_from_dict", "count_points",
-           "grid_differences", "FAULT_VALUES", "MAX_RUNS"]
+           "grid_differences", "drawn_axes", "draw_seed", "FAULT_VALUES", "MAX_RUNS"]
 
 #: values of the ``fault`` axis
 FAULT_VALUES = ("healthy", "outer", "inner", "ball")
@@ -68,14 +71,25 @@ DATASET_DEFAULTS: dict[str, object] = {
     "segment_s": None,
     "shard_size": None,
     "needs": None,
+    "draws": None,  # 1; left out of the stored grid so grids without draws keep theirs
 }
 
+#: [grid] axes of the realism fields of :class:`~ballpass.Scene` (extra structural modes,
+#: coloured background, shaft lines) and of the sensor's angle; each is also a column
+REALISM_AXES = (
+    "noise_slope_db_oct",
+    *(f"resonance{k}_{p}" for k in (2, 3) for p in ("hz", "damping", "gain")),
+    *(f"shaft_harmonic_{k}x" for k in (1, 2, 3, 4)),
+    "sensor_angle_deg",
+)
+#: damping ratio and gain of an extra mode whose axis leaves them out
+MODE_DEFAULTS = {"damping": 0.05, "gain": 1.0}
 #: [grid] axes; runs follow this order, with the fault axes (size, angle, engagement)
 #: varying fastest
 AXES = (
     "bearing", "fault", "fault_width_mm", "fault_depth_mm", "fault_angle_deg",
     "fault_engagement", "rpm", "radial_load_n", "clearance_um", "slip", "snr_db", "noise_rms",
-    "resonance_hz", "resonance_damping", "model", "sensor",
+    "resonance_hz", "resonance_damping", *REALISM_AXES, "model", "sensor",
 )
 REQUIRED_AXES = ("bearing", "fault", "rpm")
 _FAULT_AXES = {"fault_width_mm": "width_mm", "fault_depth_mm": "depth_mm",
@@ -84,7 +98,7 @@ _FAULT_AXES = {"fault_width_mm": "width_mm", "fault_depth_mm": "depth_mm",
 _BALL_AXES = ("fault_engagement",)
 _SCENE_AXES = ("radial_load_n", "clearance_um", "slip", "snr_db", "noise_rms", "resonance_hz",
                "resonance_damping")
-_NUMERIC_AXES = (*_FAULT_AXES, "rpm", *_SCENE_AXES)
+_NUMERIC_AXES = (*_FAULT_AXES, "rpm", *_SCENE_AXES, *REALISM_AXES)
 _SENSOR_KEYS = {f.name for f in fields(Sensor)}
 
 #: target size of one shard, bytes of float32 signal (shard_size default)
@@ -106,7 +120,8 @@ def _expand_range(key: str, spec: dict) -> list[float]:
     missing = {"start", "stop", "step"} - set(spec)
     if unknown or missing:
         raise ValueError(
-            f"grid.{key}: a range is a table with keys start, stop, step; "
+            f"grid.{key}: a range is a table with keys start, stop, step, and a "
+            f"distribution a table with one key of {list(DISTRIBUTIONS)}; "
             f"got keys {sorted(spec)}"
         )
     for name in ("start", "stop", "step"):
@@ -126,8 +141,12 @@ def _expand_range(key: str, spec: dict) -> list[float]:
     return [float(f"{start + k * step:.12g}") for k in range(n)]
 
 
-def _axis_values(key: str, raw) -> list:
-    """Validate one [grid] axis and return its list of normalized values."""
+def _axis_values(key: str, raw, fs: float) -> list | Distribution:
+    """Validate one [grid] axis and return its list of normalized values, or its
+    :class:`~ballpass.datasets.distributions.Distribution` (``fs``, Hz, bounds the
+    resonances)."""
+    if is_distribution(raw):
+        return parse_distribution(key, raw, fs)
     if isinstance(raw, dict) and key in _NUMERIC_AXES:
         return _expand_range(key, raw)
     values = raw if isinstance(raw, list) else [raw]
@@ -203,7 +222,7 @@ def _dataset_settings(raw: dict) -> dict:
         if v is not None and (not _is_number(v) or not math.isfinite(v) or v <= 0):
             raise ValueError(f"dataset.{key} must be a positive number, got {v!r}")
         out[key] = None if v is None else float(v)
-    for key, lo in (("repeats", 1), ("seed", 0), ("shard_size", 1)):
+    for key, lo in (("repeats", 1), ("seed", 0), ("shard_size", 1), ("draws", 1)):
         v = out[key]
         if v is not None and (isinstance(v, bool) or not isinstance(v, int) or v < lo):
             raise ValueError(f"dataset.{key} must be an int >= {lo}, got {v!r}")
@@ -221,7 +240,10 @@ def _dataset_settings(raw: dict) -> dict:
 
 
 def _json_safe(value):
-    """Replace infinities (noise-free ``snr_db``) by the string "inf" for strict JSON."""
+    """Replace infinities (noise-free ``snr_db``) by the string "inf" for strict JSON, and
+    distributions by their table."""
+    if isinstance(value, Distribution):
+        return value.as_dict()
     if isinstance(value, float) and math.isinf(value):
         return "inf"
     if isinstance(value, list):
@@ -239,6 +261,23 @@ def run_seed(root: int, run_id: int) -> int:
     state word, shifted to 63 bits so it fits a Parquet int64, is the scene's seed.
     """
     state = np.random.SeedSequence(root, spawn_key=(run_id,)).generate_state(1, np.uint64)
+    return int(state[0] >> np.uint64(1))
+
+
+def draw_seed(root: int, draw_id: int) -> int:
+    """Seed of the drawn values of draw ``draw_id`` (one per grid point and draw, shared
+    by its repeats): ``SeedSequence(root, spawn_key=(draw_id, 1))`` as a 63-bit int,
+    a stream apart from every run's (whose key is ``(run_id,)``). The draw's values are
+    ``Distribution.draw(numpy.random.default_rng(seed))`` over its drawn axes in the
+    order of the grid's axes.
+
+    Examples
+    --------
+    >>> from ballpass.datasets.grid import draw_seed, run_seed
+    >>> draw_seed(2015, 0) != run_seed(2015, 0)
+    True
+    """
+    state = np.random.SeedSequence(root, spawn_key=(draw_id, 1)).generate_state(1, np.uint64)
     return int(state[0] >> np.uint64(1))
 
 
@@ -275,12 +314,17 @@ class Run:
     scene : dict
         JSON-able keyword arguments of the run's :class:`~ballpass.Scene`, including
         its seed (see :func:`scene_from_dict`).
+    columns : dict, optional
+        Dataset columns of the run beyond the scene's own: the values of its realism
+        axes (:data:`REALISM_AXES`) and, in a grid with drawn axes, ``draw`` (which draw
+        of its grid point) and ``draw_seed`` (see :func:`draw_seed`).
     """
 
     run_id: int
     repeat: int
     model: str
     scene: dict
+    columns: dict = field(default_factory=dict)
 
     @property
     def seed(self) -> int:
@@ -347,9 +391,14 @@ class Grid:
         return self.n_samples // self.signal_length
 
     @property
+    def distributions(self) -> dict:
+        """The drawn axes: name -> :class:`~ballpass.datasets.distributions.Distribution`."""
+        return {k: v for k, v in self.axes.items() if isinstance(v, Distribution)}
+
+    @property
     def n_runs(self) -> int:
-        """Simulations: grid points times repeats."""
-        return len(self._points) * self.dataset["repeats"]
+        """Simulations: grid points times draws times repeats."""
+        return len(self._points) * self.dataset.get("draws", 1) * self.dataset["repeats"]
 
     @property
     def rows_per_run(self) -> int:
@@ -386,15 +435,32 @@ class Grid:
     # ------------------------------------------------------------ runs
     @cached_property
     def runs(self) -> tuple[Run, ...]:
-        """Every run, in ``run_id`` order (repeats of one grid point are adjacent)."""
-        repeats = self.dataset["repeats"]
+        """Every run, in ``run_id`` order: the draws of one grid point are adjacent, and
+        the repeats of one draw (same drawn values, own seeds)."""
+        repeats, draws = self.dataset["repeats"], self.dataset.get("draws", 1)
         root = self.dataset["seed"]
+        drawn_axes = self.distributions
+        realism = [k for k in REALISM_AXES if k in self.axes]
         out = []
-        for p, (model, base) in enumerate(self._points):
-            for r in range(repeats):
-                run_id = p * repeats + r
-                scene = {**base, "seed": run_seed(root, run_id)}
-                out.append(Run(run_id=run_id, repeat=r, model=model, scene=scene))
+        for p, (model, base, values) in enumerate(self._points):
+            for d in range(draws):
+                draw_id = p * draws + d
+                columns = {}
+                if drawn_axes:
+                    seed = draw_seed(root, draw_id)
+                    rng = np.random.default_rng(seed)
+                    # every axis is drawn (a stable stream); a point keeps the ones it has
+                    # (no fault size for a healthy point, no engagement for a race fault)
+                    draw = {k: dist.draw(rng) for k, dist in drawn_axes.items()}
+                    values = {**values, **{k: v for k, v in draw.items() if k in values}}
+                    base = _point_scene(self.dataset, list(self.sensors), values)
+                    columns = {"draw": d, "draw_seed": seed}
+                columns.update({k: values[k] for k in realism})
+                for r in range(repeats):
+                    run_id = draw_id * repeats + r
+                    scene = {**base, "seed": run_seed(root, run_id)}
+                    out.append(Run(run_id=run_id, repeat=r, model=model, scene=scene,
+                                   columns=columns))
         return tuple(out)
 
     def as_dict(self) -> dict:
@@ -445,9 +511,46 @@ def _point_scene(dataset: dict, sensors: list, values: dict) -> dict:
     for key in _SCENE_AXES:
         if key in values:
             scene[key] = None if values[key] == math.inf else values[key]
+    _realism_scene(scene, values)
     if "needs" in dataset:
         scene["needs"] = list(dataset["needs"])
     return scene
+
+
+def _realism_scene(scene: dict, values: dict) -> None:
+    """Set the Scene fields of the realism axes (:data:`REALISM_AXES`) in ``scene``."""
+    if "noise_slope_db_oct" in values:
+        scene["noise_slope_db_oct"] = values["noise_slope_db_oct"]
+    modes = [[values[f"resonance{k}_hz"],
+              *(values.get(f"resonance{k}_{p}", default) for p, default in MODE_DEFAULTS.items())]
+             for k in (2, 3) if f"resonance{k}_hz" in values]
+    if modes:
+        scene["resonances"] = modes
+    levels = [values.get(f"shaft_harmonic_{k}x") for k in (1, 2, 3, 4)]
+    if any(v is not None for v in levels):
+        last = max(i for i, v in enumerate(levels) if v is not None)
+        scene["shaft_harmonics"] = [0.0 if v is None else v for v in levels[:last + 1]]
+    if "sensor_angle_deg" in values:
+        sensor = scene["sensors"][0]
+        name = sensor["name"] if sensor["name"] not in ("loaded", "unloaded") else "sensor"
+        scene["sensors"] = [{**sensor, "angle_deg": values["sensor_angle_deg"], "name": name}]
+
+
+def _check_realism_axes(axes: dict) -> None:
+    """Refuse a mode's damping or gain without its frequency, a third mode without a
+    second, and a drawn sensor angle with several sensors."""
+    for k in (2, 3):
+        given = [a for a in (f"resonance{k}_damping", f"resonance{k}_gain") if a in axes]
+        if given and f"resonance{k}_hz" not in axes:
+            raise ValueError(f"grid.{given[0]} needs grid.resonance{k}_hz, the mode's "
+                             "frequency (Hz)")
+    if "resonance3_hz" in axes and "resonance2_hz" not in axes:
+        raise ValueError("grid.resonance3_hz needs grid.resonance2_hz: give the extra "
+                         "modes in order")
+    if "sensor_angle_deg" in axes and len(axes.get("sensor", ["loaded"])) > 1:
+        raise ValueError(f"grid.sensor_angle_deg sets the angle of the one sensor, but "
+                         f"grid.sensor has {len(axes['sensor'])}: use one sensor, or give "
+                         "each sensor's angle_deg in its table")
 
 
 def read_grid(source) -> Grid:
@@ -494,6 +597,27 @@ def read_grid(source) -> Grid:
     the channels of each run. Axes left out take the :class:`~ballpass.Scene`
     defaults; ``bearing``, ``fault`` and ``rpm`` are required.
 
+    The realism axes (:data:`REALISM_AXES`) set the rest of the machine:
+    ``noise_slope_db_oct`` (slope of the background noise, dB/octave, in [-12, 12]),
+    ``resonance2_hz``/``_damping``/``_gain`` and ``resonance3_*`` (further structural
+    modes, ``Scene(resonances=...)``; damping 0.05 and gain 1 when left out),
+    ``shaft_harmonic_1x`` ... ``_4x`` (shaft-rate lines, m/s^2 each,
+    ``Scene(shaft_harmonics=...)``) and ``sensor_angle_deg`` (the angle of the one
+    sensor, degrees from the load line). Each is stored as a column of its own.
+
+    **Drawn axes.** Every numeric axis may instead be a distribution (see
+    :mod:`ballpass.datasets.distributions`): ``{uniform = [lo, hi]}``,
+    ``{log_uniform = [lo, hi]}``, ``{normal = [mean, sigma]}`` or ``{choice = [...]}``.
+    A drawn axis adds no points to the product; ``[dataset] draws = N`` (default 1)
+    gives each grid point N draws, each of ``repeats`` runs. Draw ``d`` of point ``p``
+    takes its values from its own seed, :func:`draw_seed` ``(seed, p * draws + d)``
+    (stored in the ``draw_seed`` column beside ``draw``; the drawn values are in their
+    columns and in the row's ``scene``, so :func:`~ballpass.datasets.regenerate` gives
+    the row bit for bit). A distribution is checked against its field's range before
+    any work (a normal reaching beyond it at 4 sigma is refused, not clipped), and
+    every grid point is validated with each drawn axis at its extremes. A grid
+    without drawn axes keeps its run ids, seeds and scenes.
+
     ``fault_engagement`` multiplies the ball points only: healthy, outer- and
     inner-race points appear once per combination of the other axes, with the
     :class:`~ballpass.Fault` default engagement 1 (a race defect is on the track on
@@ -504,9 +628,9 @@ def read_grid(source) -> Grid:
     refused without a ``"ball"`` fault (it would change nothing). Scenes with
     ``engagement < 1`` need a model that represents ``intermittent_faults`` (sr5,
     sr4, gearbox; ``model = "auto"`` picks one); :func:`~ballpass.datasets.generate`
-    refuses, before any work, a model that would ignore it. The grid has no per-run
-    random draws: list the engagements to cover, or give a range table, e.g.
-    ``{start = 0.2, stop = 0.7, step = 0.1}`` (docs/sim2real.md recommends 0.2-0.7 for
+    refuses, before any work, a model that would ignore it. List the engagements to
+    cover, give a range table, e.g. ``{start = 0.2, stop = 0.7, step = 0.1}``, or draw
+    them per run, ``{uniform = [0.2, 0.7]}`` (docs/sim2real.md recommends 0.2-0.7 for
     training sets meant for real machines).
 
     Examples
@@ -549,15 +673,21 @@ def read_grid(source) -> Grid:
             raise ValueError("give the model either as [dataset] model or as the grid.model "
                              "axis")
         del dataset["model"]
-    axes = {k: _axis_values(k, grid_raw[k]) for k in AXES if k in grid_raw}
+    axes = {k: _axis_values(k, grid_raw[k], dataset["fs"]) for k in AXES if k in grid_raw}
     _check_ball_axes(axes)
+    _check_realism_axes(axes)
+    if dataset.get("draws", 1) > 1 and not any(isinstance(v, Distribution)
+                                               for v in axes.values()):
+        raise ValueError(f"dataset.draws = {dataset['draws']} needs a drawn axis (e.g. "
+                         "resonance_hz = { uniform = [2000, 6000] }); without one every draw "
+                         "is the same: use dataset.repeats")
 
     _check_count(dataset, axes)
     points = _expand(dataset, axes)
     if "shard_size" not in dataset:
         run_bytes = 4 * len(axes.get("sensor", ["loaded"])) * max(
             1, round(dataset["duration_s"] * dataset["fs"]))
-        n_runs = len(points) * dataset["repeats"]
+        n_runs = len(points) * dataset["repeats"] * dataset.get("draws", 1)
         dataset["shard_size"] = max(1, min(_SHARD_BYTES // run_bytes, _MAX_SHARD_RUNS,
                                            -(-n_runs // _MIN_SHARDS)))
     return Grid(dataset=dataset, axes=axes, _points=points)
@@ -565,7 +695,8 @@ def read_grid(source) -> Grid:
 
 def _check_ball_axes(axes: dict) -> None:
     """Refuse engagements outside (0, 1] and an engagement axis without ball faults."""
-    for i, v in enumerate(axes.get("fault_engagement", ())):
+    engagements = axes.get("fault_engagement", ())
+    for i, v in enumerate(() if isinstance(engagements, Distribution) else engagements):
         if not 0.0 < v <= 1.0:
             raise ValueError(
                 f"grid.fault_engagement[{i}] = {v:g} is outside (0, 1]: it is the share of "
@@ -589,22 +720,52 @@ def _fault_axes_of(kind: str, axes) -> list[str]:
 def count_points(axes: dict) -> int:
     """Grid points of validated axes, counted without building them: healthy points do
     not multiply over the fault axes, race-fault points not over the ball-only ones."""
-    other = math.prod(len(v) for k, v in axes.items()
+    other = math.prod(_n_values(v) for k, v in axes.items()
                       if k not in _FAULT_AXES and k not in ("sensor", "fault"))
-    return other * sum(math.prod(len(axes[k]) for k in _fault_axes_of(kind, axes))
+    return other * sum(math.prod(_n_values(axes[k]) for k in _fault_axes_of(kind, axes))
                        for kind in axes["fault"])
+
+
+def _n_values(values) -> int:
+    """Points an axis adds to the product: a drawn axis adds none (one value per run)."""
+    return 1 if isinstance(values, Distribution) else len(values)
 
 
 def _check_count(dataset: dict, axes: dict) -> None:
     """Refuse a grid of more than :data:`MAX_RUNS` runs before expanding it."""
-    n_runs = count_points(axes) * dataset["repeats"]
+    n_runs = count_points(axes) * dataset["repeats"] * dataset.get("draws", 1)
     if n_runs > MAX_RUNS:
-        sizes = " x ".join(f"{len(v)} {k}" for k, v in axes.items()
-                           if len(v) > 1 and k != "sensor")
+        sizes = " x ".join(f"{_n_values(v)} {k}" for k, v in axes.items()
+                           if _n_values(v) > 1 and k != "sensor")
         raise ValueError(
             f"the grid has {n_runs:.3g} runs ({sizes or '1 point'}, x {dataset['repeats']} "
-            f"repeats); a dataset holds at most {MAX_RUNS:,} runs. Use fewer values or "
+            f"repeats x {dataset.get('draws', 1)} draws); a dataset holds at most "
+            f"{MAX_RUNS:,} runs. Use fewer values or "
             "repeats, or split the study into several datasets.")
+
+
+def drawn_axes(grid) -> dict[str, str]:
+    """The drawn axes of a grid, described: axis -> ``"uniform 2500 - 4500"``.
+
+    Parameters
+    ----------
+    grid : Grid or dict
+        A grid, or its :meth:`Grid.as_dict` form (as a dataset's manifest stores it).
+
+    Examples
+    --------
+    >>> from ballpass.datasets.grid import drawn_axes, read_grid
+    >>> grid = read_grid({"dataset": {"draws": 4},
+    ...                   "grid": {"bearing": "6205", "fault": "outer", "rpm": 1797,
+    ...                            "resonance_hz": {"uniform": [2500, 4500]}}})
+    >>> drawn_axes(grid), grid.n_runs
+    ({'resonance_hz': 'uniform 2500 - 4500'}, 4)
+    """
+    if isinstance(grid, Grid):
+        return {k: d.describe() for k, d in grid.distributions.items()}
+    fs = grid["dataset"]["fs"]
+    return {k: parse_distribution(k, v, fs).describe() for k, v in grid["grid"].items()
+            if is_distribution(v)}
 
 
 def grid_differences(stored: dict, new: dict, prefix: str = "") -> list[str]:
@@ -627,21 +788,28 @@ def grid_differences(stored: dict, new: dict, prefix: str = "") -> list[str]:
 
 
 def _expand(dataset: dict, axes: dict) -> tuple:
-    """Grid points as (model, scene kwargs) in product order; each validated as a Scene."""
+    """Grid points as (model, scene kwargs, axis values) in product order; each validated
+    as a Scene. A drawn axis takes its representative value here, and every point is
+    also validated with each drawn axis at its extremes in turn."""
     product_axes = [k for k in AXES if k in axes and k != "sensor"]
     other_axes = [k for k in product_axes if k not in _FAULT_AXES]
     sensors = axes.get("sensor", ["loaded"])
+    drawn = {k: v for k, v in axes.items() if isinstance(v, Distribution)}
+    listed = {k: [v.representative] if k in drawn else v for k, v in axes.items()}
     points = []
-    for combo in itertools.product(*(axes[k] for k in other_axes)):
+    for combo in itertools.product(*(listed[k] for k in other_axes)):
         values = dict(zip(other_axes, combo, strict=True))
         fault_axes = _fault_axes_of(values["fault"], product_axes)
-        for fcombo in itertools.product(*(axes[k] for k in fault_axes)):
+        for fcombo in itertools.product(*(listed[k] for k in fault_axes)):
             values_f = {**values, **dict(zip(fault_axes, fcombo, strict=True))}
             scene = _point_scene(dataset, sensors, values_f)
-            try:
-                scene_from_dict({**scene, "seed": 0})
-            except (TypeError, ValueError) as exc:
-                point = ", ".join(f"{k}={v!r}" for k, v in values_f.items())
-                raise ValueError(f"grid point ({point}): {exc}") from None
-            points.append((values_f.get("model") or dataset["model"], scene))
+            checks = [values_f] + [{**values_f, k: edge} for k, dist in drawn.items()
+                                   if k in values_f for edge in dist.extremes]
+            for check in checks:
+                try:
+                    scene_from_dict({**_point_scene(dataset, sensors, check), "seed": 0})
+                except (TypeError, ValueError) as exc:
+                    point = ", ".join(f"{k}={v!r}" for k, v in check.items())
+                    raise ValueError(f"grid point ({point}): {exc}") from None
+            points.append((values_f.get("model") or dataset["model"], scene, values_f))
     return tuple(points)

@@ -37,6 +37,7 @@ import numpy as np
 
 from .._resources import human_bytes
 from ..signalio import atomic_write
+from .grid import drawn_axes
 
 __all__ = ["load", "info", "read_manifest", "MANIFEST", "UNITS", "CorruptShardError", "human_bytes"]
 
@@ -566,6 +567,7 @@ def info(path) -> dict:
         "signal_length": manifest["signal_length"],
         "size_bytes": size,
         "features": has_features,
+        "drawn": drawn_axes(manifest["grid"]) if "grid" in manifest else {},
     }
     if meta is not None:
         out["labels"] = meta["label"].value_counts().sort_index()

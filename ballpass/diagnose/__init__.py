@@ -7,6 +7,7 @@ envelope_evidence     evidence of each fault family (BPFO, BPFI +- fr, 2xBSF +- 
 Explanation           which lines carried a decision, and how far above the background
 plot_explanation      the squared envelope spectrum behind a decision, its lines marked
 baseline_thresholds   each family's threshold from healthy recordings of the machine
+EvidenceTransformer   the diagnoser's evidence as features for learned models (no absolute units)
 
 Learned
 -------
@@ -51,6 +52,7 @@ _NAMES = {
     "plot_confusion": "report",
     "plot_explanation": "figure",
     "baseline_thresholds": "baseline",
+    "EvidenceTransformer": "invariant",
 }
 
 __all__ = sorted(_NAMES)

@@ -45,7 +45,7 @@ from threadpoolctl import threadpool_limits
 from tqdm.auto import tqdm
 
 from ..signalio import atomic_write
-from ._names import LABELS, MODELS, SPLITS
+from ._names import LABELS, MODELS, RECOMMENDED, SPLITS
 from .evidence import FAULT_FAMILIES
 from .pipelines import make_features, make_pipeline
 from .rules import EnvelopeDiagnoser
@@ -53,6 +53,8 @@ from .rules import EnvelopeDiagnoser
 __all__ = ["SPLITS", "MODELS", "BenchmarkResult", "split_indices", "run_benchmark"]
 
 _OPTIMISTIC = {"random"}
+#: the classes of the three-class (normal, inner, outer) score
+THREE_CLASSES = ("healthy", "outer", "inner")
 
 
 @dataclass
@@ -68,13 +70,23 @@ class BenchmarkResult:
         folds) and ``recall_<label>`` for each of :data:`~ballpass.diagnose.LABELS`
         (NaN when the class is absent from the test rows). Scores pool the
         out-of-fold predictions of all folds.
+        Also ``balanced_accuracy`` (the mean recall over the classes present: four
+        classes where all are), ``accuracy_3class`` (over the normal, outer- and
+        inner-race rows; a "ball" answer on them is an error) and
+        ``balanced_accuracy_3class`` (the mean recall of those three).
     confusion : dict of (str, str) to ndarray of int, shape (4, 4)
         Confusion matrix per (split, model); rows true, columns predicted, in the order
         of :data:`~ballpass.diagnose.LABELS`.
     predictions : pandas.DataFrame
         Every out-of-fold prediction: ``split``, ``model``, ``fold``, ``row`` (index in
         the test dataset: the real one for ``sim2real``), ``group``, ``y_true``,
-        ``y_pred``.
+        ``y_pred``, and ``file`` where the test rows have one (real recordings). One
+        row per test row and model: for ``sim2real``, the predictions of the first
+        training seed.
+    spread : pandas.DataFrame
+        ``sim2real`` only: the scores of every model for each training seed
+        (``seed`` = the classifiers' ``random_state``; the envelope diagnoser has no
+        seed and appears once), columns as ``table``.
     skipped : dict of str to str
         Splits that could not be formed on this dataset, with the reason.
     info : dict
@@ -109,6 +121,7 @@ class BenchmarkResult:
     predictions: pd.DataFrame
     skipped: dict = field(default_factory=dict)
     info: dict = field(default_factory=dict)
+    spread: pd.DataFrame = field(default_factory=pd.DataFrame)
 
 
 def _check_meta(meta: pd.DataFrame, n: int, name: str) -> None:
@@ -247,6 +260,14 @@ def _scores(y_true, y_pred) -> dict:
     }
     row.update({f"recall_{c}": (r if c in present else np.nan)
                 for c, r in zip(LABELS, recall, strict=True)})
+    row["balanced_accuracy"] = float(np.mean([row[f"recall_{c}"] for c in present]))
+    three = np.isin(y_true, THREE_CLASSES)
+    row["accuracy_3class"] = (accuracy_score(np.asarray(y_true)[three],
+                                             np.asarray(y_pred)[three])
+                              if three.any() else np.nan)
+    present3 = [c for c in THREE_CLASSES if c in present]
+    row["balanced_accuracy_3class"] = (float(np.mean([row[f"recall_{c}"] for c in present3]))
+                                       if present3 else np.nan)
     return row
 
 
@@ -309,6 +330,12 @@ def _evidence_rows(diagnoser: EnvelopeDiagnoser):
     return compute
 
 
+def _pipeline_of(model: str, features: str) -> tuple[str, str]:
+    """(classifier, feature set) of a learned model: ``"recommended"`` is
+    :data:`~ballpass.diagnose._names.RECOMMENDED` whatever ``features`` is."""
+    return RECOMMENDED if model == "recommended" else (model, features)
+
+
 def _fit_predict(model, train, test, test_set, meta, rows_of, diagnoser, features,
                  random_state):
     """Fit ``model`` on the simulated ``train`` rows and predict the ``test`` rows of
@@ -323,12 +350,13 @@ def _fit_predict(model, train, test, test_set, meta, rows_of, diagnoser, feature
         test_ev = rows_of["evidence", test_set][test]
         margins = est._decision({f: test_ev[:, i] for i, f in enumerate(FAULT_FAMILIES)})
         return est.classes_[margins.argmax(axis=1)]
-    est = clone(make_pipeline(model, features=features, random_state=random_state)[1:])
+    name, feature_set = _pipeline_of(model, features)
+    est = clone(make_pipeline(name, features=feature_set, random_state=random_state)[1:])
     classifier = est.steps[-1][1]
     if hasattr(classifier, "n_neighbors"):  # kNN: no more neighbours than training rows
         classifier.set_params(n_neighbors=min(classifier.n_neighbors, len(train)))
-    return est.fit(rows_of["features", "sim"][train], y_tr).predict(
-        rows_of["features", test_set][test])
+    rows = f"features_{feature_set}"
+    return est.fit(rows_of[rows, "sim"][train], y_tr).predict(rows_of[rows, test_set][test])
 
 
 def _save_npz(path: Path, values: np.ndarray, finished: np.ndarray) -> None:
@@ -411,6 +439,7 @@ def run_benchmark(
     band=None,
     harmonics: int = 3,
     random_state=0,
+    seeds: int = 5,
     progress: bool = False,
     checkpoint=None,
 ) -> BenchmarkResult:
@@ -429,7 +458,9 @@ def run_benchmark(
     splits : sequence of str, optional
         Names from :data:`SPLITS`; default all that the data can form.
     models : sequence of str, optional
-        Names from :data:`MODELS`; default all.
+        Names from :data:`MODELS`; default all. ``"recommended"`` is the pipeline
+        :data:`~ballpass.diagnose._names.RECOMMENDED` (its own feature set, whatever
+        ``features`` is).
     features : str, optional
         Feature set of the pipelines (default ``"dimensionless"``; see
         :func:`ballpass.diagnose.make_features`).
@@ -442,6 +473,12 @@ def run_benchmark(
         Harmonics of each fault line (default 3).
     random_state : int or None, optional
         Seed of the fold shuffling and the randomised classifiers (default 0).
+    seeds : int, optional
+        Training seeds of the ``sim2real`` split (default 5): each learned model is
+        trained with ``random_state``, ``random_state + 1``, ... and every seed's scores
+        go to :attr:`BenchmarkResult.spread`; the table and the predictions are the
+        first seed's. A new simulated dataset (another root seed of the grid) moves the
+        scores more: benchmark several for that.
     progress : bool, optional
         Say on stderr what work lies ahead, and show a progress bar over the rows'
         features and diagnoser evidence, then over the folds (default False).
@@ -494,6 +531,8 @@ def run_benchmark(
             or n_splits < 2:
         raise ValueError(f"n_splits (--folds) must be an int >= 2: k-fold cross-validation "
                          f"needs two folds at least, got {n_splits!r}")
+    if isinstance(seeds, bool) or not isinstance(seeds, (int, np.integer)) or seeds < 1:
+        raise ValueError(f"seeds (--train-seeds) must be an int >= 1, got {seeds!r}")
     X = np.asarray(X)
     _check_meta(meta, len(X), "meta")
     meta = meta.reset_index(drop=True)
@@ -538,14 +577,15 @@ def run_benchmark(
         plan.append((split, folds, "sim"))
 
     settings = {"features": features, "band": band, "harmonics": harmonics,
-                "n_splits": n_splits, "random_state": random_state}
+                "n_splits": n_splits, "random_state": random_state, "seeds": seeds}
     state = _Checkpoint(checkpoint, datasets, settings)
     learned = [m for m in models if m != "envelope"]
     diagnoser = EnvelopeDiagnoser(bearing, fs=fs, band=band, harmonics=harmonics)
-    union = make_features(features, bearing=bearing, fs=fs, band=band, harmonics=harmonics)
     per_row = []  # (name, dataset, function of (x, rpm) -> per-row values)
-    if learned:
-        per_row += [("features", k, _union_rows(union)) for k in datasets]
+    for feature_set in dict.fromkeys(_pipeline_of(m, features)[1] for m in learned):
+        union = make_features(feature_set, bearing=bearing, fs=fs, band=band,
+                              harmonics=harmonics)
+        per_row += [(f"features_{feature_set}", k, _union_rows(union)) for k in datasets]
     if "envelope" in models:
         per_row += [("evidence", k, _evidence_rows(diagnoser)) for k in datasets]
     done = {(split, model): state.predictions(split, model)
@@ -563,7 +603,7 @@ def run_benchmark(
                    f"{len(plan)} splits)"
                    + (f"; {n_done} fits resumed from {checkpoint}" if n_done else ""),
                    file=sys.stderr)
-    interrupted, rows_of, predictions_of = False, {}, {}
+    interrupted, rows_of, predictions_of, spread = False, {}, {}, []
     try:
         for name, key, compute in per_row:
             x, m = datasets[key]
@@ -589,10 +629,27 @@ def run_benchmark(
                     parts.append(pd.DataFrame({
                         "split": split, "model": model, "fold": k, "row": test,
                         "group": test_meta["group"].to_numpy()[test],
-                        "y_true": test_meta["label"].to_numpy()[test], "y_pred": y_pred}))
+                        "y_true": test_meta["label"].to_numpy()[test], "y_pred": y_pred,
+                        **({"file": test_meta["file"].to_numpy()[test]}
+                           if "file" in test_meta else {})}))
                     bar.update()
                 predictions_of[split, model] = pd.concat(parts, ignore_index=True)
                 state.save_predictions(split, model, predictions_of[split, model])
+        for split, folds, test_set in plan:  # sim2real: the spread over training seeds
+            if split != "sim2real":
+                continue
+            (train, test), = folds
+            for model in models:
+                pred = predictions_of[split, model]
+                spread.append({"split": split, "model": model, "seed": random_state,
+                               **_scores(pred["y_true"], pred["y_pred"])})
+                for k in range(1, seeds) if model != "envelope" else ():
+                    seed = None if random_state is None else random_state + k
+                    with threadpool_limits(1):
+                        y = _fit_predict(model, train, test, test_set, meta, rows_of,
+                                         diagnoser, features, seed)
+                    spread.append({"split": split, "model": model, "seed": seed,
+                                   **_scores(pred["y_true"], y)})
     except KeyboardInterrupt:  # keep what is finished: a partial report that says so
         interrupted = True
         for pair, pred in done.items():
@@ -617,6 +674,7 @@ def run_benchmark(
         "rows": len(X), "groups": int(meta["group"].nunique()), "bearing": bearing, "fs": fs,
         "few_groups": few,
         "samples_per_row": int(X.shape[1]), "features": features, "n_splits": n_splits,
+        "seeds": seeds if "sim2real" in splits else 1,
         "labels": meta["label"].value_counts().to_dict(),
     }
     if interrupted:
@@ -632,4 +690,5 @@ def run_benchmark(
         predictions=pd.concat(predictions, ignore_index=True) if predictions else pd.DataFrame(),
         skipped=skipped,
         info=info,
+        spread=pd.DataFrame(spread),
     )

@@ -39,6 +39,7 @@ from sklearn.svm import SVC
 from ..features import INDICATORS
 from ..features.transformers import FaultBandTransformer, IndicatorTransformer
 from ._names import CLASSIFIERS, FEATURE_SETS
+from .invariant import EvidenceTransformer
 
 __all__ = ["CLASSIFIERS", "FEATURE_SETS", "make_classifier", "make_features", "make_pipeline"]
 
@@ -51,6 +52,7 @@ _CONTENT = {
     "all": (INDICATORS, True),
     "bands": (None, True),
     "indicators": (INDICATORS, False),
+    "evidence": (None, False),  # the EvidenceTransformer alone
 }
 
 
@@ -119,7 +121,13 @@ def make_features(
           transfers between machines and from simulation to measurement;
         * ``"all"``: also RMS, peak and peak-to-peak (m/s^2);
         * ``"bands"``: the fault-band levels only;
-        * ``"indicators"``: the statistical indicators only.
+        * ``"indicators"``: the statistical indicators only;
+        * ``"evidence"``: what the envelope diagnoser reads, as features
+          (:class:`~ballpass.diagnose.EvidenceTransformer`): each fault family's
+          evidence and line levels in dB over their local background, in the band its
+          own evidence picks, and the squared envelope spectrum on an order axis in dB
+          over its median. No value has a unit of the machine; ``band`` and
+          ``separate`` do not apply.
     bearing : str or Bearing, optional
         For the fault bands (default ``"6205"``).
     fs : float, optional
@@ -152,6 +160,11 @@ def make_features(
         raise ValueError(f"features must be one of {sorted(FEATURE_SETS)}, got {features!r}")
     indicators, bands = _CONTENT[features]
     parts = []
+    if features == "evidence":
+        ev = EvidenceTransformer(bearing, fs=fs, rpm=rpm, harmonics=harmonics)
+        with sklearn.config_context(enable_metadata_routing=True):
+            ev.set_transform_request(rpm=True)
+        parts.append(("evidence", ev))
     if indicators is not None:
         parts.append(("indicators", IndicatorTransformer(indicators=list(indicators))))
     if bands:

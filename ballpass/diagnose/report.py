@@ -11,13 +11,13 @@ from pathlib import Path
 
 import numpy as np
 
-from ._names import LABELS, MODELS, SPLITS
+from ._names import CLASSIFIERS, FEATURE_SETS, LABELS, MODELS, RECOMMENDED, SPLITS
 from .benchmark import MIN_GROUPS_PER_CLASS, BenchmarkResult
 
 __all__ = ["plot_confusion", "markdown_table", "write_report"]
 
 _COLUMNS = ["split", "model", "folds", "n_test", "accuracy", "accuracy_fold_min",
-            "accuracy_fold_max", "macro_f1",
+            "accuracy_fold_max", "balanced_accuracy", "macro_f1",
             *(f"recall_{c}" for c in LABELS)]
 
 
@@ -101,6 +101,59 @@ def _figure(result: BenchmarkResult, split: str, path: Path) -> None:
     fig.savefig(path, dpi=110)
 
 
+def _spread(values) -> str:
+    """Median and range of a score over training seeds: ``0.85 (0.80-0.90)``."""
+    values = np.asarray(values, dtype=float)
+    if np.isnan(values).all():
+        return "–"
+    lo, mid, hi = np.nanmin(values), np.nanmedian(values), np.nanmax(values)
+    return f"{mid:.3f}" if lo == hi else f"{mid:.3f} ({lo:.3f}–{hi:.3f})"
+
+
+def sim2real_table(result: BenchmarkResult):
+    """The simulation-to-real scores per model: three classes (normal, outer, inner; a
+    "ball" answer on them counts as an error) and four, median and range over the
+    training seeds (:attr:`BenchmarkResult.spread`), and each class's recall.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per model; empty without a ``sim2real`` split.
+    """
+    import pandas as pd
+
+    spread = result.spread
+    if not len(spread):
+        return pd.DataFrame()
+    rows = []
+    for model, part in spread[spread["split"] == "sim2real"].groupby("model", sort=False):
+        rows.append({
+            "model": model,
+            "seeds": len(part),
+            "3-class accuracy": _spread(part["accuracy_3class"]),
+            "3-class balanced": _spread(part["balanced_accuracy_3class"]),
+            **{f"recall {c}": _spread(part[f"recall_{c}"]) for c in LABELS},
+            "4-class balanced": _spread(part["balanced_accuracy"]),
+        })
+    return pd.DataFrame(rows)
+
+
+def pipeline_description(model: str, features: str) -> str:
+    """How a benchmark model is built, step by step, in words.
+
+    Examples
+    --------
+    >>> from ballpass.diagnose.report import pipeline_description
+    >>> pipeline_description("knn", "bands")         # doctest: +ELLIPSIS
+    '`bands` features (fault-band SES levels only (dB)) -> median imputation -> ...'
+    """
+    if model == "envelope":
+        return MODELS["envelope"]
+    name, feature_set = RECOMMENDED if model == "recommended" else (model, features)
+    return (f"`{feature_set}` features ({FEATURE_SETS[feature_set]}) -> median imputation "
+            f"-> standard scaling -> {CLASSIFIERS[name]}")
+
+
 def write_report(result: BenchmarkResult, out_dir, *, title: str = "Classifier benchmark"
                  ) -> dict[str, Path]:
     """Write a benchmark as ``results.md``, ``results.csv``, ``predictions.csv`` and PNGs.
@@ -146,6 +199,9 @@ def write_report(result: BenchmarkResult, out_dir, *, title: str = "Classifier b
     table = result.table
     table.to_csv(paths["csv"], index=False)
     result.predictions.to_csv(paths["predictions"], index=False)
+    if len(result.spread):
+        paths["spread"] = out / "sim2real_seeds.csv"
+        result.spread.to_csv(paths["spread"], index=False)
 
     info = result.info
     lines = [f"# {title}", ""]
@@ -176,6 +232,14 @@ def write_report(result: BenchmarkResult, out_dir, *, title: str = "Classifier b
         tag = " — OPTIMISTIC, not an estimate of real performance" if split == "random" else ""
         lines += [f"## `{split}`{tag}", "", SPLITS[split] + ".", "",
                   markdown_table(part[_COLUMNS[1:]]), ""]
+        if split == "sim2real" and len(result.spread):
+            lines += ["Three classes (normal, outer, inner; a \"ball\" answer on them is an "
+                      "error) and four; median (range) over "
+                      f"{info.get('seeds', 1)} training seeds (the classifiers' random "
+                      "state; a new simulated dataset moves scores more). Every prediction "
+                      "of the first seed is in `predictions.csv`, every seed's scores in "
+                      "`sim2real_seeds.csv`.", "",
+                      markdown_table(sim2real_table(result)), ""]
         png = out / f"confusion_{split}.png"
         _figure(result, split, png)
         paths[f"confusion_{split}"] = png
@@ -184,7 +248,7 @@ def write_report(result: BenchmarkResult, out_dir, *, title: str = "Classifier b
         lines += ["## Splits not formed", ""]
         lines += [f"* `{s}`: {why}" for s, why in result.skipped.items()]
         lines.append("")
-    lines += ["## Models", ""] + [f"* `{m}`: {MODELS[m]}"
+    lines += ["## Models", ""] + [f"* `{m}`: {pipeline_description(m, info['features'])}"
                                   for m in dict.fromkeys(table.get("model", ()))]
     paths["markdown"].write_text("\n".join(lines) + "\n")
     return paths
