@@ -631,17 +631,25 @@ def _expand(dataset: dict, axes: dict) -> tuple:
     product_axes = [k for k in AXES if k in axes and k != "sensor"]
     other_axes = [k for k in product_axes if k not in _FAULT_AXES]
     sensors = axes.get("sensor", ["loaded"])
+
+    def checked(values_f: dict) -> dict:
+        scene = _point_scene(dataset, sensors, values_f)
+        try:
+            scene_from_dict({**scene, "seed": 0})
+        except (TypeError, ValueError) as exc:
+            point = ", ".join(f"{k}={v!r}" for k, v in values_f.items())
+            raise ValueError(f"grid point ({point}): {exc}") from None
+        return scene
+
+    # the last point first: the extremes of every axis, where a bad value usually sits,
+    # are refused at once rather than after building every point before them
+    last = {k: axes[k][-1] for k in other_axes}
+    checked({**last, **{k: axes[k][-1] for k in _fault_axes_of(last["fault"], product_axes)}})
     points = []
     for combo in itertools.product(*(axes[k] for k in other_axes)):
         values = dict(zip(other_axes, combo, strict=True))
         fault_axes = _fault_axes_of(values["fault"], product_axes)
         for fcombo in itertools.product(*(axes[k] for k in fault_axes)):
             values_f = {**values, **dict(zip(fault_axes, fcombo, strict=True))}
-            scene = _point_scene(dataset, sensors, values_f)
-            try:
-                scene_from_dict({**scene, "seed": 0})
-            except (TypeError, ValueError) as exc:
-                point = ", ".join(f"{k}={v!r}" for k, v in values_f.items())
-                raise ValueError(f"grid point ({point}): {exc}") from None
-            points.append((values_f.get("model") or dataset["model"], scene))
+            points.append((values_f.get("model") or dataset["model"], checked(values_f)))
     return tuple(points)
