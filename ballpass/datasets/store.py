@@ -247,6 +247,8 @@ def shard_problem(path: Path, shard: dict, key: str = "sha256") -> str | None:
     """
     import pyarrow.parquet as pq
 
+    if path.is_symlink() or path.parent.is_symlink():  # could point anywhere: not read
+        return "is a symbolic link (ballpass writes plain files in the dataset folder)"
     if not path.is_file():
         return "is missing (deleted or moved)"
     expected = shard.get(key)
