@@ -62,7 +62,7 @@ def test_huge_fs_is_cheap_not_a_bomb():
     shaft guard has nothing to do (it used to enumerate 1.6e10 harmonics: 3.65 GiB)."""
     t = time.perf_counter()
     feats = F.fault_band_features(X, 1e12, "6205", 1797)
-    assert time.perf_counter() - t < 2.0      # about 0.03 s; the bomb took minutes
+    assert time.perf_counter() - t < 5.0      # about 0.03 s (0.7 s loaded); the bomb took minutes
     # every fault line lies in the first bin of a 4e7 Hz-wide grid: no background beside
     # it (cut by 0 Hz), so the levels are those of the edge rule, finite
     assert all(np.isfinite(v) for v in feats.values())
@@ -112,4 +112,4 @@ def test_grid_with_an_invalid_last_point_refused_before_building_the_others():
     with pytest.raises(ValueError, match=r"rpm=-5.0, radial_load_n=333332.0, .*\): rpm "
                                          "must be"):
         read_grid(grid)
-    assert time.perf_counter() - t < 2.0
+    assert time.perf_counter() - t < 5.0   # 1 s loaded; building the points first took 3 min
