@@ -57,8 +57,8 @@ def test_parquet_signal_with_flipped_bytes_is_refused_naming_the_file(tmp_path, 
 
 
 @pytest.mark.parametrize("n, says", [
-    (5, r"5 samples, too short to analyse: .* at least 256 samples \(0.0213 s at 12000 Hz\)"),
-    (255, "255 samples, too short"),
+    (5, r"5 samples, too short to analyse: .* at least 64 samples \(0.00533 s at 12000 Hz\)"),
+    (63, "63 samples, too short"),
     (12_000, r"1 NaN or inf sample\(s\), the first at sample 100 \(0.00833333 s\)"),
 ])
 def test_short_or_nan_signal_refused_by_features_and_plot_naming_the_file(
@@ -77,7 +77,7 @@ def test_short_or_nan_signal_refused_by_features_and_plot_naming_the_file(
 
 
 def test_signal_of_the_minimum_length_is_analysed(tmp_path, capsys):
-    path = write_signal(tmp_path / "ok.npz", noise(256), FS)
+    path = write_signal(tmp_path / "ok.npz", noise(64), FS)
     assert main(["features", str(path)]) == 0
     assert capsys.readouterr().out.count("\n") == 2           # header and one row
 

@@ -149,3 +149,24 @@ def test_info_says_interrupted_for_a_dead_run(copy):
     with open(copy / ".lock", "a") as fh:                # a live generate holds the lock
         fcntl.flock(fh, fcntl.LOCK_EX)
         assert info(copy)["status"] == "running"
+
+
+@pytest.mark.parametrize("link", ["_features", "part-00001.parquet"])
+def test_symbolic_links_in_the_folder_are_never_followed_to_delete(copy, tmp_path, link):
+    """A `_features` folder or a shard that is a link to elsewhere: a resume would
+    delete the damaged shards through it (outside the folder); refused, canary kept."""
+    outside = tmp_path / "outside"
+    outside.mkdir()
+    canary = outside / "part-00001.parquet"
+    canary.write_bytes(b"canary")
+    if link == "_features":
+        edit(copy, lambda m: m["shards"][1].update(features_complete=False))
+    else:
+        (copy / link).unlink()
+    (copy / link).symlink_to(outside if link == "_features" else canary)
+    with pytest.raises(ValueError, match=f"symbolic links \\({link}\\)"):
+        generate(GRID, copy, progress=False)
+    assert canary.read_bytes() == b"canary"
+    if link != "_features":
+        with pytest.raises(CorruptShardError, match="is a symbolic link"):
+            load(copy)

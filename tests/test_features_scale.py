@@ -94,7 +94,7 @@ def test_bandpass_scales_and_refuses_unstable_orders(x):
     np.testing.assert_allclose(F.bandpass(x * 1e-300, FS, (2000, 4000)) / 1e-300, y,
                                rtol=1e-9, atol=1e-12)
     # this band's order-98 sections lost their accuracy: unit noise came out at RMS
-    # 2.5e12; a Butterworth's gain never exceeds 1, so the check refuses it
+    # 2.5e12 where a Butterworth's gain never exceeds 1; refused at the design
     noise = np.random.default_rng(0).standard_normal(12_000)
     with pytest.raises(ValueError, match=r"order=98: .* numerically unstable .* use a lower "
                                          "order"):

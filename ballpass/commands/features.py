@@ -260,9 +260,10 @@ def load_records(args) -> list[Signal]:
 
 
 #: Fewest samples a signal needs for ``features``, ``plot`` and ``diagnose``: the fast
-#: kurtogram's first band split (:func:`~ballpass.features.kurtogram._default_nlevel`
-#: keeps about 64 envelope samples in its finest band), below which no band is chosen.
-MIN_SAMPLES = 256
+#: kurtogram estimates each band's kurtosis from at least about 64 samples of its
+#: complex envelope (:func:`~ballpass.features.kurtogram._default_nlevel`); a shorter
+#: signal has fewer even in its one, whole band.
+MIN_SAMPLES = 64
 
 
 def check_analysable(signals: list[Signal], source) -> None:

@@ -495,6 +495,12 @@ def _check_existing(folder: Path, grid: Grid, fingerprint: dict) -> dict | None:
         The folder exists, is not empty and is not a ballpass dataset.
     """
     manifest = read_manifest(folder) if folder.is_dir() else None
+    links = [p.name for p in (folder / FEATURES_DIR, *folder.glob("part-*.parquet"))
+             if p.is_symlink()] if folder.is_dir() else []
+    if links:   # a resume deletes damaged shards: never through a link to elsewhere
+        raise ValueError(f"{folder} holds symbolic links ({', '.join(sorted(links))}) where "
+                         "ballpass writes plain files; a resume could delete what they point "
+                         "to. Nothing was done. Generate into a new --out folder.")
     if manifest is not None:
         untouched = "Nothing was done; the folder is untouched."
         if manifest["grid"] != grid.as_dict():

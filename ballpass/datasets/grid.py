@@ -796,20 +796,30 @@ def _expand(dataset: dict, axes: dict) -> tuple:
     sensors = axes.get("sensor", ["loaded"])
     drawn = {k: v for k, v in axes.items() if isinstance(v, Distribution)}
     listed = {k: [v.representative] if k in drawn else v for k, v in axes.items()}
+
+    def checked(values_f: dict) -> dict:
+        """The point's scene, validated, and with each drawn axis at its extremes."""
+        scene = _point_scene(dataset, sensors, values_f)
+        checks = [values_f] + [{**values_f, k: edge} for k, dist in drawn.items()
+                               if k in values_f for edge in dist.extremes]
+        for check in checks:
+            try:
+                scene_from_dict({**_point_scene(dataset, sensors, check), "seed": 0})
+            except (TypeError, ValueError) as exc:
+                point = ", ".join(f"{k}={v!r}" for k, v in check.items())
+                raise ValueError(f"grid point ({point}): {exc}") from None
+        return scene
+
+    # the last point first: the extremes of every axis, where a bad value usually sits,
+    # are refused at once rather than after building every point before them
+    last = {k: listed[k][-1] for k in other_axes}
+    checked({**last, **{k: listed[k][-1] for k in _fault_axes_of(last["fault"], product_axes)}})
     points = []
     for combo in itertools.product(*(listed[k] for k in other_axes)):
         values = dict(zip(other_axes, combo, strict=True))
         fault_axes = _fault_axes_of(values["fault"], product_axes)
         for fcombo in itertools.product(*(listed[k] for k in fault_axes)):
             values_f = {**values, **dict(zip(fault_axes, fcombo, strict=True))}
-            scene = _point_scene(dataset, sensors, values_f)
-            checks = [values_f] + [{**values_f, k: edge} for k, dist in drawn.items()
-                                   if k in values_f for edge in dist.extremes]
-            for check in checks:
-                try:
-                    scene_from_dict({**_point_scene(dataset, sensors, check), "seed": 0})
-                except (TypeError, ValueError) as exc:
-                    point = ", ".join(f"{k}={v!r}" for k, v in check.items())
-                    raise ValueError(f"grid point ({point}): {exc}") from None
-            points.append((values_f.get("model") or dataset["model"], scene, values_f))
+            points.append((values_f.get("model") or dataset["model"], checked(values_f),
+                           values_f))
     return tuple(points)

@@ -248,6 +248,11 @@ def shard_problem(path: Path, shard: dict, key: str = "sha256") -> str | None:
     """
     import pyarrow.parquet as pq
 
+    # a shard or feature folder inside the dataset that links elsewhere is not read (a
+    # link to the whole dataset folder is the user's own choice, and fine)
+    if path.is_symlink() or (path.parent.name in (FEATURES_DIR, LEGACY_FEATURES_DIR)
+                             and path.parent.is_symlink()):
+        return "is a symbolic link (ballpass writes plain files in the dataset folder)"
     if not path.is_file():
         return "is missing (deleted or moved)"
     expected = shard.get(key)
