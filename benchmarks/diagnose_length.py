@@ -1,7 +1,7 @@
 """How long a record the envelope diagnoser needs: the sim-to-real goal's real segments
 cut to 1, 2, 2.5 and 5 s and whole.
 
-The sim-to-real goal of issue 9 (docs/sim2real.md) counts one-second segments of the
+The sim-to-real goal (docs/sim2real.md) counts one-second segments of the
 CWRU records: the drive-end channel of the drive-end files, the fan-end channel of the
 fan-end files, and the healthy recording at both. One second holds about 12 cage periods
 and 1 Hz bins; the faint out-of-zone outer-race records of the fan end show their lines

@@ -170,7 +170,7 @@ def markdown(table, ceiling, seconds) -> str:
         "",
         *[f"- **{k}**: {d}" for k, (_, d) in VARIANTS.items()],
         "",
-        "## The goal quantities of issue 9",
+        "## The goal quantities",
         "",
         _md(totals(table)),
         "",

@@ -13,7 +13,7 @@ bands in one call) is timed side by side with one *naive scipy SES* of the same 
 ``numpy.fft.rfft`` of the squared envelope) and with the separate calls it replaces, in
 ``--rounds`` interleaved rounds (rotating order, so a change of the machine's load hits
 every method alike); it reports medians with their range and the per-round ratio to the
-naive SES. Target (issue 14, P3): envelope_analysis <= 2x the naive SES.
+naive SES. Target: envelope_analysis <= 2x the naive SES.
 
 Writes ``benchmarks/results/features_speed.md``, ``features_speed.png`` and
 ``envelope_analysis_speed.png``.
@@ -41,7 +41,7 @@ from ballpass import features as F
 RESULTS = Path(__file__).parent / "results"
 FS, RPM, F_RES = 48_000.0, 1797.0, 15_000.0
 TARGET_MS = 20.0
-#: issue 14, P3: envelope_analysis at most this many times one naive scipy SES
+#: target: envelope_analysis at most this many times one naive scipy SES
 TARGET_RATIO = 2.0
 
 
@@ -148,7 +148,7 @@ def write_side_by_side(times: dict[str, list[float]], number: int,
     verdict = statistics.median(ratios[names[2]]) <= TARGET_RATIO
     lines = [
         "",
-        "## envelope_analysis against one naive scipy SES (issue 14, P3)",
+        "## envelope_analysis against one naive scipy SES",
         "",
         f"Side by side in one run: {rounds} interleaved rounds (rotating order) of {number} "
         f"calls each (load average {load[0]:.1f} before, {load[1]:.1f} after); ms per call, "

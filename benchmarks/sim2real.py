@@ -34,7 +34,7 @@ against the largest contact load of the run. ``--silent`` decides what training 
 ``keep`` (the label, as before), ``drop`` (the run is left out) or ``healthy`` (the run
 is labelled by what its signal carries).
 
-Scores: the goal of issue 9 counts the **normal, inner- and outer-race segments**
+Scores: the goal counts the **normal, inner- and outer-race segments**
 together (accuracy and the recall of each of the three); ball segments are reported
 apart (their recall), and a ball prediction on a normal/inner/outer segment counts as
 an error.

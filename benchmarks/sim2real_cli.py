@@ -174,7 +174,7 @@ def markdown(table: pd.DataFrame, seconds: float) -> str:
         "`ballpass benchmark --real` do; tested on the CWRU drive-end channel of the "
         "drive-end files and the fan-end channel of the fan-end files, with the healthy "
         "recording at each (140 normal, inner- and outer-race segments of 1 s, both ends "
-        "pooled). Each seed is a new simulated training set. Goal of issue 9: accuracy at "
+        "pooled). Each seed is a new simulated training set. The goal: accuracy at "
         "least 0.85 with every recall at least 0.8. `LORO-selected`: each record is "
         "predicted by the learned pipeline that scores best on all the other records "
         "(per seed), an honest score of choosing the pipeline on real data.",

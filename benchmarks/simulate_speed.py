@@ -85,7 +85,7 @@ def write(records: list[dict], duration: float, repeats: int) -> Path:
         f"on {machine()}; the machine was shared, so the minimum over repeats is "
         "reported.",
         "",
-        f"Target (issue 6): 1 s of sr5 output at <= {TARGET_ERROR:g} relative error in "
+        f"Target: 1 s of sr5 output at <= {TARGET_ERROR:g} relative error in "
         f"<= {TARGET_MS:g} ms on one core.",
         "",
         "| scene | solver | setting | ms per simulated s | of which integration | steps "

@@ -1,4 +1,4 @@
-"""sr5 against a naive numba RK4 of the same model, side by side (issue 14, goal P1).
+"""sr5 against a naive numba RK4 of the same model, side by side.
 
 The naive baseline integrates the full sr5 state (shaft, pedestal, resonator) with the
 model's own right-hand side (``BearingModel.rhs``'s kernel, :func:`ballpass.simulate.
@@ -44,7 +44,7 @@ from ballpass.simulate._sr5_driver import build  # noqa: E402
 
 RESULTS = Path(__file__).parent / "results"
 FAULTS = ["healthy", "outer", "inner", "ball"]
-#: issue 14, P1: sr5 at most this fraction of the naive RK4, at error <= TARGET_ERROR
+#: target: sr5 at most this fraction of the naive RK4, at error <= TARGET_ERROR
 TARGET_RATIO, TARGET_ERROR = 0.10, 1e-3
 #: the former default step, eight internal grid intervals at 48 kHz (omega dt = 0.35)
 FORMER_DT = 8 / (OVERSAMPLE * 48_000.0)
@@ -192,7 +192,7 @@ def write(runs: pd.DataFrame, duration: float, rounds: int) -> Path:
         "dt = 1/(4 fs), output at every step, same anti-alias decimation. Error: relative "
         "L2 of the output against dopri5 at rtol 1e-10.",
         "",
-        f"Goal P1 of issue 14: error <= {TARGET_ERROR:g} at <= {TARGET_RATIO:g}x the naive "
+        f"Goal: error <= {TARGET_ERROR:g} at <= {TARGET_RATIO:g}x the naive "
         "RK4.",
         "",
         "| scene | method | error | wall ms per simulated s | ratio to naive (wall) | "

@@ -63,7 +63,7 @@ DT_DEFAULT_OMEGA = 0.35
 #: keeps the output's relative L2 error below 1e-3 on the work-precision scenes and
 #: the 1797 rpm speed scenes (6205 at 500 N: omega dt = 0.26, six grid intervals at
 #: 48 kHz; errors 6e-4 to 7e-4, against 2e-3 to 3e-3 at the former 0.35, which the
-#: heavier shaft of issue 9 had stretched to eight intervals; benchmarks/sr5_speed.py)
+#: heavier 3.26 kg shaft had stretched to eight intervals; benchmarks/sr5_speed.py)
 DT_SR5_OMEGA = 0.3
 
 

@@ -66,8 +66,8 @@ References: P. D. McFadden, J. D. Smith, "Model for the vibration produced by a 
 point defect in a rolling element bearing", J. Sound Vib. 96 (1984) 69-82; D. Ho,
 R. B. Randall, "Optimisation of bearing diagnostic techniques using simulated and
 actual bearing fault signals", MSSP 14 (2000) 763-788; the phenomenological
-bearing-signal simulators of D'Elia, Cocconcelli, Buzzoni et al. (as cited by issue 10;
-none of their papers was at hand to check details against).
+bearing-signal simulators of D'Elia, Cocconcelli, Buzzoni et al. (as cited in the
+literature; none of their papers was at hand to check details against).
 """
 
 from __future__ import annotations

@@ -78,8 +78,8 @@ class SR5Parameters:
     ----------
     shaft_mass : float
         m_s, shaft and inner ring, kg. Default 3.26, the value of Ruan et al.'s public
-        Modelica implementation of the Sawalhi-Randall model (as quoted in issue 9 of
-        this project; the 1.0 kg used before had no source).
+        Modelica implementation of the Sawalhi-Randall model (as quoted to
+        us; the 1.0 kg used before had no source).
     pedestal_mass : float
         m_p, pedestal and outer ring, kg. Default 6.64 (Ruan et al., as above; was 6.0).
     shaft_stiffness, shaft_damping : float
