@@ -385,13 +385,21 @@ class _Checkpoint:
             digest.update(name.encode())
             digest.update(np.ascontiguousarray(x).tobytes())
             digest.update(m[["label", "group", "rpm"]].to_csv(index=False).encode())
-        key = digest.hexdigest()
+        self.key = digest.hexdigest()
         stamp = self.folder / "key.txt"
-        if stamp.exists() and stamp.read_text().strip() != key:
+        if stamp.exists() and stamp.read_text().strip() != self.key:
             for old in [*self.folder.glob("*.npz"), *self.folder.glob("pairs/*.parquet")]:
                 old.unlink()
-        self.folder.mkdir(parents=True, exist_ok=True)
-        atomic_write(stamp, lambda tmp: tmp.write_text(key + "\n"))
+            stamp.unlink()
+        self.stamped = stamp.exists()
+
+    def _stamp(self) -> None:
+        """Create the folder and its key with the first work saved (a run that saves
+        nothing, e.g. one whose splits cannot be formed, writes nothing)."""
+        if not self.stamped:
+            self.folder.mkdir(parents=True, exist_ok=True)
+            atomic_write(self.folder / "key.txt", lambda tmp: tmp.write_text(self.key + "\n"))
+            self.stamped = True
 
     def per_row(self, name: str, key: str, x, rpm, compute, advance) -> np.ndarray:
         """``compute(x[rows], rpm[rows])`` for every row batch not finished before;
@@ -410,6 +418,7 @@ class _Checkpoint:
                 values = np.full((len(x), out.shape[1]), np.nan)
             values[rows], finished[rows] = out, True
             if path is not None:
+                self._stamp()
                 atomic_write(path, lambda tmp, v=values, f=finished: _save_npz(tmp, v, f))
             advance(len(rows))
         return values
@@ -423,6 +432,7 @@ class _Checkpoint:
 
     def save_predictions(self, split: str, model: str, pred: pd.DataFrame) -> None:
         if self.folder is not None:
+            self._stamp()
             atomic_write(self.folder / "pairs" / f"{split}__{model}.parquet",
                          lambda tmp: pred.to_parquet(tmp, index=False))
 
@@ -588,6 +598,8 @@ def run_benchmark(
         per_row += [(f"features_{feature_set}", k, _union_rows(union)) for k in datasets]
     if "envelope" in models:
         per_row += [("evidence", k, _evidence_rows(diagnoser)) for k in datasets]
+    if not plan:  # no split can be formed: no work, nothing kept
+        per_row = []
     done = {(split, model): state.predictions(split, model)
             for split, _folds, _t in plan for model in models}
     n_rows = sum(len(datasets[k][0]) for _n, k, _f in per_row)

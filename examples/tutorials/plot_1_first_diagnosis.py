@@ -82,16 +82,20 @@ ax = bp.diagnose.plot_explanation(X[0], fs, why)
 #
 # From the command line
 # ---------------------
-# The same on a plain file: a ``.npy`` (or ``.csv``, ``.wav``) with its rate, speed and
-# bearing, or a manifest table listing many recordings.
-import subprocess  # noqa: E402
-import sys  # noqa: E402
+# ``ballpass diagnose ir007.npy --fs 12000 --rpm 1797 --bearing 6205``, here run through
+# the command's own entry point. It takes a plain file (``.npy``, ``.csv``, ``.wav``) with
+# its rate, speed and bearing, or a manifest table listing many recordings.
+import contextlib  # noqa: E402
+import io  # noqa: E402
 import tempfile  # noqa: E402
 from pathlib import Path  # noqa: E402
 
+from ballpass.cli import main  # noqa: E402  (what the `ballpass` command runs)
+
 path = Path(tempfile.mkdtemp()) / "ir007.npy"
 np.save(path, X[0])
-out = subprocess.run([sys.executable, "-m", "ballpass", "diagnose", str(path), "--fs",
-                      str(fs), "--rpm", str(rpm), "--bearing", "6205", "--quiet"],
-                     capture_output=True, text=True, check=True)
-print(out.stdout)
+printed = io.StringIO()
+with contextlib.redirect_stdout(printed):
+    main(["diagnose", str(path), "--fs", str(fs), "--rpm", str(rpm), "--bearing", "6205",
+          "--quiet"])
+print(printed.getvalue())
