@@ -243,10 +243,10 @@ def atomic_write_many(items) -> None:
     >>> def fail(tmp):
     ...     raise OSError("no space left")
     >>> atomic_write_many([(folder / "a.txt", lambda tmp: tmp.write_text("a")),
-    ...                    (folder / "b.txt", fail)])
+    ...                    (folder / "b.txt", fail)])  # doctest: +ELLIPSIS
     Traceback (most recent call last):
         ...
-    OSError: no space left
+    OSError: cannot write .../b.txt: no space left
     >>> list(folder.iterdir())                    # all or nothing: a.txt was not written
     []
     """
