@@ -108,6 +108,10 @@ _MIN_SHARDS = 16
 #: most runs of one dataset: its manifest and run table are held in memory (about 1 kB
 #: per run); a larger study is several datasets
 MAX_RUNS = 10_000_000
+#: most listed grid points (combinations of listed axis values): each is validated as a
+#: Scene in Python, about 0.1 ms a point, so 200 000 take some 20 s; more values are
+#: drawn from distributions (validated once at their extremes) with ``[dataset] draws``
+MAX_POINTS = 200_000
 
 
 def _is_number(value) -> bool:
@@ -733,7 +737,8 @@ def _n_values(values) -> int:
 
 def _check_count(dataset: dict, axes: dict) -> None:
     """Refuse a grid of more than :data:`MAX_RUNS` runs before expanding it."""
-    n_runs = count_points(axes) * dataset["repeats"] * dataset.get("draws", 1)
+    n_points = count_points(axes)
+    n_runs = n_points * dataset["repeats"] * dataset.get("draws", 1)
     if n_runs > MAX_RUNS:
         sizes = " x ".join(f"{_n_values(v)} {k}" for k, v in axes.items()
                            if _n_values(v) > 1 and k != "sensor")
@@ -742,6 +747,19 @@ def _check_count(dataset: dict, axes: dict) -> None:
             f"repeats x {dataset.get('draws', 1)} draws); a dataset holds at most "
             f"{MAX_RUNS:,} runs. Use fewer values or "
             "repeats, or split the study into several datasets.")
+
+
+def _check_points(axes: dict) -> None:
+    """Refuse more than :data:`MAX_POINTS` listed grid points before building them."""
+    n_points = count_points(axes)
+    if n_points > MAX_POINTS:
+        sizes = " x ".join(f"{_n_values(v)} {k}" for k, v in axes.items()
+                           if _n_values(v) > 1 and k != "sensor")
+        raise ValueError(
+            f"the grid lists {n_points:.3g} points ({sizes}); at most {MAX_POINTS:,} are "
+            "checked one by one. List fewer values, or draw an axis from a distribution "
+            "(e.g. rpm = { uniform = [600, 1800] } with [dataset] draws = N), whose values "
+            "are checked once at their extremes.")
 
 
 def drawn_axes(grid) -> dict[str, str]:
@@ -814,6 +832,7 @@ def _expand(dataset: dict, axes: dict) -> tuple:
     # are refused at once rather than after building every point before them
     last = {k: listed[k][-1] for k in other_axes}
     checked({**last, **{k: listed[k][-1] for k in _fault_axes_of(last["fault"], product_axes)}})
+    _check_points(axes)
     points = []
     for combo in itertools.product(*(listed[k] for k in other_axes)):
         values = dict(zip(other_axes, combo, strict=True))
