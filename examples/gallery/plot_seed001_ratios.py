@@ -1,6 +1,6 @@
 """
 Nabhan & Rashed (2020): faulty/healthy indicator ratios against speed
-=======================================================
+=====================================================================
 
 Nabhan & Rashed (2020) judges an inner-race fault by the ratio of statistical indicators (RMS,
 crest factor, kurtosis) of the faulty to the healthy signal, over speed. Here a 6004
