@@ -389,7 +389,7 @@ def markdown(table: pd.DataFrame, seconds: float, sweep: pd.DataFrame | None = N
         "",
         "`EnvelopeDiagnoser` (default settings; threshold "
         f"{DEFAULT_THRESHOLD_DB:g} dB from white-noise statistics, no fitting) on every "
-        "record of `shared/data` and on simulated records: whole records (the verdict) and "
+        "shared record (CWRU, MFPT) and on simulated records: whole records (the verdict) and "
         "one-second segments. Nothing is fitted to recordings, so every result below is "
         "a held-out result. The fixed-band (2-5 kHz) squared-envelope peak picker "
         "next to it has its threshold fitted leave-one-record-out (best balanced "

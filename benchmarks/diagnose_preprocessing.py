@@ -165,7 +165,7 @@ def markdown(table, ceiling, seconds) -> str:
         "",
         "`EnvelopeDiagnoser` with each pre-processing option of Randall & Antoni's "
         "procedure (MSSP 25, 2011, section 4), everything else at its defaults, on every "
-        "real record of `shared/data` (groups as in [diagnosis.md](diagnosis.md)). The "
+        "real CWRU and MFPT record we test on (groups as in [diagnosis.md](diagnosis.md)). The "
         "options are fixed settings; nothing is fitted, so every number is held out.",
         "",
         *[f"- **{k}**: {d}" for k, (_, d) in VARIANTS.items()],

@@ -35,8 +35,8 @@ delta_j + s_lambda gamma cos(phi_j) and carries (K / k) delta^(10/9), which sums
 Palmgren's law when gamma = 0 (the laminae then collapse to one exact term).
 
 Ball bearings run the same equations with Hertz point contacts, Q = K delta^(3/2) and
-K from :meth:`ballpass.Bearing.hertz_stiffness` (the 2-DOF rotor of Harsha's papers,
-DIGEST.md section 4 item 3); laminae need rollers, so a misalignment is refused there.
+K from :meth:`ballpass.Bearing.hertz_stiffness` (the 2-DOF rotor of Harsha's papers);
+laminae need rollers, so a misalignment is refused there.
 
 Assumptions (where the paper is silent or garbled):
 
