@@ -12,6 +12,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from _processes import children
 
 from ballpass.cli import EXIT_BROKEN_PIPE, EXIT_INTERRUPTED, main
 from ballpass.signalio import read_signal, write_signal
@@ -97,16 +98,6 @@ def test_keyboard_interrupt_in_any_command_is_one_line_and_exit_130(monkeypatch,
                                        "written, rerun to resume\n")
 
 
-def children(pid: int) -> list[int]:
-    out = []
-    for stat in Path("/proc").glob("[0-9]*/stat"):
-        try:
-            fields = stat.read_text().rsplit(")", 1)[1].split()
-        except OSError:
-            continue
-        if int(fields[1]) == pid and fields[0] != "Z":
-            out.append(int(stat.parent.name))
-    return out
 
 
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")

@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from _processes import children
 
 from ballpass import Scene
 from ballpass._resources import available_memory, simulation_bytes
@@ -217,17 +218,6 @@ def test_worker_request_capped_at_cores_and_shards(tmp_path, monkeypatch):
     assert len(started) == (1 if cores > 1 else 0)               # 1 shard: no pool
 
 
-def children(pid: int) -> list[int]:
-    """Live (not zombie) processes whose parent is ``pid``."""
-    out = []
-    for stat in Path("/proc").glob("[0-9]*/stat"):
-        try:
-            fields = stat.read_text().rsplit(")", 1)[1].split()
-        except OSError:
-            continue
-        if int(fields[1]) == pid and fields[0] != "Z":
-            out.append(int(stat.parent.name))
-    return out
 
 
 def alive(pid: int) -> bool:

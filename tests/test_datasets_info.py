@@ -21,3 +21,11 @@ def test_faulty_rows_by_fault_size(tmp_path, capsys):
     assert main(["info", str(out)]) == 0
     printed = capsys.readouterr().out
     assert "faulty rows per fault size (mm) and label" in printed and "0.53" in printed
+
+
+def test_a_healthy_dataset_has_no_fault_sizes(tmp_path):
+    grid = {"dataset": {"duration_s": 0.1, "fs": 12_000, "repeats": 2, "model": "impulse"},
+            "grid": {"bearing": ["6205"], "fault": ["healthy"], "rpm": [1797],
+                     "resonance_hz": [3000]}}
+    generate(grid, tmp_path / "ds", progress=False)
+    assert info(tmp_path / "ds")["fault_sizes"] is None
