@@ -11,7 +11,7 @@ from numba import njit
 
 import ballpass as bp
 from ballpass.simulate import MODELS, Rotor2Parameters
-from ballpass.simulate import _integrators as I
+from ballpass.simulate import _second_order as I
 
 # -- a linear 2-DOF system M a + C v + K x = F cos(W t) e, exact by matrix exponential --
 M = np.diag([2.0, 1.0])

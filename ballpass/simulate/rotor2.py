@@ -72,8 +72,8 @@ Solvers: ``rk4`` (default; classical Runge-Kutta 4 at dt = ``DT_RK4_OMEGA`` /
 omega_c, omega_c the linearised contact frequency, steps independent of the output
 grid, restarted at the fault edges and ramp ends, which follow from the kinematics in
 closed form, with ``RK4_RAMP_STEPS`` steps across each ramp;
-:func:`._integrators.rk4_for`), ``newmark`` (the paper's method: average acceleration
-with Newton iterations on the contact forces, :func:`._integrators.newmark_for`) and
+:func:`._second_order.rk4_for`), ``newmark`` (the paper's method: average acceleration
+with Newton iterations on the contact forces, :func:`._second_order.newmark_for`) and
 ``dopri5`` (adaptive Dormand-Prince on the same equations), so each checks the others
 (tests/test_rotor2.py). Newmark's average-acceleration scheme is unconditionally
 stable, but second order: the contact mode rings for ~15 periods after every roller
@@ -96,8 +96,8 @@ from numba import njit
 
 from .._validation import check_number
 from ..scene import STANDARD_GRAVITY, Scene
-from . import _integrators as _I
 from . import _kernels as _K
+from . import _second_order as _I
 from ._registry import Model
 from ._shared import (
     OVERSAMPLE,
@@ -293,7 +293,7 @@ def _contact(j, delta, vn, tilt, phi, theta, n_faults, n_lam, p):
 @njit(cache=True, error_model="numpy", inline="always")
 def rotor2_force(t, x, v, p, f, kx, kv):
     """Generalised force of M a + f = 0 (contacts minus loads) and its tangents, for
-    the integrators of :mod:`._integrators`. The roller angles phi_j = phi_0 +
+    the integrators of :mod:`._second_order`. The roller angles phi_j = phi_0 +
     2 pi j / Z + c theta are stepped by a rotation of 2 pi / Z (two sines and cosines
     per call instead of two per roller)."""
     z = int(p[_K.P_Z])
