@@ -6,6 +6,7 @@ behind. Signals are short (0.5 s at 12 kHz, so that the middle of a shard lies i
 signal pages) and the file runs in about 15 s.
 """
 
+import importlib
 import json
 import os
 import signal
@@ -207,9 +208,10 @@ def test_disk_and_memory_checked_before_any_work(tmp_path, monkeypatch):
 # ----------------------------------------------------------------------------- workers
 def test_worker_request_capped_at_cores_and_shards(tmp_path, monkeypatch):
     started = []
-    pool = GEN._pool
-    monkeypatch.setattr(GEN, "_pool", lambda n: started.append(n) or pool(n))
-    cores = GEN.available_cores()
+    workers = importlib.import_module("ballpass.datasets._workers")
+    pool = workers._pool
+    monkeypatch.setattr(workers, "_pool", lambda n: started.append(n) or pool(n))
+    cores = workers.available_cores()
     with pytest.warns(UserWarning, match=f"n_jobs=1000 is more than the {cores} cores"):
         generate(GRID, tmp_path / "ds", n_jobs=1000, progress=False)
     assert started == ([min(cores, 3)] if cores > 1 else [])   # 1 worker: in process

@@ -32,7 +32,7 @@ from ballpass.datasets import (
     read_grid,
     regenerate,
 )
-from ballpass.datasets.generate import FEATURE_KEYS, feature_columns
+from ballpass.datasets._shard import FEATURE_KEYS, feature_columns
 from ballpass.datasets.grid import run_seed
 
 GRID_TOML = """\
@@ -319,8 +319,8 @@ def test_dataset_written_before_the_engagement_column_resumes_and_loads(tmp_path
     grid has no such axis) resumes under this one: the same grid, run ids and seeds; the
     new shards carry the column, and ``load`` gives the old rows the engagement they were
     simulated with (1: the grid could not set another), whichever shard comes first."""
-    # the module, not the function the package exports under the same name
-    generate_module = importlib.import_module("ballpass.datasets.generate")
+    # the module that writes the shards' columns
+    generate_module = importlib.import_module("ballpass.datasets._shard")
 
     grid = {"dataset": {"duration_s": 0.05, "fs": 12000, "shard_size": 1, "model": "impulse"},
             "grid": {"bearing": ["6205"], "fault": ["healthy", "outer", "ball"], "rpm": [1797],
@@ -374,7 +374,7 @@ def test_clearance_axis_is_stored_and_simulated(tmp_path):
 def test_dataset_written_before_the_clearance_column_loads(tmp_path, monkeypatch):
     """Rows of a dataset written before the ``clearance_um`` column load with it as NaN
     (the catalogue clearance, the only one that grid could give), in its place."""
-    generate_module = importlib.import_module("ballpass.datasets.generate")
+    generate_module = importlib.import_module("ballpass.datasets._shard")
     grid = {"dataset": {"duration_s": 0.05, "fs": 12000, "model": "impulse"},
             "grid": {"bearing": ["6205"], "fault": ["healthy", "outer"], "rpm": [1797],
                      "resonance_hz": [3000]}}
