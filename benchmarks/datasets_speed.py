@@ -16,7 +16,7 @@ machinery: scenes, rows, Parquet, checksums, manifest) and ``generate 1 / genera
 wall time to 10 000 signals. The numba cache is warm before anything is timed. The
 1-minute load average before each timing is recorded: the machine is shared.
 
-Writes ``benchmarks/results/datasets_speed.{md,csv,png}``.
+Writes ``docs/results/datasets_speed.{md,csv,png}``.
 
     python benchmarks/datasets_speed.py                           # 1024 signals, 3 repeats
     python benchmarks/datasets_speed.py --count 64 --repeats 1 --features-count 64
@@ -35,11 +35,11 @@ import time
 from pathlib import Path
 
 from _machine import machine
+from _paths import RESULTS_DIR as RESULTS
 
 from ballpass import __version__, simulate
 from ballpass.datasets import generate, read_grid
 
-RESULTS = Path(__file__).parent / "results"
 FAULTS = ["healthy", "outer", "inner", "ball"]
 FS = 48_000
 #: the issue's goals: 2 jobs >= 1.6 x 1 job; generate <= 1.5 x simulate; 10 000 signals
@@ -144,7 +144,7 @@ def _spread(values: list[float], fmt: str) -> str:
 
 
 def write(records: list[dict], feat: dict, count: int, repeats: int) -> None:
-    """Markdown table, CSV and figure under benchmarks/results/."""
+    """Markdown table, CSV and figure under docs/results/."""
     import matplotlib
 
     matplotlib.use("Agg")

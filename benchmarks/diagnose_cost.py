@@ -18,8 +18,8 @@ Run::
     PYTHONPATH=. python benchmarks/diagnose_cost.py            # ~1 min on 2 cores
     PYTHONPATH=. python benchmarks/diagnose_cost.py --data ../shared/data --out docs
 
-Writes ``docs/diagnosis_cost.md``, ``docs/diagnosis_cost.csv`` and
-``docs/diagnosis_cost.png``.
+Writes ``docs/diagnosis_cost.md``, ``docs/results/diagnosis_cost.csv`` and
+``docs/results/diagnosis_cost.png``.
 """
 
 from __future__ import annotations
@@ -31,6 +31,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import scipy.io
+from _paths import DOCS, results_in
 from scipy.signal import resample_poly
 
 import ballpass as bp
@@ -153,7 +154,7 @@ diagnosed at its own rate and brought to a quarter of it by `resample_poly`.
 
 {table}
 
-![cost per second at both rates](diagnosis_cost.png)
+![cost per second at both rates](results/diagnosis_cost.png)
 
 Why the cost grows with the samples and not faster: each candidate band of the
 1/3-binary tree is demodulated from its own bins of one spectrum of the record
@@ -171,12 +172,13 @@ whose high bands hold little.
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--data", type=Path, default=Path("../shared/data"))
-    parser.add_argument("--out", type=Path, default=Path("docs"))
+    parser.add_argument("--out", type=Path, default=DOCS)
     parser.add_argument("--repeats", type=int, default=7)
     args = parser.parse_args()
     table = measure(args.data, args.repeats)
-    atomic_write(args.out / "diagnosis_cost.csv", lambda tmp: table.to_csv(tmp, index=False))
-    figure(table, args.out / "diagnosis_cost.png")
+    results = results_in(args.out)
+    atomic_write(results / "diagnosis_cost.csv", lambda tmp: table.to_csv(tmp, index=False))
+    figure(table, results / "diagnosis_cost.png")
     page = PAGE.format(table=markdown(table), repeats=args.repeats)
     atomic_write(args.out / "diagnosis_cost.md", lambda tmp: tmp.write_text(page))
     print(page)

@@ -12,7 +12,7 @@ Run::
     PYTHONPATH=. python benchmarks/diagnose_hit.py             # ~2 min on 2 cores
     PYTHONPATH=. python benchmarks/diagnose_hit.py --data ../shared/data/hit --out docs
 
-Writes ``docs/diagnosis_hit.md`` and ``docs/diagnosis_hit.csv`` (one row per recording).
+Writes ``docs/diagnosis_hit.md`` and ``docs/results/diagnosis_hit.csv`` (one row per recording).
 """
 
 from __future__ import annotations
@@ -23,6 +23,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import scipy.io
+from _paths import DOCS, results_in
 
 from ballpass.diagnose import EnvelopeDiagnoser
 from ballpass.signalio import atomic_write
@@ -118,10 +119,11 @@ one band and at most 1.4 dB in every band apart from it).
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--data", type=Path, default=Path("../shared/data/hit"))
-    parser.add_argument("--out", type=Path, default=Path("docs"))
+    parser.add_argument("--out", type=Path, default=DOCS)
     args = parser.parse_args()
     table = diagnose(args.data)
-    atomic_write(args.out / "diagnosis_hit.csv", lambda tmp: table.to_csv(tmp, index=False))
+    atomic_write(results_in(args.out) / "diagnosis_hit.csv",
+                 lambda tmp: table.to_csv(tmp, index=False))
     page = PAGE.format(table=markdown(table))
     atomic_write(args.out / "diagnosis_hit.md", lambda tmp: tmp.write_text(page))
     print(page)

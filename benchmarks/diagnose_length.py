@@ -16,8 +16,8 @@ Run::
 
     PYTHONPATH=. python benchmarks/diagnose_length.py          # ~2 min on 2 cores
 
-Writes ``docs/diagnosis_length.md``, ``docs/diagnosis_length.csv`` and
-``docs/diagnosis_length.png``.
+Writes ``docs/diagnosis_length.md``, ``docs/results/diagnosis_length.csv`` and
+``docs/results/diagnosis_length.png``.
 """
 
 from __future__ import annotations
@@ -27,6 +27,7 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
+from _paths import results_in
 from diagnose_loro import _md, real_records, records_parser, segments
 
 from ballpass.diagnose import EnvelopeDiagnoser, baseline_thresholds, plot_explanation
@@ -228,7 +229,7 @@ def markdown(table: pd.DataFrame, summary: pd.DataFrame, trade: pd.DataFrame,
         "speed against the segment's shaft comb. Accuracy counts the normal, inner- and "
         "outer-race segments (the goal: at least 0.85, every recall at least 0.8).",
         "",
-        "![scores by segment length](diagnosis_length.png)",
+        "![scores by segment length](results/diagnosis_length.png)",
         "",
         _md(shown),
         "",
@@ -246,7 +247,7 @@ def markdown(table: pd.DataFrame, summary: pd.DataFrame, trade: pd.DataFrame,
            "lines beside them; over the whole record (0.1 Hz bins) they read "
            f"{example[1]:.1f} dB.",
            "",
-           "![one second against the whole record](diagnosis_length_example.png)",
+           "![one second against the whole record](results/diagnosis_length_example.png)",
            ""] if example is not None else []),
         "## What the threshold trades on one-second segments",
         "",
@@ -276,10 +277,10 @@ def main(argv=None) -> None:
     table = pd.concat([predict(records, s) for s in LENGTHS]
                       + [predict(records, 1.0, baselines)], ignore_index=True)
     summary = scores(table)
-    args.out.mkdir(parents=True, exist_ok=True)
-    atomic_write(args.out / "diagnosis_length.csv", lambda tmp: table.to_csv(tmp, index=False))
-    figure(summary[~summary.length.str.endswith("baseline")], args.out / "diagnosis_length.png")
-    example = example_figure(records, args.out / "diagnosis_length_example.png")
+    results = results_in(args.out)
+    atomic_write(results / "diagnosis_length.csv", lambda tmp: table.to_csv(tmp, index=False))
+    figure(summary[~summary.length.str.endswith("baseline")], results / "diagnosis_length.png")
+    example = example_figure(records, results / "diagnosis_length_example.png")
     windows = healthy_windows(records)
     trade = threshold_trade(table, windows)
     text = markdown(table, summary, trade, windows, baselines, time.perf_counter() - t0,

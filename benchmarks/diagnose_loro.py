@@ -17,8 +17,8 @@ Run::
     PYTHONPATH=. python benchmarks/diagnose_loro.py            # ~2 min on 2 cores
     PYTHONPATH=. python benchmarks/diagnose_loro.py --data ../shared/data --out docs
 
-Writes ``docs/diagnosis.md`` (tables), ``docs/diagnosis.csv`` (one row per record) and
-``docs/diagnosis.png`` (named records per class, diagnoser against peak picker).
+Writes ``docs/diagnosis.md`` (tables), ``docs/results/diagnosis.csv`` (one row per record) and
+``docs/results/diagnosis.png`` (named records per class, diagnoser against peak picker).
 """
 
 from __future__ import annotations
@@ -31,6 +31,7 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
+from _paths import DOCS, ROOT, results_in
 
 import ballpass as bp
 from ballpass.datasets.mfpt import load_mfpt_mat
@@ -396,7 +397,7 @@ def markdown(table: pd.DataFrame, seconds: float, sweep: pd.DataFrame | None = N
         "accuracy on the other real records). Groups: "
         + "; ".join(f"`{k}` {v}" for k, v in GROUPS.items()) + ".",
         "",
-        "![named records per class](diagnosis.png)",
+        "![named records per class](results/diagnosis.png)",
         "",
         "## What the diagnoser does",
         "",
@@ -514,9 +515,8 @@ def markdown(table: pd.DataFrame, seconds: float, sweep: pd.DataFrame | None = N
 def records_parser(doc: str) -> argparse.ArgumentParser:
     """Command line with ``--data`` (the shared recordings) and ``--out`` (the docs)."""
     parser = argparse.ArgumentParser(description=doc.splitlines()[0])
-    root = Path(__file__).resolve().parents[1]
-    parser.add_argument("--data", type=Path, default=root.parent / "shared" / "data")
-    parser.add_argument("--out", type=Path, default=root / "docs")
+    parser.add_argument("--data", type=Path, default=ROOT.parent / "shared" / "data")
+    parser.add_argument("--out", type=Path, default=DOCS)
     return parser
 
 
@@ -538,9 +538,9 @@ def main(argv=None) -> None:
     faults = None if args.no_sim else fault_sweep()
     positions = None if args.no_sim else position_sweep()
     seconds = time.perf_counter() - t0
-    args.out.mkdir(parents=True, exist_ok=True)
-    atomic_write(args.out / "diagnosis.csv", lambda tmp: table.to_csv(tmp, index=False))
-    figure(table, args.out / "diagnosis.png")
+    results = results_in(args.out)
+    atomic_write(results / "diagnosis.csv", lambda tmp: table.to_csv(tmp, index=False))
+    figure(table, results / "diagnosis.png")
     text = markdown(table, seconds, sweep, faults, positions)
     atomic_write(args.out / "diagnosis.md",
                  lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))

@@ -10,7 +10,7 @@ Run::
 
     PYTHONPATH=. python benchmarks/diagnose_noise.py           # ~2 min on 2 cores
 
-Writes ``docs/diagnosis_noise.md`` and ``docs/diagnosis_noise.csv``.
+Writes ``docs/diagnosis_noise.md`` and ``docs/results/diagnosis_noise.csv``.
 """
 
 from __future__ import annotations
@@ -21,6 +21,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import scipy.stats
+from _paths import DOCS, results_in
 
 from ballpass.diagnose import EnvelopeDiagnoser, envelope_evidence
 from ballpass.diagnose.rules import DEFAULT_THRESHOLD_DB
@@ -113,14 +114,14 @@ the search itself (bands, slip scales, families).
 
 def run_study(doc: str, stem: str, measure, markdown, page: str) -> None:
     """Command line of a seeded false-alarm study: ``--out`` folder and ``--seed``;
-    writes ``<out>/<stem>.csv`` and ``<out>/<stem>.md`` (``page`` with ``{n}`` records
+    writes ``<out>/results/<stem>.csv`` and ``<out>/<stem>.md`` (``page`` with ``{n}`` records
     and the ``{table}``) and prints the page."""
     parser = argparse.ArgumentParser(description=doc.splitlines()[0])
-    parser.add_argument("--out", type=Path, default=Path("docs"))
+    parser.add_argument("--out", type=Path, default=DOCS)
     parser.add_argument("--seed", type=int, default=0)
     args = parser.parse_args()
     table = measure(args.seed)
-    atomic_write(args.out / f"{stem}.csv", lambda tmp: table.to_csv(tmp, index=False))
+    atomic_write(results_in(args.out) / f"{stem}.csv", lambda tmp: table.to_csv(tmp, index=False))
     text = page.format(n=len(table), table=markdown(table))
     atomic_write(args.out / f"{stem}.md", lambda tmp: tmp.write_text(text))
     print(text)

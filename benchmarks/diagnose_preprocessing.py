@@ -18,7 +18,7 @@ Run::
 
     PYTHONPATH=. python benchmarks/diagnose_preprocessing.py        # ~5 min on 2 cores
 
-Writes ``docs/diagnosis_preprocessing.md`` and ``docs/diagnosis_preprocessing.csv``.
+Writes ``docs/diagnosis_preprocessing.md`` and ``docs/results/diagnosis_preprocessing.csv``.
 """
 
 from __future__ import annotations
@@ -28,6 +28,7 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
+from _paths import results_in
 from diagnose_loro import _md, real_records, records_parser, segments
 
 from ballpass.diagnose import EnvelopeDiagnoser, envelope_evidence
@@ -226,8 +227,7 @@ def main(argv=None) -> None:
     table = pd.DataFrame([row for v in VARIANTS for row in run(records, v)])
     ceiling = one_second(records)
     seconds = time.perf_counter() - t0
-    args.out.mkdir(parents=True, exist_ok=True)
-    atomic_write(args.out / "diagnosis_preprocessing.csv",
+    atomic_write(results_in(args.out) / "diagnosis_preprocessing.csv",
                  lambda tmp: table.to_csv(tmp, index=False))
     text = markdown(table, ceiling, seconds)
     atomic_write(args.out / "diagnosis_preprocessing.md",

@@ -21,8 +21,8 @@ Run::
 
     PYTHONPATH=. python benchmarks/diagnose_speed.py           # ~4 min on 2 cores
 
-Writes ``docs/diagnosis_speed.md``, ``docs/diagnosis_speed.csv`` and
-``docs/diagnosis_rate.csv``.
+Writes ``docs/diagnosis_speed.md``, ``docs/results/diagnosis_speed.csv`` and
+``docs/results/diagnosis_rate.csv``.
 """
 
 from __future__ import annotations
@@ -31,6 +31,7 @@ import time
 from pathlib import Path
 
 import pandas as pd
+from _paths import results_in
 from diagnose_loro import _md, cwru_records, records_parser, segments
 from scipy.signal import butter, resample_poly, sosfiltfilt
 
@@ -177,9 +178,9 @@ def main(argv=None) -> None:
     records = cwru_records(args.data / "cwru")
     table = diagnose(records)
     rates = at_48k(records)
-    args.out.mkdir(parents=True, exist_ok=True)
-    atomic_write(args.out / "diagnosis_speed.csv", lambda tmp: table.to_csv(tmp, index=False))
-    atomic_write(args.out / "diagnosis_rate.csv", lambda tmp: rates.to_csv(tmp, index=False))
+    results = results_in(args.out)
+    atomic_write(results / "diagnosis_speed.csv", lambda tmp: table.to_csv(tmp, index=False))
+    atomic_write(results / "diagnosis_rate.csv", lambda tmp: rates.to_csv(tmp, index=False))
     text = markdown(table, rates, time.perf_counter() - t0)
     atomic_write(args.out / "diagnosis_speed.md",
                  lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))

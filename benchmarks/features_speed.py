@@ -15,7 +15,7 @@ bands in one call) is timed side by side with one *naive scipy SES* of the same 
 every method alike); it reports medians with their range and the per-round ratio to the
 naive SES. Target: envelope_analysis <= 2x the naive SES.
 
-Writes ``benchmarks/results/features_speed.md``, ``features_speed.png`` and
+Writes ``docs/results/features_speed.md``, ``features_speed.png`` and
 ``envelope_analysis_speed.png``.
 
     python benchmarks/features_speed.py
@@ -29,16 +29,15 @@ import os
 import platform
 import statistics
 import timeit
-from pathlib import Path
 
 import numpy as np
 import scipy
 import scipy.signal
+from _paths import RESULTS_DIR as RESULTS
 
 import ballpass as bp
 from ballpass import features as F
 
-RESULTS = Path(__file__).parent / "results"
 FS, RPM, F_RES = 48_000.0, 1797.0, 15_000.0
 TARGET_MS = 20.0
 #: target: envelope_analysis at most this many times one naive scipy SES

@@ -18,7 +18,7 @@ fourth order the reference's own error is about that divided by 15.
     python benchmarks/gearbox_step.py               # ~6 min on a shared core
     python benchmarks/gearbox_step.py --duration 0.05
 
-Writes ``benchmarks/results/gearbox_step.{md,csv,png}``.
+Writes ``docs/results/gearbox_step.{md,csv,png}``.
 """
 
 from __future__ import annotations
@@ -34,13 +34,13 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
+from _paths import RESULTS_DIR as RESULTS
 
 import ballpass as bp  # noqa: E402
 from ballpass import __version__  # noqa: E402
 from ballpass.simulate._sr5_driver import DT_DEFAULT_OMEGA  # noqa: E402
 from ballpass.simulate.gearbox import build_gearbox  # noqa: E402
 
-RESULTS = Path(__file__).parent / "results"
 #: the project's accuracy goal for a default step (relative L2 of the output)
 TARGET_ERROR = 1e-3
 #: omega_max dt studied (the rate is fs = omega_max / (4 theta)); RK4 is stable to 2.83

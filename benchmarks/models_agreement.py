@@ -20,9 +20,9 @@ the kinematic defect frequency with sr5's and impulse's random slip, or with the
 multibody's physical slip), the SES line and its prominence, the SES correlation of
 multibody with each, and the RMS ratios.
 
-Writes ``docs/models_agreement.csv``, ``docs/models_agreement.md``,
-``docs/models_agreement.png``, ``docs/models_agreement_multibody.csv`` and
-``docs/models_agreement_multibody.png``.
+Writes the page ``docs/models_agreement.md`` and, in ``docs/results/``,
+``models_agreement.csv``, ``models_agreement.png``, ``models_agreement_multibody.csv`` and
+``models_agreement_multibody.png``.
 
     python benchmarks/models_agreement.py
     python benchmarks/models_agreement.py --duration 0.5    # quicker
@@ -31,16 +31,15 @@ Writes ``docs/models_agreement.csv``, ``docs/models_agreement.md``,
 from __future__ import annotations
 
 import argparse
-from pathlib import Path
 
 import _machine  # benchmarks/_machine.py (scripts run from their folder)
 import numpy as np
+from _paths import DOCS, RESULTS_DIR
 
 import ballpass as bp
 from ballpass import __version__
 from ballpass.features import envelope_spectrum
 
-DOCS = Path(__file__).resolve().parent.parent / "docs"
 KINDS = {"outer": "bpfo", "inner": "bpfi", "ball": "ball_defect"}
 RPMS = [600.0, 1200.0, 1797.0, 3000.0]
 MB_RPMS = [600.0, 1797.0, 3000.0]
@@ -132,7 +131,7 @@ def write_multibody(rows: list[dict], spectra: dict, duration: float) -> list[st
     import matplotlib.pyplot as plt
 
     df = pd.DataFrame(rows)
-    df.to_csv(DOCS / "models_agreement_multibody.csv", index=False, float_format="%.6g")
+    df.to_csv(RESULTS_DIR / "models_agreement_multibody.csv", index=False, float_format="%.6g")
     lines = [
         "", "## multibody against sr5 and impulse", "",
         f"6205, 500 N, default 0.5 x 0.1 mm faults, 48 kHz output, 15 kHz resonance, "
@@ -157,7 +156,7 @@ def write_multibody(rows: list[dict], spectra: dict, duration: float) -> list[st
             f"{r.corr_impulse:.2f} | {r.rms_sr5_over_multibody:.2f} / "
             f"{r.rms_impulse_over_multibody:.2f} |")
     lines += [
-        "", "![multibody, sr5, impulse](models_agreement_multibody.png)", "",
+        "", "![multibody, sr5, impulse](results/models_agreement_multibody.png)", "",
         "Where and why they differ:", "",
         "* **Rates and lines agree.** All three models meet each fault at its kinematic "
         "defect frequency and put the SES line in the same bin. sr5 and impulse share one "
@@ -199,7 +198,7 @@ def write_multibody(rows: list[dict], spectra: dict, duration: float) -> list[st
         ax.set_xlabel("Hz")
         ax.legend(fontsize=7, loc="upper right")
     fig.tight_layout()
-    fig.savefig(DOCS / "models_agreement_multibody.png", dpi=110)
+    fig.savefig(RESULTS_DIR / "models_agreement_multibody.png", dpi=110)
     plt.close(fig)
     return lines
 
@@ -213,8 +212,8 @@ def write(rows: list[dict], spectra: dict, duration: float,
     import matplotlib.pyplot as plt
 
     df = pd.DataFrame(rows)
-    DOCS.mkdir(exist_ok=True)
-    df.to_csv(DOCS / "models_agreement.csv", index=False, float_format="%.5g")
+    RESULTS_DIR.mkdir(parents=True, exist_ok=True)
+    df.to_csv(RESULTS_DIR / "models_agreement.csv", index=False, float_format="%.5g")
     lines = [
         "# impulse against sr5 (benchmarks/models_agreement.py)",
         "",
@@ -267,7 +266,7 @@ def write(rows: list[dict], spectra: dict, duration: float,
     ax.set_xlabel("rpm")
     ax.legend(fontsize=7)
     fig.tight_layout()
-    fig.savefig(DOCS / "models_agreement.png", dpi=110)
+    fig.savefig(RESULTS_DIR / "models_agreement.png", dpi=110)
 
 
 def main() -> None:

@@ -10,7 +10,8 @@ round, so a round's ratios share the machine's state; the table gives the median
 wall time per simulated second and the median and interquartile range of the per-round
 ratio to sr5. A model that cannot take the reference scene is listed with its reason.
 
-Writes ``docs/models_cost.csv``, ``docs/models_cost.md`` and ``docs/models_cost.png``,
+Writes ``docs/models_cost.md``, ``docs/results/models_cost.csv`` and
+``docs/results/models_cost.png``,
 and regenerates the model table (from :func:`ballpass.simulate.model_table` and this
 measurement) between the ``models-table`` markers of ``docs/models.md`` and
 ``docs/hierarchy.md``; the ``relative_cost`` of each model in the code cites this table.
@@ -23,16 +24,14 @@ from __future__ import annotations
 
 import argparse
 import time
-from pathlib import Path
 
 import _machine  # benchmarks/_machine.py (scripts run from their folder)
 import numpy as np
+from _paths import DOCS, RESULTS_DIR
 
 import ballpass as bp
 from ballpass import __version__
 
-ROOT = Path(__file__).resolve().parent.parent
-DOCS = ROOT / "docs"
 BEGIN, END = "<!-- models-table: begin -->", "<!-- models-table: end -->"
 #: a model slower than this per call gets fewer rounds (s)
 BUDGET_S = 60.0
@@ -112,8 +111,8 @@ def write(table, skipped: dict, duration: float, rounds: int) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    DOCS.mkdir(exist_ok=True)
-    table.to_csv(DOCS / "models_cost.csv", index=False, float_format="%.5g")
+    RESULTS_DIR.mkdir(parents=True, exist_ok=True)
+    table.to_csv(RESULTS_DIR / "models_cost.csv", index=False, float_format="%.5g")
     lines = [
         "# Cost of each model per simulated second (benchmarks/models_cost.py)",
         "",
@@ -162,7 +161,7 @@ def write(table, skipped: dict, duration: float, rounds: int) -> None:
         ax.text(m, yi + 0.3, f"  {r:.3g} x sr5", va="center", fontsize=8)
     ax.legend(loc="lower right", fontsize=8)
     fig.tight_layout()
-    fig.savefig(DOCS / "models_cost.png", dpi=120)
+    fig.savefig(RESULTS_DIR / "models_cost.png", dpi=120)
 
 
 def registry_markdown(table) -> str:

@@ -25,7 +25,7 @@ Nakhaeinejad & Bryant's operating point (ER-16K, 35 Hz, 110 N) with a 1.0 x 0.5 
   contact loads (m Omega^2 r must emerge: the quantity most sensitive to the step), the
   cage speed. Wall times are medians of three runs.
 
-Writes ``benchmarks/results/multibody_speed.md`` and ``docs/multibody_work_precision.png``.
+Writes ``docs/results/multibody_speed.md`` and ``docs/results/multibody_work_precision.png``.
 
     python benchmarks/multibody_speed.py               # 1 s scenes, 5 repeats
     python benchmarks/multibody_speed.py --repeats 2   # a quick run
@@ -37,19 +37,16 @@ import argparse
 import dataclasses
 import math
 import time
-from pathlib import Path
 
 import _machine  # benchmarks/_machine.py (scripts run from their folder)
 import numpy as np
+from _paths import RESULTS_DIR as RESULTS
 
 import ballpass as bp
 from ballpass.signalio import atomic_write
 from ballpass.simulate.multibody import _kernels as K
 from ballpass.simulate.multibody import build, integrate
 
-ROOT = Path(__file__).resolve().parent.parent
-RESULTS = ROOT / "benchmarks" / "results"
-DOCS = ROOT / "docs"
 SCENES = {
     "6205 inner (reference)": dict(bearing="6205", rpm=1797.0, radial_load_n=500.0,
                                    fault=bp.Fault("inner", width_mm=0.5, depth_mm=0.1)),
@@ -275,7 +272,7 @@ def main() -> None:
     axes[0].legend(fontsize=7)
     fig.suptitle("multibody RK4 work-precision against 24 steps per interval", fontsize=10)
     fig.tight_layout()
-    atomic_write(DOCS / "multibody_work_precision.png",
+    atomic_write(RESULTS / "multibody_work_precision.png",
                  lambda tmp: fig.savefig(tmp, format="png", dpi=110))
 
 

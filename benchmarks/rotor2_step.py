@@ -14,7 +14,8 @@ different solvers can be compared):
     python benchmarks/rotor2_step.py            # ~2 min on 2 busy cores
     python benchmarks/rotor2_step.py --quick    # fewer steps and rounds
 
-Writes ``docs/rotor2_step.md``, ``docs/rotor2_step.csv`` and ``docs/rotor2_step.png``.
+Writes ``docs/rotor2_step.md``, ``docs/results/rotor2_step.csv`` and
+``docs/results/rotor2_step.png``.
 """
 
 from __future__ import annotations
@@ -22,17 +23,15 @@ from __future__ import annotations
 import argparse
 import time
 import warnings
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
+from _paths import DOCS, RESULTS_DIR
 
 import ballpass as bp
 from ballpass.diagnose.report import markdown_table
 from ballpass.simulate import rotor2 as R
 
-ROOT = Path(__file__).resolve().parent.parent
-DOCS = ROOT / "docs"
 FAULTS = {"healthy": None,
           "inner, ramped edges": bp.Fault("inner", width_mm=0.5, depth_mm=0.1),
           "inner, sharp edges": bp.Fault("inner", width_mm=0.5, depth_mm=0.1, edge="sharp")}
@@ -93,7 +92,7 @@ def plot(err: pd.DataFrame) -> None:
     ax.set_ylabel("relative L2 error of the acceleration")
     ax.set_title("rotor2 against dopri5 (rtol 1e-10), 6205, 1797 rpm, 500 N", fontsize=9)
     ax.legend(fontsize=7)
-    fig.savefig(DOCS / "rotor2_step.png", dpi=110)
+    fig.savefig(RESULTS_DIR / "rotor2_step.png", dpi=110)
 
 
 def page(err: pd.DataFrame, cst: pd.DataFrame) -> str:
@@ -148,7 +147,7 @@ rotor2 / sr5 round by round: median {ratio.median():.2f}, range {ratio.min():.2f
 {ratio.max():.2f}. Before this change rotor2 (Newmark at 2.6 us, 384 000 steps) cost
 25x sr5 (docs/models_cost.md) and 36x in a quick side-by-side run on this machine.
 
-![rotor2 error against step](rotor2_step.png)
+![rotor2 error against step](results/rotor2_step.png)
 """
 
 
@@ -156,19 +155,19 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--quick", action="store_true", help="fewer steps and rounds")
     ap.add_argument("--reuse-errors", action="store_true",
-                    help="take the error table from docs/rotor2_step.csv (time only)")
+                    help="take the error table from docs/results/rotor2_step.csv (time only)")
     args = ap.parse_args()
     import matplotlib
 
     matplotlib.use("Agg")
     if args.reuse_errors:
-        err = pd.read_csv(DOCS / "rotor2_step.csv")
+        err = pd.read_csv(RESULTS_DIR / "rotor2_step.csv")
     else:
         err = errors(args.quick)
-        err.to_csv(DOCS / "rotor2_step.csv", index=False)
+        err.to_csv(RESULTS_DIR / "rotor2_step.csv", index=False)
     print(err.to_string())
     cst = cost(args.quick)
-    cst.to_csv(DOCS / "rotor2_step_cost.csv", index=False)
+    cst.to_csv(RESULTS_DIR / "rotor2_step_cost.csv", index=False)
     plot(err)
     text = page(err, cst)
     (DOCS / "rotor2_step.md").write_text(text)

@@ -2,7 +2,7 @@
 it against sr5 on the same scenes.
 
 ER-16K (the paper's Table 1: E = 210 GPa, nu = 0.25, groove radius 4.1 mm), 110 N, 35 Hz
-unless stated. Each section writes a figure into docs/ and a table into
+unless stated. Each section writes a figure into docs/results/ and a table into
 docs/seed000.md:
 
 1. load zone against clearance and load (Fig. 8);
@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
-from pathlib import Path
 
 import _machine  # benchmarks/_machine.py (scripts run from their folder)
 import matplotlib
@@ -36,8 +35,8 @@ from ballpass.simulate.multibody import static_equilibrium
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from _paths import DOCS, RESULTS_DIR
 
-DOCS = Path(__file__).resolve().parent.parent / "docs"
 G = 9.80665
 #: the paper's Table 1: groove radius 4.1 mm for both races, E 210 GPa, nu 0.25
 ER16K = replace(bp.Bearing.catalog("ER-16K"), inner_conformity=4.1 / 7.94,
@@ -54,7 +53,7 @@ def sim(model="multibody", duration_s=0.03, **kw):
 
 
 def save(fig, name):
-    atomic_write(DOCS / name, lambda tmp: fig.savefig(tmp, format="png", dpi=100))
+    atomic_write(RESULTS_DIR / name, lambda tmp: fig.savefig(tmp, format="png", dpi=100))
     plt.close(fig)
 
 
@@ -114,7 +113,7 @@ def load_zone(md):
            "bins are too coarse to show it in the half-angle, and the quasi-static count "
            "is blind to it, its shaft always settling sideways onto two balls); the "
            "preload loads every ball at all times.", "",
-           "![load zone](seed000_load_zone.png)", ""]
+           "![load zone](results/seed000_load_zone.png)", ""]
 
 
 # ---------------------------------------------------------------- 2. frequencies
@@ -223,7 +222,7 @@ def impacts(md):
     fig.suptitle("acceleration (m/s^2, 8-30 kHz) at one passage; ER-16K, 35 Hz, 110 N")
     fig.tight_layout()
     save(fig, "seed000_impacts.png")
-    md += ["", "![impacts](seed000_impacts.png)", "",
+    md += ["", "![impacts](results/seed000_impacts.png)", "",
            "Spacing grows with the width (levels I-III, and w/h = 5, 2, 1 at level I as in "
            "Fig. 16); the depth matters only through the geometric limit of the ball's "
            "drop. A ball fault (bottom row) also separates its contact and strikes (see "
@@ -364,7 +363,7 @@ def severity(md):
            "step; single passages move by up to 15 % with the step (the pocket contacts "
            "make the run sensitive to rounding, see the physics page).", "",
            "| RK4 step us | I | II | III |", "|---|---|---|---|", *conv, "",
-           "![severity](seed000_severity.png)", "",
+           "![severity](results/seed000_severity.png)", "",
            f"**Why the inner race does not follow the outer race.** A notch passes the "
            f"contact at the rolling speed u (the inner race relative to the cage, "
            f"(omega_i - Omega) R_i = {i1['u']:.3f} m/s, and the cage relative to the outer "
@@ -504,7 +503,7 @@ def ball_fault(md):
            f"0.0 (smallest value {float(qi.min())!r}), then the trailing corner strikes with "
            f"{qi.max():.0f} N against {qi[0]:.0f} N before; the outer contact unloads to "
            f"{qo.min():.1f} N meanwhile and is reloaded by the impact, as in the paper.", "",
-           "![ball fault](seed000_ball_fault.png)", ""]
+           "![ball fault](results/seed000_ball_fault.png)", ""]
 
 
 # ---------------------------------------------------------------- 5. Fig. 12
@@ -542,7 +541,7 @@ def centrifugal(md):
     md += ["", f"The growth is close to quadratic in speed: a fit of the increase against "
            f"f^2 gives {coef[0] * 1e6:.2e} um/Hz^2 (Harris & Kotzalas' trend that the paper "
            "overlays on its roller bearing; this is the ER-16K ball bearing).", "",
-           "![centrifugal](seed000_centrifugal.png)", ""]
+           "![centrifugal](results/seed000_centrifugal.png)", ""]
 
 
 # ---------------------------------------------------------------- 6. cross-model
@@ -594,7 +593,7 @@ def cross_model(md):
     axs[1, 1].legend(fontsize=8)
     fig.tight_layout()
     save(fig, "seed000_cross_model.png")
-    md += ["", "![cross-model](seed000_cross_model.png)", "",
+    md += ["", "![cross-model](results/seed000_cross_model.png)", "",
            "Where and why they differ:", "",
            "* **SES lines.** Both models put the lines at the same 2 Hz bins (BPFO, BPFI "
            "with its shaft sidebands) with similar line-to-median ratios: at 1 % the "
@@ -617,7 +616,7 @@ def cross_model(md):
            "* **Impacts.** sr5's defect is a depth profile its massless element follows "
            "instantly; the multibody ball has mass, leaves the race at the leading edge "
            "and strikes the trailing corner: two bursts per passage.",
-           "* **Cost.** See benchmarks/results/multibody_speed.md.", ""]
+           "* **Cost.** See [the multibody speed table](results/multibody_speed.md).", ""]
 
 
 # ---------------------------------------------------------------- summary

@@ -19,7 +19,7 @@ mean over as many healthy runs at the same speed.
     python benchmarks/seed001_ratios.py              # 11 speeds x 3 repeats, ~2 min on 2 cores
     python benchmarks/seed001_ratios.py --repeats 1 --step 500   # quick look
 
-Writes ``docs/seed001_ratios.csv`` and ``docs/seed001_ratios.png``.
+Writes ``docs/results/seed001_ratios.csv`` and ``docs/results/seed001_ratios.png``.
 """
 
 from __future__ import annotations
@@ -30,12 +30,12 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
+from _paths import RESULTS_DIR
 from joblib import Parallel, delayed
 
 import ballpass as bp
 from ballpass.features import indicators
 
-ROOT = Path(__file__).resolve().parent.parent
 WIDTHS_MM = (0.25, 0.5, 0.75)
 DEPTH_MM = 0.5
 FS = 48_000.0
@@ -136,14 +136,14 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     speeds = np.arange(500.0, 3000.0 + 1e-9, args.step)
     table = ratios(speeds, repeats=args.repeats, duration_s=args.duration, n_jobs=args.jobs)
-    csv = ROOT / "docs" / "seed001_ratios.csv"
+    csv = RESULTS_DIR / "seed001_ratios.csv"
     table.round(4).to_csv(csv, index=False)
-    plot(table, ROOT / "docs" / "seed001_ratios.png")
+    plot(table, RESULTS_DIR / "seed001_ratios.png")
     wide = table.pivot_table(index=["sensor", "indicator", "width_mm"], columns="rpm",
                              values="ratio")
     with pd.option_context("display.width", 200, "display.max_columns", 20):
         print(wide.round(2).to_string())
-    print("wrote docs/seed001_ratios.csv and docs/seed001_ratios.png")
+    print(f"wrote {csv} and {RESULTS_DIR / 'seed001_ratios.png'}")
     return 0
 
 

@@ -22,7 +22,7 @@ solvers:
     python benchmarks/seed003.py            # ~5 min on 2 cores
     python benchmarks/seed003.py --quick    # shorter records, fewer values
 
-Writes ``benchmarks/results/seed003_*.csv`` and ``docs/seed003_*.png``; docs/seed003.md
+Writes ``docs/results/seed003_*.csv`` and ``docs/results/seed003_*.png``; docs/seed003.md
 quotes them.
 """
 
@@ -34,13 +34,12 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
+from _paths import DOCS
+from _paths import RESULTS_DIR as RESULTS
 
 import ballpass as bp
 from ballpass.simulate import Rotor2Parameters
 
-ROOT = Path(__file__).resolve().parent.parent
-RESULTS = ROOT / "benchmarks" / "results"
-DOCS = ROOT / "docs"
 #: the NJ 305 rotor paper section 5.1, verbatim: rpm -> (theoretical Hz, theoretical um, measured
 # Hz,
 #: measured um)
@@ -231,7 +230,7 @@ def plot_lines(spectra: dict) -> None:
             ax.legend(fontsize=7)
     for ax in axes[-1]:
         ax.set_xlabel("Frequency (Hz)")
-    fig.savefig(DOCS / "seed003_lines.png", dpi=110)
+    fig.savefig(RESULTS / "seed003_lines.png", dpi=110)
 
 
 def plot_bifurcations(clear: pd.DataFrame, speed: pd.DataFrame) -> None:
@@ -253,14 +252,14 @@ def plot_bifurcations(clear: pd.DataFrame, speed: pd.DataFrame) -> None:
             twin.plot(k.index, k.values, "o-", color="tab:red", ms=3, lw=0.8)
             twin.set_ylim(-0.05, 1.05)
             twin.set_ylabel(f"0-1 test K (red; sections of >= {bp.dynamics.MIN_POINTS_01} points)")
-    fig.savefig(DOCS / "seed003_bifurcation.png", dpi=110)
+    fig.savefig(RESULTS / "seed003_bifurcation.png", dpi=110)
 
 
 def _print(df: pd.DataFrame, **kw) -> None:
     print(df.to_string(float_format=lambda v: f"{v:.3g}", **kw))
 
 
-#: CSVs in benchmarks/results/ the page is written from
+#: CSVs in docs/results/ the page is written from
 CSVS = {"solvers": "seed003_solvers.csv", "cost": "seed003_cost.csv",
         "ceiling": "seed003_ceiling.csv", "lines": "seed003_lines.csv",
         "clearance": "seed003_bifurcation_clearance.csv",

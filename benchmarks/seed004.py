@@ -24,25 +24,24 @@ This script runs the ``gearbox`` model on that set-up and on the 1st-speed spur 
     python benchmarks/seed004.py                 # ~2 min on 2 cores
     python benchmarks/seed004.py --repeats 1     # quick look
 
-Writes the page ``docs/seed004.md`` from the CSVs it writes (``docs/seed004*.csv``, see
-``CSVS``), and ``docs/seed004_mesh.png`` and ``docs/seed004_ses.png``; ``--page-only``
-rewrites the page from the CSVs.
+Writes the page ``docs/seed004.md`` from the CSVs it writes (``docs/results/seed004*.csv``,
+see ``CSVS``), and ``docs/results/seed004_mesh.png`` and ``docs/results/seed004_ses.png``;
+``--page-only`` rewrites the page from the CSVs.
 """
 
 from __future__ import annotations
 
 import argparse
 import time
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
+from _paths import DOCS, RESULTS_DIR
 
 import ballpass as bp
 from ballpass.diagnose.report import markdown_table
 from ballpass.features import envelope_spectrum, separate_discrete
 
-ROOT = Path(__file__).resolve().parent.parent
 RPM = 2000.0
 FS = 48_000.0
 SPALLS = {"paper (4 x 2 mm)": (4.0, 2.0), "small (0.5 x 0.1 mm)": (0.5, 0.1)}
@@ -217,7 +216,7 @@ def plot(spectra: dict, example: dict) -> None:
         ax.set_ylabel("|X| (m/s^2)")
     axes[-1].set_xlabel("frequency (Hz)")
     fig.tight_layout()
-    fig.savefig(ROOT / "docs" / "seed004_mesh.png", dpi=120)
+    fig.savefig(RESULTS_DIR / "seed004_mesh.png", dpi=120)
 
     sc = example["scene"]
     bpfi = sc.frequencies.bpfi
@@ -234,7 +233,7 @@ def plot(spectra: dict, example: dict) -> None:
                      f"{title}; BPFI {bpfi:.1f} Hz (red)", fontsize=9)
     axes[-1].set_xlabel("frequency (Hz)")
     fig.tight_layout()
-    fig.savefig(ROOT / "docs" / "seed004_ses.png", dpi=120)
+    fig.savefig(RESULTS_DIR / "seed004_ses.png", dpi=120)
 
 
 #: the set-up table of the page: row -> value
@@ -259,7 +258,7 @@ def _setup(repeats: int) -> str:
     return "\n".join(["| | |", "|---|---|", *(f"| {k} | {v} |" for k, v in rows.items())])
 
 
-#: docs/ CSV of each table the page is written from
+#: docs/results/ CSV of each table the page is written from
 CSVS = {"fault": "seed004.csv", "mesh": "seed004_mesh.csv", "findings": "seed004_findings.csv",
         "te": "seed004_te.csv", "cost": "seed004_cost.csv"}
 
@@ -345,7 +344,7 @@ not act back (as in sr5). See `ballpass.simulate.gearbox` for the equations and 
 stated assumptions.
 
 This page is written by `python benchmarks/seed004.py` (every number below comes from
-the CSVs it writes: `docs/seed004.csv`, `seed004_mesh.csv`, `seed004_findings.csv`,
+the CSVs it writes: `docs/results/seed004.csv`, `seed004_mesh.csv`, `seed004_findings.csv`,
 `seed004_te.csv`, `seed004_cost.csv`; `--page-only` rewrites the page from them, and
 `tests/test_gearbox.py` checks that page and CSVs agree). Tests pinning the findings:
 `tests/test_gearbox.py`.
@@ -363,7 +362,7 @@ resonance, median [range] over {repeats} seeds (`seed004_findings.csv`).
 
 ## Mesh lines and shaft sidebands
 
-![acceleration spectra of the two pairs with a healthy bearing](seed004_mesh.png)
+![acceleration spectra of the two pairs with a healthy bearing](results/seed004_mesh.png)
 
 The mesh frequency is teeth × shaft frequency (15 × 33.33 = 500 Hz) with its
 harmonics; runout modulates the mesh load and puts sidebands at ± both shaft
@@ -405,7 +404,7 @@ to peak), so the transmission error dominates its lines; the spur pair (contact 
 
 ## The inner-race fault, before and after separation
 
-![squared envelope spectrum before and after TSA subtraction](seed004_ses.png)
+![squared envelope spectrum before and after TSA subtraction](results/seed004_ses.png)
 
 Prominence of the BPFI line in the squared envelope spectrum (SES line at 179.72 Hz
 over the median SES within ± 30 Hz; a healthy bearing gives 1–3), median [min–max]
@@ -460,10 +459,10 @@ def main() -> None:
         for name, frame in CSVS.items():
             frame_of = {"fault": faults, "mesh": lines, "findings": findings,
                         "te": harmonics, "cost": timing}[name]
-            frame_of.to_csv(ROOT / "docs" / frame, index=False)
+            frame_of.to_csv(RESULTS_DIR / frame, index=False)
         plot(spectra, example)
-    text = page({name: pd.read_csv(ROOT / "docs" / f) for name, f in CSVS.items()})
-    (ROOT / "docs" / "seed004.md").write_text(text)
+    text = page({name: pd.read_csv(RESULTS_DIR / f) for name, f in CSVS.items()})
+    (DOCS / "seed004.md").write_text(text)
     print(text)
 
 

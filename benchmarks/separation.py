@@ -13,8 +13,8 @@ separation, no speed) are measured against it, in dB of prominence, on 2000 rpm 
 whole number of samples per revolution at 48 kHz) and 1987 rpm, over seeds, for the
 defaults and a scan of DRS's Welch segment and delay and of LP's order.
 
-Writes ``docs/separation.csv``, ``docs/separation.md`` (tables between markers of the
-page) and ``docs/separation.png``.
+Writes ``docs/results/separation.csv``, ``docs/separation.md`` (tables between markers of the
+page) and ``docs/results/separation.png``.
 
     python benchmarks/separation.py              # 5 seeds, ~1 min
     python benchmarks/separation.py --seeds 2    # a quick look
@@ -28,12 +28,12 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
+from _paths import DOCS, RESULTS_DIR
 
 import ballpass as bp
 from ballpass.diagnose.report import markdown_table
 from ballpass.features import envelope_spectrum, separate_discrete
 
-DOCS = Path(__file__).resolve().parent.parent / "docs"
 BAND = (2000.0, 4000.0)
 GEAR_AMPLITUDE = 8.0   # ring amplitude of a tooth over a bearing impact's
 NOISE_RMS = 0.3        # white noise, in bearing ring amplitudes
@@ -172,14 +172,14 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seeds", type=int, default=5)
     parser.add_argument("--replot", action="store_true",
-                        help="rewrite the page and figure from docs/separation.csv")
+                        help="rewrite the page and figure from docs/results/separation.csv")
     args = parser.parse_args()
     if args.replot:
-        table = pd.read_csv(DOCS / "separation.csv")
+        table = pd.read_csv(RESULTS_DIR / "separation.csv")
     else:
         table = measure(args.seeds)
-        table.to_csv(DOCS / "separation.csv", index=False)
-    figure(table, DOCS / "separation.png")
+        table.to_csv(RESULTS_DIR / "separation.csv", index=False)
+    figure(table, RESULTS_DIR / "separation.png")
     text = markdown_table(summary(table))
     page = DOCS / "separation.md"
     begin, end = "<!-- separation-table: begin -->", "<!-- separation-table: end -->"

@@ -41,9 +41,9 @@ an error.
 
     python benchmarks/sim2real.py --real /path/to/cwru      # ~15 min on 2 cores
 
-Writes ``docs/sim2real.csv`` (every variant, test set, model, record),
-``docs/sim2real_summary.csv`` and ``docs/sim2real.png``; with ``--segment-s 5`` (real
-segments and simulated runs of 5 s) ``docs/sim2real_5s*``.
+Writes ``docs/results/sim2real.csv`` (every variant, test set, model, record),
+``docs/results/sim2real_summary.csv`` and ``docs/results/sim2real.png``; with ``--segment-s 5``
+(real segments and simulated runs of 5 s) ``docs/results/sim2real_5s*``.
 """
 
 from __future__ import annotations
@@ -56,6 +56,7 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
+from _paths import RESULTS_DIR, ROOT
 from joblib import Parallel, delayed
 
 from ballpass.datasets import load_cwru, read_grid
@@ -63,7 +64,6 @@ from ballpass.datasets.grid import scene_from_dict
 from ballpass.diagnose import run_benchmark
 from ballpass.simulate import SR5Parameters
 
-ROOT = Path(__file__).resolve().parent.parent
 #: the study's scene grid (the shipped grid before its axes were drawn per run)
 GRID = ROOT / "benchmarks" / "sim2real_study.toml"
 MODELS = ["envelope", "random_forest", "gradient_boosting", "svm", "knn", "logistic"]
@@ -341,7 +341,7 @@ def main(argv=None) -> int:
                         "training runs, s (default 1; the records are 10 s, the healthy "
                         "one 5 s)")
     parser.add_argument("--jobs", type=int, default=2)
-    parser.add_argument("--out", default=str(ROOT / "docs"), help="output folder")
+    parser.add_argument("--out", default=str(RESULTS_DIR), help="output folder")
     args = parser.parse_args(argv)
     table = variants()
     chosen = [v.strip() for v in args.variants.split(",")]

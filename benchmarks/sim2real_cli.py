@@ -25,8 +25,8 @@ is measured in docs/sim2real.md.
 ``--repeats`` changes the grid's repeats, ``--features`` the learned pipelines' feature
 set.
 
-Writes ``docs/sim2real_cli.md``, ``docs/sim2real_cli.csv`` (every prediction) and
-``docs/sim2real_cli.png``.
+Writes ``docs/sim2real_cli.md``, ``docs/results/sim2real_cli.csv`` (every prediction) and
+``docs/results/sim2real_cli.png``.
 """
 
 from __future__ import annotations
@@ -39,8 +39,9 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
+from _paths import DOCS, results_in
 from diagnose_loro import _md
-from sim2real import GOAL_LABELS, MODELS, ROOT, score
+from sim2real import GOAL_LABELS, MODELS, score
 
 from ballpass.datasets import example_grid, generate, load
 from ballpass.datasets.real import load_real
@@ -179,7 +180,7 @@ def markdown(table: pd.DataFrame, seconds: float) -> str:
         "predicted by the learned pipeline that scores best on all the other records "
         "(per seed), an honest score of choosing the pipeline on real data.",
         "",
-        "![accuracy per model and training seed](sim2real_cli.png)",
+        "![accuracy per model and training seed](results/sim2real_cli.png)",
         "",
         _md(by_model(table)),
         "",
@@ -205,7 +206,7 @@ def main(argv=None) -> int:
     parser.add_argument("--features", default="dimensionless",
                         help="feature set of the learned pipelines (default dimensionless)")
     parser.add_argument("--jobs", type=int, default=2)
-    parser.add_argument("--out", type=Path, default=ROOT / "docs")
+    parser.add_argument("--out", type=Path, default=DOCS)
     args = parser.parse_args(argv)
     t0 = time.perf_counter()
     parts = []
@@ -218,9 +219,9 @@ def main(argv=None) -> int:
             print(f"seed {seed} {end}: {time.perf_counter() - t0:.0f} s", flush=True)
     pred = pd.concat(parts, ignore_index=True)
     table = summary(pred)
-    args.out.mkdir(parents=True, exist_ok=True)
-    atomic_write(args.out / "sim2real_cli.csv", lambda tmp: pred.to_csv(tmp, index=False))
-    figure(table, args.out / "sim2real_cli.png")
+    results = results_in(args.out)
+    atomic_write(results / "sim2real_cli.csv", lambda tmp: pred.to_csv(tmp, index=False))
+    figure(table, results / "sim2real_cli.png")
     text = markdown(table, time.perf_counter() - t0)
     atomic_write(args.out / "sim2real_cli.md",
                  lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))

@@ -5,7 +5,7 @@ resonance, one loaded-zone sensor; healthy and with the default 0.5 mm x 0.1 mm 
 inner and ball faults. Each solver setting is timed through the whole of
 :func:`ballpass.simulate` (events, integration, decimation), best of ``--repeats``
 calls after a warm-up call (numba compilation is not timed), and its relative L2 error
-measured against dopri5 at rtol 1e-10. Writes ``benchmarks/results/simulate_speed.md``.
+measured against dopri5 at rtol 1e-10. Writes ``docs/results/simulate_speed.md``.
 
     python benchmarks/simulate_speed.py               # 1 s per scene, 7 repeats
     python benchmarks/simulate_speed.py --repeats 2   # a quick run
@@ -19,11 +19,11 @@ from pathlib import Path
 
 import _machine  # benchmarks/_machine.py (scripts run from their folder)
 import numpy as np
+from _paths import RESULTS_DIR as RESULTS
 
 import ballpass as bp
 from ballpass import __version__
 
-RESULTS = Path(__file__).parent / "results"
 FAULTS = ["healthy", "outer", "inner", "ball"]
 #: (solver, keyword arguments, label); None = the default settings
 SETTINGS = [

@@ -30,13 +30,13 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
+from _paths import DOCS, ROOT, results_in
 
 from ballpass.datasets import fetch_cwru, smith_randall_grades
 from ballpass.datasets.real import load_cwru_mat, mat_paths
 from ballpass.diagnose import EnvelopeDiagnoser
 from ballpass.signalio import atomic_write
 
-ROOT = Path(__file__).resolve().parent.parent
 CLASSES = ("Y", "P", "N")
 LABELS = ("inner", "outer", "ball")
 
@@ -164,7 +164,7 @@ def report(table: pd.DataFrame, counts: pd.DataFrame, n_files: int, seconds: flo
         lines += ["", f"Diagnosis cost per record: median {table.cost_s.median():.2f} s "
                   f"(range {table.cost_s.min():.2f}-{table.cost_s.max():.2f} s) for "
                   f"{table.seconds.median():.0f} s of signal, on a shared 2-core machine."]
-    lines += ["", "![named records per grade](smith_randall.png)", ""]
+    lines += ["", "![named records per grade](results/smith_randall.png)", ""]
     return "\n".join(lines)
 
 
@@ -177,7 +177,8 @@ def main(argv=None) -> None:
     parser.add_argument("--fetch", action="store_true",
                         help="download the graded records from the CWRU Bearing Data Center "
                         "into ballpass's cache first (ballpass.datasets.fetch_cwru)")
-    parser.add_argument("--out", type=Path, default=ROOT / "docs", help="output folder")
+    parser.add_argument("--out", type=Path, default=DOCS,
+                        help="folder of the page; its table and figure go to results/ in it")
     args = parser.parse_args(argv)
     start = time.perf_counter()
     grades = smith_randall_grades()
@@ -190,9 +191,9 @@ def main(argv=None) -> None:
     print(f"{len(found)} of the {len(grades)} graded records found", file=sys.stderr)
     table = diagnose(found, grades)
     counts = summary(table, grades)
-    args.out.mkdir(parents=True, exist_ok=True)
-    table.to_csv(args.out / "smith_randall.csv", index=False)
-    plot(counts, args.out / "smith_randall.png")
+    results = results_in(args.out)
+    table.to_csv(results / "smith_randall.csv", index=False)
+    plot(counts, results / "smith_randall.png")
     text = report(table, counts, len(mat_paths(sources)), time.perf_counter() - start)
     atomic_write(args.out / "smith_randall.md",
                  lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))

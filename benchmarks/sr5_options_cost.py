@@ -7,21 +7,20 @@ medians to the plain scene.
 
     python benchmarks/sr5_options_cost.py            # ~2 min on 2 cores
 
-Writes ``benchmarks/results/sr5_options_cost.md`` and ``.png``.
+Writes ``docs/results/sr5_options_cost.md`` and ``.png``.
 """
 
 from __future__ import annotations
 
 import argparse
 import time
-from pathlib import Path
 
 import numpy as np
+from _paths import RESULTS_DIR
 
 import ballpass as bp
 from ballpass.simulate import SR5Parameters
 
-ROOT = Path(__file__).resolve().parent.parent
 PLAIN = bp.Scene("6205", rpm=1797.0, fs=48_000.0, duration_s=1.0,
                  fault=bp.Fault("outer", width_mm=0.5, depth_mm=0.1))
 
@@ -64,7 +63,7 @@ def main(argv=None) -> int:
                      f"{np.median(t) / base:.2f} |")
     table = "\n".join(lines)
     print(table)
-    out = ROOT / "benchmarks" / "results"
+    out = RESULTS_DIR
     out.mkdir(parents=True, exist_ok=True)
     (out / "sr5_options_cost.md").write_text(
         "# Cost of the sr5 options (1 s at 48 kHz, rk4 default step)\n\n"

@@ -15,7 +15,7 @@ Errors: relative L2 of the output against dopri5 at rtol 1e-10 (as
 ``benchmarks/simulate_speed.py`` and the ``error_l2`` of the work-precision study).
 Rounds interleave the methods scene by scene, so each ratio compares runs made moments
 apart on the shared machine; the table gives medians with the range over rounds.
-Writes ``benchmarks/results/sr5_speed.{md,csv,png}``.
+Writes ``docs/results/sr5_speed.{md,csv,png}``.
 
     python benchmarks/sr5_speed.py              # 9 rounds
     python benchmarks/sr5_speed.py --rounds 3   # a quick run
@@ -34,6 +34,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
+from _paths import RESULTS_DIR as RESULTS
 from numba import njit  # noqa: E402
 
 import ballpass as bp  # noqa: E402
@@ -42,7 +43,6 @@ from ballpass.simulate import _kernels as K  # noqa: E402
 from ballpass.simulate._shared import OVERSAMPLE, to_output_rate  # noqa: E402
 from ballpass.simulate._sr5_driver import build  # noqa: E402
 
-RESULTS = Path(__file__).parent / "results"
 FAULTS = ["healthy", "outer", "inner", "ball"]
 #: target: sr5 at most this fraction of the naive RK4, at error <= TARGET_ERROR
 TARGET_RATIO, TARGET_ERROR = 0.10, 1e-3

@@ -18,8 +18,8 @@ ball                  6000, 300   0.1, 2 mm  0.2 s, 0.5 s
 
 (6205, 500 N, 48 kHz, 15 kHz / 5 % resonance, faults 0.1 mm deep; 0.5 s at 300 rpm
 holds 9 outer-race impacts.) Writes ``docs/work_precision.md`` (tables, speed-up at
-equal error), ``docs/work_precision.png`` (log-log plots) and
-``docs/work_precision.csv`` (every run).
+equal error), ``docs/results/work_precision.png`` (log-log plots) and
+``docs/results/work_precision.csv`` (every run).
 
     python benchmarks/work_precision.py                  # the set above
     python benchmarks/work_precision.py --quick          # two short scenes, no Radau
@@ -30,7 +30,6 @@ from __future__ import annotations
 import argparse
 import math
 import time
-from pathlib import Path
 
 import matplotlib
 
@@ -38,12 +37,12 @@ matplotlib.use("Agg")
 import _machine  # benchmarks/_machine.py (scripts run from their folder)
 import matplotlib.pyplot as plt  # noqa: E402
 import pandas as pd  # noqa: E402
+from _paths import DOCS, RESULTS_DIR
 
 import ballpass as bp  # noqa: E402
 from ballpass import __version__  # noqa: E402
 from ballpass.simulate import plot_work_precision, speedup, work_precision  # noqa: E402
 
-DOCS = Path(__file__).resolve().parent.parent / "docs"
 #: (kind, rpm, width mm, simulated s)
 SCENES = [
     ("healthy", 300.0, None, 0.5),
@@ -88,9 +87,9 @@ def fmt_ratio(v: float) -> str:
 
 
 def write(results, methods, time_limit, quick) -> None:
-    DOCS.mkdir(exist_ok=True)
+    RESULTS_DIR.mkdir(parents=True, exist_ok=True)
     everything = pd.concat([t for _, t in results], ignore_index=True)
-    everything.to_csv(DOCS / "work_precision.csv", index=False)
+    everything.to_csv(RESULTS_DIR / "work_precision.csv", index=False)
 
     n = len(results)
     cols = 2 if n > 1 else 1
@@ -101,7 +100,7 @@ def write(results, methods, time_limit, quick) -> None:
     for ax in list(axes.flat)[n:]:
         ax.set_visible(False)
     fig.tight_layout()
-    fig.savefig(DOCS / "work_precision.png", dpi=110)
+    fig.savefig(RESULTS_DIR / "work_precision.png", dpi=110)
     plt.close(fig)
 
     lines = [
@@ -129,7 +128,7 @@ def write(results, methods, time_limit, quick) -> None:
         "its cheapest run's time when even that is more accurate (no extrapolation: -- "
         "where a curve does not reach the error).",
         "",
-        "![work-precision](work_precision.png)",
+        "![work-precision](results/work_precision.png)",
         "",
         "## Speed-up over the fastest scipy method at equal error",
         "",
@@ -171,7 +170,7 @@ def main() -> None:
                                                              "Radau")
     results = run(scenes, methods, args.scipy_time_limit)
     write(results, methods, args.scipy_time_limit, args.quick)
-    print(f"-> {DOCS / 'work_precision.md'}, work_precision.png, work_precision.csv")
+    print(f"-> {DOCS / 'work_precision.md'}, {RESULTS_DIR}/work_precision.{{png,csv}}")
 
 
 if __name__ == "__main__":
