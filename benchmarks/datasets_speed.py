@@ -36,6 +36,7 @@ from pathlib import Path
 
 from _machine import machine
 from _paths import RESULTS_DIR as RESULTS
+from _report import spread, table, write_page
 
 from ballpass import __version__, simulate
 from ballpass.datasets import generate, read_grid
@@ -137,12 +138,6 @@ def _revision() -> str:
     return out.stdout.strip()
 
 
-def _spread(values: list[float], fmt: str) -> str:
-    med = statistics.median(values)
-    return (f"{med:{fmt}}" if len(values) == 1 else
-            f"{med:{fmt}} ({min(values):{fmt}}-{max(values):{fmt}})")
-
-
 def write(records: list[dict], feat: dict, count: int, repeats: int) -> None:
     """Markdown table, CSV and figure under docs/results/."""
     import matplotlib
@@ -184,24 +179,19 @@ def write(records: list[dict], feat: dict, count: int, repeats: int) -> None:
         "numbers of each label, so the workers' loads balance to within one shard) - the "
         "wall time the run takes on an idle machine with that many cores.",
         "",
-        "| setting | wall time (s) | critical path (s) | signals/s (critical path) |",
-        "|---|---:|---:|---:|",
     ]
-    lines += [f"| {s} | {_spread(col['wall_s'][s], '.1f')} | "
-              f"{_spread(col['critical_s'][s], '.1f')} | "
-              f"{_spread([count / w for w in col['critical_s'][s]], '.1f')} |"
-              for s in SETTINGS]
+    lines += table(["setting", "wall time (s)", "critical path (s)", "signals/s (critical path)"],
+                   [(s, spread(col["wall_s"][s], ".1f"), spread(col["critical_s"][s], ".1f"),
+                     spread([count / w for w in col["critical_s"][s]], ".1f")) for s in SETTINGS],
+                   "lrrr")
     o, p = rat["critical_s"]["overhead"], rat["critical_s"]["speedup"]
+    lines += [""] + table(
+        ["ratio", "critical path", "wall clock (under load)", "goal", "met"],
+        [("generate 1 job / bare simulate", spread(o), spread(rat["wall_s"]["overhead"]),
+          f"<= {GOAL_OVERHEAD}", ok[med(o) <= GOAL_OVERHEAD]),
+         ("generate 1 job / generate 2 jobs", spread(p), spread(rat["wall_s"]["speedup"]),
+          f">= {GOAL_SPEEDUP}", ok[med(p) >= GOAL_SPEEDUP])], "lrrrl")
     lines += [
-        "",
-        "| ratio | critical path | wall clock (under load) | goal | met |",
-        "|---|---:|---:|---:|---|",
-        f"| generate 1 job / bare simulate | {_spread(o, '.2f')} | "
-        f"{_spread(rat['wall_s']['overhead'], '.2f')} | <= {GOAL_OVERHEAD} | "
-        f"{ok[med(o) <= GOAL_OVERHEAD]} |",
-        f"| generate 1 job / generate 2 jobs | {_spread(p, '.2f')} | "
-        f"{_spread(rat['wall_s']['speedup'], '.2f')} | >= {GOAL_SPEEDUP} | "
-        f"{ok[med(p) >= GOAL_SPEEDUP]} |",
         "",
         f"Feature table: {feat['signals']} signals with `features=True`, 2 jobs: "
         f"{feat['wall_s']:.1f} s wall (load before {feat['load']:.1f}), "
@@ -210,7 +200,7 @@ def write(records: list[dict], feat: dict, count: int, repeats: int) -> None:
         f"({feat['wall_10k']:.0f} s at this load); goal <= {GOAL_10K_S:.0f} s: "
         f"{ok[feat['seconds_10k'] <= GOAL_10K_S]}.",
     ]
-    (RESULTS / "datasets_speed.md").write_text("\n".join(lines) + "\n")
+    write_page(RESULTS / "datasets_speed.md", lines)
 
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(8.5, 3.4), width_ratios=(3, 2))
     x = range(len(SETTINGS))

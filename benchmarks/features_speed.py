@@ -34,6 +34,7 @@ import numpy as np
 import scipy
 import scipy.signal
 from _paths import RESULTS_DIR as RESULTS
+from _report import spread, table, write_page
 
 import ballpass as bp
 from ballpass import features as F
@@ -131,10 +132,6 @@ def run(number: int, repeat: int) -> list[tuple[str, float]]:
     return out
 
 
-def _spread(values: list[float], fmt: str = ".2f") -> str:
-    return f"{statistics.median(values):{fmt}} ({min(values):{fmt}}-{max(values):{fmt}})"
-
-
 def write_side_by_side(times: dict[str, list[float]], number: int,
                        load: tuple[float, float]) -> list[str]:
     """Markdown lines of the side-by-side comparison; draws envelope_analysis_speed.png."""
@@ -156,9 +153,8 @@ def write_side_by_side(times: dict[str, list[float]], number: int,
         "filters with `sosfiltfilt`, takes `scipy.signal.hilbert` and the `numpy.fft.rfft` of "
         "the squared envelope.",
         "",
-        "| method | ms per call | x naive SES |",
-        "|---|---:|---:|",
-        *[f"| {name} | {_spread(times[name])} | {_spread(ratios[name])} |" for name in names],
+        *table(["method", "ms per call", "x naive SES"],
+               [(name, spread(times[name]), spread(ratios[name])) for name in names], "lrr"),
         "",
         f"envelope_analysis with the fault bands: **{statistics.median(ratios[names[2]]):.2f}x** "
         f"the naive SES (target <= {TARGET_RATIO:.0f}x: {'met' if verdict else 'NOT met'}). "
@@ -215,9 +211,7 @@ def write(records: list[tuple[str, float]], number: int, repeat: int,
         f"The kurtogram chose {band[0]:.0f}-{band[1]:.0f} Hz; bpfo_1 = {feats['bpfo_1']:.1f} dB, "
         f"bpfi_1 = {feats['bpfi_1']:.1f} dB, kurtosis = {feats['kurtosis']:.2f}.",
         "",
-        "| feature | time (ms) |",
-        "|---|---:|",
-        *[f"| {name} | {t:.2f} |" for name, t in records],
+        *table(["feature", "time (ms)"], [(name, f"{t:.2f}") for name, t in records], "lr"),
         "",
         f"Pipeline (kurtogram + SES + fault bands + indicators): **{total:.1f} ms** "
         f"(parts sum to {parts:.1f} ms); target <= {TARGET_MS:.0f} ms: "
@@ -229,7 +223,7 @@ def write(records: list[tuple[str, float]], number: int, repeat: int,
         "the band signals).",
         *extra,
     ]
-    (RESULTS / "features_speed.md").write_text("\n".join(lines) + "\n")
+    write_page(RESULTS / "features_speed.md", lines)
 
     names = [name.strip("*") for name, _ in records][::-1]
     times = [t for _, t in records][::-1]
@@ -260,7 +254,7 @@ def main() -> None:
     RESULTS.mkdir(exist_ok=True)
     times, load = side_by_side(args.number, args.rounds)
     for name, values in times.items():
-        print(f"{_spread(values)} ms  {name}", flush=True)
+        print(f"{spread(values)} ms  {name}", flush=True)
     write(records, args.number, args.repeat, write_side_by_side(times, args.number, load))
     print(f"-> {RESULTS / 'features_speed.md'}")
 

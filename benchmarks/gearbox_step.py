@@ -35,6 +35,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 from _paths import RESULTS_DIR as RESULTS
+from _report import table, write_csv, write_page
 
 import ballpass as bp  # noqa: E402
 from ballpass import __version__  # noqa: E402
@@ -139,8 +140,7 @@ def figure(runs: pd.DataFrame, path: Path) -> None:
 
 
 def write(runs: pd.DataFrame, duration: float) -> Path:
-    RESULTS.mkdir(exist_ok=True)
-    runs.to_csv(RESULTS / "gearbox_step.csv", index=False)
+    write_csv(runs, RESULTS / "gearbox_step.csv")
     figure(runs, RESULTS / "gearbox_step.png")
     safe = largest_safe_theta(runs)
     at_default = runs[np.isclose(runs.theta, DT_DEFAULT_OMEGA)]
@@ -160,16 +160,14 @@ def write(runs: pd.DataFrame, duration: float) -> Path:
         f"{at_default.error.max():.1e} (goal {TARGET_ERROR:g}); largest studied theta with "
         f"every scene below the goal: {safe:g}.",
         "",
-        "| scene | omega_max dt | fs, Hz | dt, us | error | dt/2 | reference check |",
-        "|---|---:|---:|---:|---:|---:|---:|",
     ]
-    for r in runs.itertuples():
-        lines.append(f"| {r.scene} | {r.theta:.2f} | {r.fs_hz:.0f} | {r.dt_us:.2f} | "
-                     f"{r.error:.1e} | {r.error_half:.1e} | {r.reference_check:.1e} |")
-    lines += ["", "![gearbox step](gearbox_step.png)", ""]
-    path = RESULTS / "gearbox_step.md"
-    path.write_text("\n".join(lines))
-    return path
+    lines += table(["scene", "omega_max dt", "fs, Hz", "dt, us", "error", "dt/2",
+                    "reference check"],
+                   [(r.scene, f"{r.theta:.2f}", f"{r.fs_hz:.0f}", f"{r.dt_us:.2f}",
+                     f"{r.error:.1e}", f"{r.error_half:.1e}", f"{r.reference_check:.1e}")
+                    for r in runs.itertuples()], align="lrrrrrr")
+    lines += ["", "![gearbox step](gearbox_step.png)"]
+    return write_page(RESULTS / "gearbox_step.md", lines)
 
 
 def main() -> None:

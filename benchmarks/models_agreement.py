@@ -35,6 +35,7 @@ import argparse
 import _machine  # benchmarks/_machine.py (scripts run from their folder)
 import numpy as np
 from _paths import DOCS, RESULTS_DIR
+from _report import write_csv, write_page
 
 import ballpass as bp
 from ballpass import __version__
@@ -212,8 +213,7 @@ def write(rows: list[dict], spectra: dict, duration: float,
     import matplotlib.pyplot as plt
 
     df = pd.DataFrame(rows)
-    RESULTS_DIR.mkdir(parents=True, exist_ok=True)
-    df.to_csv(RESULTS_DIR / "models_agreement.csv", index=False, float_format="%.5g")
+    write_csv(df, RESULTS_DIR / "models_agreement.csv", float_format="%.5g")
     lines = [
         "# impulse against sr5 (benchmarks/models_agreement.py)",
         "",
@@ -240,7 +240,7 @@ def write(rows: list[dict], spectra: dict, duration: float,
         lines.append(f"| {kind} | {g['corr'].median():.3f} | {g['corr'].min():.3f} | "
                      f"{g['corr_db'].median():.3f} | {same}/{len(g)} |")
     lines += mb_lines or []
-    (DOCS / "models_agreement.md").write_text("\n".join(lines) + "\n")
+    write_page(DOCS / "models_agreement.md", lines)
 
     fig, axes = plt.subplots(2, 3, figsize=(11, 5.5))
     for ax, kind in zip(axes[0], KINDS, strict=True):

@@ -28,6 +28,8 @@ import time
 import _machine  # benchmarks/_machine.py (scripts run from their folder)
 import numpy as np
 from _paths import DOCS, RESULTS_DIR
+from _report import table as md_table
+from _report import write_csv, write_page
 
 import ballpass as bp
 from ballpass import __version__
@@ -111,8 +113,7 @@ def write(table, skipped: dict, duration: float, rounds: int) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    RESULTS_DIR.mkdir(parents=True, exist_ok=True)
-    table.to_csv(RESULTS_DIR / "models_cost.csv", index=False, float_format="%.5g")
+    write_csv(table, RESULTS_DIR / "models_cost.csv", float_format="%.5g")
     lines = [
         "# Cost of each model per simulated second (benchmarks/models_cost.py)",
         "",
@@ -125,21 +126,17 @@ def write(table, skipped: dict, duration: float, rounds: int) -> None:
         "simulating thread (``time.thread_time``, which leaves out the time other "
         "processes held the cores) and the fastest round are given beside it.",
         "",
-        "| scene | model | ms per simulated s, median (fastest) | cost / sr5, median | IQR "
-        "of the ratio | CPU-time ratio, median | speed-up vs sr5 | relative_cost in the "
-        "code |",
-        "|---|---|---:|---:|---|---:|---:|---:|",
     ]
-    for row in table.itertuples():
-        lines.append(f"| {row.scene} | {row.model} | {row.ms_per_sim_s:.2f} "
-                     f"({row.ms_per_sim_s_min:.2f}) | {row.ratio_median:.4f} | "
-                     f"{row.ratio_q25:.4f} - {row.ratio_q75:.4f} | "
-                     f"{row.cpu_ratio_median:.4f} | "
-                     f"{row.speedup_vs_sr5:.1f}x | {row.relative_cost_in_code:g} |")
-    for name, reason in skipped.items():
-        lines.append(f"| | {name} | not measured: {reason} | | | | | "
-                     f"{bp.simulate.MODELS[name].relative_cost:g} |")
-    (DOCS / "models_cost.md").write_text("\n".join(lines) + "\n")
+    rows = [(row.scene, row.model, f"{row.ms_per_sim_s:.2f} ({row.ms_per_sim_s_min:.2f})",
+             f"{row.ratio_median:.4f}", f"{row.ratio_q25:.4f} - {row.ratio_q75:.4f}",
+             f"{row.cpu_ratio_median:.4f}", f"{row.speedup_vs_sr5:.1f}x",
+             f"{row.relative_cost_in_code:g}") for row in table.itertuples()]
+    rows += [("", name, f"not measured: {reason}", "", "", "", "",
+              f"{bp.simulate.MODELS[name].relative_cost:g}") for name, reason in skipped.items()]
+    lines += md_table(["scene", "model", "ms per simulated s, median (fastest)",
+                       "cost / sr5, median", "IQR of the ratio", "CPU-time ratio, median",
+                       "speed-up vs sr5", "relative_cost in the code"], rows, "llrrlrrr")
+    write_page(DOCS / "models_cost.md", lines)
 
     table = table[table["scene"] == "48 kHz"]
     fig, ax = plt.subplots(figsize=(6, 3.2))

@@ -41,6 +41,7 @@ import time
 import _machine  # benchmarks/_machine.py (scripts run from their folder)
 import numpy as np
 from _paths import RESULTS_DIR as RESULTS
+from _report import span, spread, table, write_page
 
 import ballpass as bp
 from ballpass.signalio import atomic_write
@@ -79,9 +80,8 @@ def cost(repeats, duration_s):
         for _ in range(repeats):  # interleaved: both see the same machine load
             for model in walls:
                 walls[model].append(timed(sc, model) / duration_s)
-        mb, sr = np.array(walls["multibody"]), np.array(walls["sr5"])
-        rows.append((name, np.median(mb), mb.min(), mb.max(), np.median(sr), sr.min(),
-                     sr.max(), np.median(mb) / np.median(sr)))
+        rows.append((name, spread(walls["multibody"], ".3g"), spread(walls["sr5"], ".3g"),
+                     f"{np.median(walls['multibody']) / np.median(walls['sr5']):.0f}"))
     return rows
 
 
@@ -183,12 +183,8 @@ def main() -> None:
         f"simulated second ({args.duration:g} s runs), medians of {args.repeats} "
         "interleaved runs (min-max):",
         "",
-        "| scene | multibody s/s | sr5 s/s | ratio of medians |",
-        "|---|---|---|---|",
+        *table(["scene", "multibody s/s", "sr5 s/s", "ratio of medians"], c),
     ]
-    for name, m, mlo, mhi, s, slo, shi, ratio in c:
-        lines.append(f"| {name} | {m:.3g} ({mlo:.3g}-{mhi:.3g}) | {s:.3g} ({slo:.3g}-{shi:.3g}) "
-                     f"| {ratio:.0f} |")
     lines += [
         "",
         "## The spectrum that sets the step",
@@ -228,7 +224,7 @@ def main() -> None:
         lines.append(
             f"| {r['scene']} | {r['n_sub']}{' (default)' if r['default'] else ''} | "
             f"{r['dt_us']:.2f} | {r['lambda_dt']:.2f} | {r['omega_dt']:.2f} | "
-            f"{r['wall']:.3g} ({r['wall_lo']:.3g}-{r['wall_hi']:.3g}) | {r['err_short']:.1e} | "
+            f"{span(r['wall'], r['wall_lo'], r['wall_hi'], '.3g')} | {r['err_short']:.1e} | "
             f"{r['err_rms']:.1e} | {r['excess']:+.2%} ({r['excess_ref']:+.2%}) | "
             f"{r['err_cage']:.1e} |")
     lines += [
@@ -245,10 +241,7 @@ def main() -> None:
         "measured side by side are the figures to quote (the 6205 reference ratio of "
         "docs/models_cost.md is the one `relative_cost` cites).",
     ]
-    RESULTS.mkdir(exist_ok=True)
-    text = "\n".join(lines) + "\n"
-    atomic_write(RESULTS / "multibody_speed.md", lambda tmp: tmp.write_text(text))
-    print(text)
+    print(write_page(RESULTS / "multibody_speed.md", lines).read_text())
 
     import matplotlib
 

@@ -20,6 +20,7 @@ from pathlib import Path
 import _machine  # benchmarks/_machine.py (scripts run from their folder)
 import numpy as np
 from _paths import RESULTS_DIR as RESULTS
+from _report import table, write_page
 
 import ballpass as bp
 from ballpass import __version__
@@ -88,24 +89,19 @@ def write(records: list[dict], duration: float, repeats: int) -> Path:
         f"Target: 1 s of sr5 output at <= {TARGET_ERROR:g} relative error in "
         f"<= {TARGET_MS:g} ms on one core.",
         "",
-        "| scene | solver | setting | ms per simulated s | of which integration | steps "
-        "(rejected) | relative L2 error |",
-        "|---|---|---|---:|---:|---:|---:|",
     ]
+    rows = []
     for r in records:
         ms = f"{r['ms_per_s']:.1f}"
         if r["ms_per_s"] <= TARGET_MS and r["error"] <= TARGET_ERROR:
             ms = f"**{ms}**"
-        lines.append(
-            f"| {r['scene']} | {r['solver']} | {r['setting']} | {ms} | "
-            f"{r['integration_ms']:.1f} | {r['steps']} ({r['rejected']}) | "
-            f"{r['error']:.1e} |")
+        rows.append((r["scene"], r["solver"], r["setting"], ms, f"{r['integration_ms']:.1f}",
+                     f"{r['steps']} ({r['rejected']})", f"{r['error']:.1e}"))
+    lines += table(["scene", "solver", "setting", "ms per simulated s", "of which integration",
+                    "steps (rejected)", "relative L2 error"], rows, align="lllrrrr")
     lines += ["", "Bold: within both targets. The first call of a solver in a fresh "
-              "environment also compiles the numba kernels (cached on disk afterwards).", ""]
-    RESULTS.mkdir(exist_ok=True)
-    path = RESULTS / "simulate_speed.md"
-    path.write_text("\n".join(lines))
-    return path
+              "environment also compiles the numba kernels (cached on disk afterwards)."]
+    return write_page(RESULTS / "simulate_speed.md", lines)
 
 
 def main() -> None:

@@ -17,6 +17,7 @@ import time
 
 import numpy as np
 from _paths import RESULTS_DIR
+from _report import spread, table, write_page
 
 import ballpass as bp
 from ballpass.simulate import SR5Parameters
@@ -57,18 +58,15 @@ def main(argv=None) -> int:
             bp.simulate(scene, model="sr5", params=params)
             times[name].append(time.perf_counter() - t0)
     base = np.median(times["plain"])
-    lines = ["| option | median s | min-max s | ratio to plain |", "|---|---|---|---|"]
-    for name, t in times.items():
-        lines.append(f"| {name} | {np.median(t):.3f} | {min(t):.3f}-{max(t):.3f} | "
-                     f"{np.median(t) / base:.2f} |")
-    table = "\n".join(lines)
-    print(table)
+    lines = table(["option", "median s (min-max)", "ratio to plain"],
+                  [(name, spread(t, ".3f"), f"{np.median(t) / base:.2f}")
+                   for name, t in times.items()], "lrr")
+    print("\n".join(lines))
     out = RESULTS_DIR
-    out.mkdir(parents=True, exist_ok=True)
-    (out / "sr5_options_cost.md").write_text(
-        "# Cost of the sr5 options (1 s at 48 kHz, rk4 default step)\n\n"
+    write_page(out / "sr5_options_cost.md", [
+        "# Cost of the sr5 options (1 s at 48 kHz, rk4 default step)", "",
         f"Medians over {args.rounds} interleaved rounds on a shared 2-core machine; "
-        "ratio of medians to the plain scene.\n\n" + table + "\n")
+        "ratio of medians to the plain scene.", "", *lines])
     from matplotlib.figure import Figure
 
     fig = Figure(figsize=(8, 4.5), layout="constrained")

@@ -35,6 +35,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 from _paths import RESULTS_DIR as RESULTS
+from _report import span, table, write_csv, write_page
 from numba import njit  # noqa: E402
 
 import ballpass as bp  # noqa: E402
@@ -177,9 +178,9 @@ def figure(summary: pd.DataFrame, path: Path) -> None:
 def write(runs: pd.DataFrame, duration: float, rounds: int) -> Path:
     import numba
 
-    RESULTS.mkdir(exist_ok=True)
     summary = summarise(runs)
-    runs.to_csv(RESULTS / "sr5_speed.csv", index=False)
+    write_csv(runs, RESULTS / "sr5_speed.csv")
+    RESULTS.mkdir(parents=True, exist_ok=True)
     figure(summary, RESULTS / "sr5_speed.png")
     lines = [
         "# sr5 against a naive RK4 of the same model",
@@ -195,19 +196,15 @@ def write(runs: pd.DataFrame, duration: float, rounds: int) -> Path:
         f"Goal: error <= {TARGET_ERROR:g} at <= {TARGET_RATIO:g}x the naive "
         "RK4.",
         "",
-        "| scene | method | error | wall ms per simulated s | ratio to naive (wall) | "
-        "ratio (CPU time) |",
-        "|---|---|---:|---:|---:|---:|",
     ]
-    for r in summary.itertuples():
-        lines.append(
-            f"| {r.scene} | {r.method} | {r.error:.1e} | {r.wall_ms:.1f} "
-            f"({r.wall_lo:.1f}-{r.wall_hi:.1f}) | {r.ratio:.3f} ({r.ratio_lo:.3f}-"
-            f"{r.ratio_hi:.3f}) | {r.cpu_ratio:.3f} |")
-    lines += ["", "![sr5 speed](sr5_speed.png)", ""]
-    path = RESULTS / "sr5_speed.md"
-    path.write_text("\n".join(lines))
-    return path
+    lines += table(["scene", "method", "error", "wall ms per simulated s",
+                    "ratio to naive (wall)", "ratio (CPU time)"],
+                   [(r.scene, r.method, f"{r.error:.1e}",
+                     span(r.wall_ms, r.wall_lo, r.wall_hi, ".1f"),
+                     span(r.ratio, r.ratio_lo, r.ratio_hi, ".3f"), f"{r.cpu_ratio:.3f}")
+                    for r in summary.itertuples()], align="llrrrr")
+    lines += ["", "![sr5 speed](sr5_speed.png)"]
+    return write_page(RESULTS / "sr5_speed.md", lines)
 
 
 def main() -> None:

@@ -470,23 +470,6 @@ def test_paper_bpfi_line_at_the_geometry_not_the_printed_value(paper_setup):
     assert a[np.abs(f - bpfi) <= 2.0].max() / np.median(a[near]) > 10
 
 
-def test_seed004_page_is_written_from_its_csvs(monkeypatch):
-    # docs/seed004.md is what benchmarks/seed004.py writes from the committed CSVs: a
-    # hand edit of the page, or CSVs regenerated without the page, fail here
-    import importlib.util
-    from pathlib import Path
-
-    root = Path(__file__).resolve().parent.parent
-    monkeypatch.syspath_prepend(str(root / "benchmarks"))  # its _paths, as when run from there
-    spec = importlib.util.spec_from_file_location("seed004", root / "benchmarks" / "seed004.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    import pandas as pd
-
-    frames = {k: pd.read_csv(mod.RESULTS_DIR / f) for k, f in mod.CSVS.items()}
-    assert mod.page(frames) == (root / "docs" / "seed004.md").read_text()
-
-
 def test_presets_are_named_after_the_paper_and_the_former_names_still_work():
     # Tran, Furch & Cu Table 1 under the paper's name; "seed004..." resolves to the same pair
     for old, new in bp.gears.PRESET_ALIASES.items():

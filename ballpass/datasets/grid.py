@@ -424,14 +424,13 @@ class Grid:
 
         Examples
         --------
+        Five runs in shards of two:
+
         >>> from ballpass.datasets import read_grid
-        >>> grid = read_grid({
-        ...     "dataset": {"duration_s": 1.0, "fs": 48_000, "repeats": 3, "segment_s": 0.25,
-        ...                 "shard_size": 4},
-        ...     "grid": {"bearing": ["6205"], "fault": ["healthy", "outer"], "rpm": [1797]},
-        ... })
-        >>> grid.n_shards, grid.shard_runs(0), grid.shard_runs(1)
-        (2, range(0, 4), range(4, 6))
+        >>> grid = read_grid({"dataset": {"duration_s": 0.1, "repeats": 5, "shard_size": 2},
+        ...                   "grid": {"bearing": ["6205"], "fault": ["outer"], "rpm": [1797]}})
+        >>> [grid.shard_runs(i) for i in range(grid.n_shards)]
+        [range(0, 2), range(2, 4), range(4, 5)]
         """
         size = self.dataset["shard_size"]
         return range(index * size, min((index + 1) * size, self.n_runs))
@@ -473,11 +472,8 @@ class Grid:
         Examples
         --------
         >>> from ballpass.datasets import read_grid
-        >>> grid = read_grid({
-        ...     "dataset": {"duration_s": 1.0, "fs": 48_000, "repeats": 3, "segment_s": 0.25,
-        ...                 "shard_size": 4},
-        ...     "grid": {"bearing": ["6205"], "fault": ["healthy", "outer"], "rpm": [1797]},
-        ... })
+        >>> grid = read_grid({"dataset": {"duration_s": 1.0, "segment_s": 0.25},
+        ...                   "grid": {"bearing": ["6205"], "fault": ["ball"], "rpm": [900]}})
         >>> grid.as_dict()["dataset"]["segment_s"]
         0.25
         >>> read_grid(grid.as_dict()) == grid                # round trip
