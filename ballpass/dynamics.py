@@ -3,7 +3,7 @@
 A rotor on a bearing with clearance answers a periodic excitation (unbalance at the
 shaft speed, varying compliance at the roller-pass rate, a defect) periodically,
 quasi-periodically or chaotically depending on speed, load and clearance (the NJ 305 rotor paper's
-conclusions; our digest of the papers, item 10). The standard views:
+conclusions). The standard views:
 
 * :func:`poincare_section`: the rotor's displacement (x along the load line, y
   perpendicular, m) strobed once per shaft (or cage) revolution after the transient. A

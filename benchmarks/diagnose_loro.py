@@ -188,7 +188,7 @@ def position_sweep() -> pd.DataFrame:
     """Outer-race faults of 0.53 mm at 3 and 12 o'clock, struck because a preload loads
     every ball, heard by a sensor at 12 o'clock as on the CWRU rig: per bearing,
     position, preload and record length, the records named at each speed. These are
-    the records the issue found called inner (a 6205's 2xBPFI and 3xBPFO share a bin)."""
+    the records an earlier diagnoser called inner (a 6205's 2xBPFI and 3xBPFO share a bin)."""
     bearings, positions, preloads, speeds, snrs, lengths, seeds = POSITION_SWEEP
     de_sensor = (bp.Sensor(angle_deg=180.0, name="DE"),)
     return pd.DataFrame([
@@ -477,7 +477,8 @@ def markdown(table: pd.DataFrame, seconds: float, sweep: pd.DataFrame | None = N
             "## Outer-race faults out of the load zone",
             "",
             "The held-out CWRU records have outer-race faults at 3 and 12 o'clock, which "
-            "the issue found called inner (a 6205's 2xBPFI and 3xBPFO share a bin). On the "
+            "an earlier version of the diagnoser called inner (a 6205's 2xBPFI and 3xBPFO "
+            "share a bin). On the "
             "rig they strike: the 12 o'clock records show clear BPFO lines. In `sr5` a "
             "fault out of the load zone strikes only when every ball is loaded, so these "
             "bearings carry a preload (`Scene(clearance_um=-preload)`; at 1 um the 12 "

@@ -1,7 +1,7 @@
 """The NJ 305 rotor paper reproduction: the rotor on an NJ 305 roller bearing (model ``rotor2``).
 
-The NJ 305 rotor paper ("Dynamic behaviour of rotor roller bearing system with bearing defects";
-our digest of the papers) simulates a 1 kg rigid rotor on an NJ 305 with
+The NJ 305 rotor paper ("Dynamic behaviour of rotor roller bearing system with bearing defects")
+simulates a 1 kg rigid rotor on an NJ 305 with
 0.25 mm diametral clearance, 200 N s/m damping, a 50 g x 20 um unbalance and a 0.5 x 0.5
 mm inner-race defect, integrated with Newmark-beta. It reports (section 5) the inner-race
 line at 166.73/100.04/66.69/55.55 Hz at 1500/900/600/500 rpm, displacement amplitudes of

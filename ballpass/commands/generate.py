@@ -8,7 +8,7 @@ EXAMPLE = """\
 examples:
   ballpass generate quick --out out/quick --jobs 2      # a shipped grid (ballpass examples)
   ballpass generate cwru_like_6205_12k --out out/cwru --dry-run
-  ballpass generate grid.toml --out /shared/ds --scheduler tcp://head-node:8786
+  ballpass generate grid.toml --out /mnt/cluster/ds --scheduler tcp://head-node:8786
 
 Run the same command again to resume an interrupted dataset: complete shards are kept."""
 

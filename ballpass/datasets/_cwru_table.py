@@ -7,7 +7,7 @@ load. This table reproduces those pages so a file named only by its number (``10
 ``97.mat``), or renamed by a download script, still gets its sampling rate, label and
 load. The numbers were checked against the data centre's tables as mirrored by the
 ``cwru`` package's ``metadata.txt`` (Litchiware/cwru on GitHub) and against the variable
-names inside the 19 files of ``shared/data/cwru``.
+names inside 19 of the CWRU files.
 
 Gaps and irregularities of the official numbering (kept as they are):
 
@@ -23,7 +23,7 @@ Gaps and irregularities of the official numbering (kept as they are):
 * The normal baseline (97-100) is sampled at 48 kHz.
 
 Uncertainty: the table mirrors a third-party copy of the data centre's pages (the pages
-themselves moved several times); every number of ``shared/data/cwru`` agrees with it.
+themselves moved several times); every number in those 19 files agrees with it.
 """
 
 from __future__ import annotations
