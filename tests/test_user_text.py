@@ -83,3 +83,14 @@ def test_relative_links_and_images_resolve(page):
         if not (page.parent / target.split("#")[0]).exists():
             missing.append(target)
     assert not missing, f"{page.relative_to(ROOT)} links files that do not exist: {missing}"
+
+
+def test_readme_is_a_front_page():
+    # the README is the front page (what ballpass is, the two commands, one figure, a
+    # short example, links); the docs site carries the rest. Planted: 100 lines of
+    # results appended fail here (the README once grew to 707 lines).
+    lines = (ROOT / "README.md").read_text(encoding="utf-8").splitlines()
+    assert len(lines) <= 250, f"README.md has {len(lines)} lines; move the detail to docs/"
+    figures = [t for t in LINK.findall("\n".join(lines)) if t.endswith(".png")]
+    # its one figure is the one `ballpass simulate ... --plot` writes, kept with the results
+    assert figures == ["docs/results/quickstart_outer.png"]
