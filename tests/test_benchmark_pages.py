@@ -90,3 +90,11 @@ def test_write_page_and_csv(bench, tmp_path):
     frame = pd.DataFrame({"a": [1, 2]})
     csv = report.write_csv(frame, tmp_path / "t.csv")
     pd.testing.assert_frame_equal(pd.read_csv(csv), frame)  # no index column
+
+
+def test_docs_top_holds_pages_only():
+    # pages at the top of docs/, what the scripts write in docs/results/ (rule in
+    # docs/development.md). Planted: a CSV written beside its page fails here.
+    stray = sorted(p.name for p in (ROOT / "docs").iterdir()
+                   if p.is_file() and p.suffix not in (".md", ".rst") and p.name != "conf.py")
+    assert not stray, f"move to docs/results/ (and link as results/<name>): {stray}"
