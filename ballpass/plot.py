@@ -525,6 +525,40 @@ def kurtogram(result, *, ax=None, colorbar: bool = True, band_used=None, legend:
     return ax
 
 
+def _ses_beside_kurtogram(ax_ses, ax_k, freqs, ses, result, bands, *, rule=None,
+                         frequencies=None, harmonics: int = 3, labels=None) -> None:
+    """Draw a squared envelope spectrum titled with its band beside the kurtogram.
+
+    The pair of :func:`signal_overview` and ``EnvelopeAnalysis.plot``: the spectrum's
+    title names the band(s) it was demodulated in (and the rule that chose them), the
+    kurtogram outlines its best band and, dashed, the first band used when different.
+
+    Parameters
+    ----------
+    ax_ses, ax_k : matplotlib.axes.Axes
+        Axes of the spectrum and of the kurtogram.
+    freqs : array_like, shape (n_bins,)
+        Frequencies of the spectrum, Hz.
+    ses : array_like, shape (n_bins,) or (n_spectra, n_bins)
+        Squared envelope spectrum (or one per channel), (m/s^2)^2.
+    result : KurtogramResult
+        The kurtogram drawn (of the first signal).
+    bands : sequence of (float, float)
+        Demodulation band of each spectrum, Hz.
+    rule : str, optional
+        What chose the band(s), for the title (default: not said).
+    frequencies, harmonics, labels
+        As in :func:`envelope_spectrum`.
+    """
+    envelope_spectrum(freqs, ses, frequencies=frequencies, harmonics=harmonics,
+                      labels=labels, ax=ax_ses)
+    distinct = list(dict.fromkeys((float(lo), float(hi)) for lo, hi in bands))
+    text = ", ".join(f"{lo:.0f}–{hi:.0f} Hz" for lo, hi in distinct)
+    ax_ses.set_title(f"Squared envelope spectrum (band {text}{f': {rule}' if rule else ''})",
+                     fontsize="medium", loc="left", pad=14)
+    kurtogram(result, ax=ax_k, band_used=bands[0])
+
+
 def _hz(value: float) -> str:
     return f"{value / 1000:.3g} kHz" if value >= 1000 else f"{value:.3g} Hz"
 
@@ -631,23 +665,10 @@ def signal_overview(
     waveform(data, fs, channels=names if len(data) > 1 else None, ax=ax_wave)
     ax_wave.set_title("Waveform", fontsize="medium", loc="left")
 
-    ax_ses = fig.add_subplot(grid[1, 0])
-    envelope_spectrum(
-        spectra[0][0],
-        np.stack([s[1] for s in spectra]),
-        frequencies=marks,
-        harmonics=harmonics,
-        labels=names if len(data) > 1 else None,
-        ax=ax_ses,
-    )
-    distinct = list(dict.fromkeys((float(lo), float(hi)) for lo, hi in bands))
-    band_text = ", ".join(f"{lo:.0f}–{hi:.0f} Hz" for lo, hi in distinct)
-    ax_ses.set_title(
-        f"Squared envelope spectrum (band {band_text}: {rule})", fontsize="medium", loc="left",
-        pad=14,
-    )
-
-    kurtogram(result, ax=fig.add_subplot(grid[1, 1]), band_used=bands[0])
+    _ses_beside_kurtogram(fig.add_subplot(grid[1, 0]), fig.add_subplot(grid[1, 1]),
+                         spectra[0][0], np.stack([s[1] for s in spectra]), result, bands,
+                         rule=rule, frequencies=marks, harmonics=harmonics,
+                         labels=names if len(data) > 1 else None)
     if title is None:
         parts = [f"fs {fs:g} Hz, {data.shape[-1] / fs:g} s"]
         if bearing is not None:

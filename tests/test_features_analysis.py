@@ -150,8 +150,15 @@ def test_bad_input_is_refused_before_work():
 
 def test_plot_draws_ses_and_kurtogram():
     x, _ = outer_race(n=12_000)
-    fig = F.envelope_analysis(x, FS, rpm=RPM, bearing="6205").plot()
+    res = F.envelope_analysis(x, FS, rpm=RPM, bearing="6205")
+    fig = res.plot()
     assert len(fig.axes) == 3  # SES, kurtogram and its colour bar
     assert "BPFO 107.4 Hz" in [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    # the spectrum names the band it was computed in, the kurtogram outlines that band as
+    # its best (no dashed second band): the two panels agree
+    lo, hi = res.band
+    assert f"band {lo:.0f}–{hi:.0f} Hz" in fig.axes[0].get_title(loc="left")
+    assert f"best band {lo:.0f}–{hi:.0f} Hz" in fig.axes[1].get_title()
+    assert "dashed" not in fig.axes[1].get_title()
     with pytest.raises(ValueError, match="one signal"):
         F.envelope_analysis(np.zeros((2, 1000)), FS).plot()

@@ -104,18 +104,14 @@ class EnvelopeAnalysis:
         """
         from matplotlib.figure import Figure
 
-        from ..plot import envelope_spectrum, kurtogram
+        from ..plot import _ses_beside_kurtogram
 
         if self.ses.ndim != 1:
             raise ValueError(f"plot draws one signal's analysis; got SES of shape {self.ses.shape}")
         fig = Figure(figsize=(11, 4), layout="constrained") if fig is None else fig
-        ax_ses, ax_k = fig.subplots(1, 2, width_ratios=(1.5, 1))
-        envelope_spectrum(self.freqs, self.ses, frequencies=self.frequencies,
-                          harmonics=harmonics, ax=ax_ses)
-        lo, hi = self.band
-        ax_ses.set_title(f"Squared envelope spectrum (band {lo:.0f}–{hi:.0f} Hz)",
-                         fontsize="medium", loc="left", pad=14)
-        kurtogram(self.kurtogram, ax=ax_k)
+        _ses_beside_kurtogram(*fig.subplots(1, 2, width_ratios=(1.5, 1)), self.freqs, self.ses,
+                             self.kurtogram, [self.band], frequencies=self.frequencies,
+                             harmonics=harmonics)
         return fig
 
 
