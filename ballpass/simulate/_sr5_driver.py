@@ -51,7 +51,7 @@ SOLVERS = {
 
 #: default RK4 step of the gearbox model = DT_DEFAULT_OMEGA / its fastest linearised mode,
 #: rounded down to the internal output grid. Checked by work-precision like sr5's
-#: (benchmarks/gearbox_step.py, benchmarks/results/gearbox_step.md): at the rule's worst
+#: (benchmarks/gearbox_step.py, docs/results/gearbox_step.md): at the rule's worst
 #: case (one step per grid interval, omega dt = 0.35 exactly) the output's relative L2
 #: error against 1/32 of the step is 3.5e-6 to 9.6e-5 on Tran, Furch & Cu's helical and spur
 #: pairs, healthy, with a tooth fault, a bearing fault or both (goal 1e-3, met up to

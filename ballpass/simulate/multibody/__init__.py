@@ -900,7 +900,7 @@ MULTIBODY = Model(
     # benchmarks/models_cost.py (docs/models_cost.md): 81-106x sr5 per simulated second
     # on the 6205 reference scene at 48 kHz, side by side, in three runs on the loaded
     # shared machine (225x before the trig-free contact tests and the step from the
-    # linearised spectrum, benchmarks/results/multibody_speed.md)
+    # linearised spectrum, docs/results/multibody_speed.md)
     relative_cost=90.0,
     solvers=tuple(SOLVERS),
     fixed_step_solvers=("rk4",),
