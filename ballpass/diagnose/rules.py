@@ -8,7 +8,9 @@ exceeds a threshold set by the statistics of noise, and "healthy" otherwise. Eac
 decision gets a grade in the spirit of Smith & Randall's benchmark [1]_: ``"Y"``
 clearly diagnosed, ``"P"`` partly (the family barely clears its threshold or a
 competitor comes close), ``"N"`` not diagnosable (no family could be judged on this
-record). The physics and its references:
+record, or two families clear their thresholds within 3 dB of each other: the lines do
+not tell them apart, and the label names the stronger only because ``predict`` must
+name one). The physics and its references:
 :mod:`ballpass.diagnose.evidence`.
 
 References
@@ -112,7 +114,9 @@ class Explanation:
         ``"Y"`` clearly diagnosed (the family clears its threshold and every other
         family by 3 dB; for "healthy": every family 3 dB below its threshold), ``"P"``
         partly (closer than that, or "healthy" while a family could not be judged on
-        this record), ``"N"`` not diagnosable (no family could be judged). A record
+        this record), ``"N"`` not diagnosable (no family could be judged, or a second
+        family clears its threshold within 3 dB of the named one: the families
+        collide and the label is the stronger of the two, not a diagnosis). A record
         with no signal in any band above the fault lines is "healthy", grade "Y". In
         the spirit of Smith & Randall's
         grades (MSSP 64-65, 2015).
@@ -593,6 +597,13 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
             elif label == "healthy":
                 clear = margins[0] <= -GRADE_MARGIN_DB and not too_short[i]
                 grade = "Y" if clear else "P"
+            elif margins[1] >= 0.0 and margins[0] - margins[1] < GRADE_MARGIN_DB:
+                grade = "N"
+                rival = sorted(FAULT_FAMILIES, key=lambda f: thresholds[f] - evidence[f])[1]
+                notes.append(
+                    f"{label} and {rival} both clear their thresholds, within "
+                    f"{GRADE_MARGIN_DB:g} dB of each other: the lines do not tell the two "
+                    "families apart on this record (not diagnosable)")
             else:
                 clear = (margins[0] >= GRADE_MARGIN_DB
                          and margins[0] - margins[1] >= GRADE_MARGIN_DB)
