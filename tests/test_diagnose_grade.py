@@ -1,7 +1,8 @@
-"""The grade of a diagnosis (Smith & Randall's Y/P) pinned on marginal cases.
+"""The grade of a diagnosis (Smith & Randall's Y/P/N) pinned on marginal cases.
 
 "Y" needs the named family to clear its threshold *and* every other family by the
-grade margin; "P" when either fails. Each case is built from the evidence the
+grade margin; "N" when a second family clears its threshold within that margin (the
+families collide); "P" otherwise. Each case is built from the evidence the
 diagnoser itself reports for one signal (so it holds whatever the evidence engine
 computes): the thresholds are placed around that evidence, through the public
 ``threshold_db`` and ``explain()``. The margins used (1 dB against 10 dB) sit on either
@@ -62,14 +63,28 @@ def test_grade_of_marginal_and_clear_cases(outer_signal, offsets, label, grade):
     assert f"{label} (grade {grade})" in str(why)
 
 
-def test_a_fault_clearing_its_threshold_but_not_its_competitor_is_partly_diagnosed(
-        outer_signal):
+def test_two_families_clearing_their_thresholds_together_are_not_diagnosable(outer_signal):
     """Outer clears its threshold by 1 dB more than the inner family clears its own
-    (its threshold set to 0): named, but grade "P"."""
+    (its threshold set to 0): the two families collide, the record is named by the
+    stronger (``predict`` keeps its four labels) but graded "N", with a note naming the
+    rival. Smith & Randall's grades decide it: the one shared record where two families
+    clear within the margin (CWRU 118, ball 0.007 in, read outer 12.1 dB and inner
+    9.2 dB) is graded N1 there. Planted: the former "P" for this case fails it."""
     x, evidence = outer_signal
     assert evidence["inner"] >= 2.0  # the competitor's margin at threshold 0
     why = _explain(x, evidence, {"outer": evidence["inner"] + 1.0, "inner": evidence["inner"]})
+    assert (why.label, why.grade) == ("outer", "N"), why
+    assert any(n.startswith("outer and inner both clear") for n in why.notes), why.notes
+
+
+def test_a_competitor_close_below_its_threshold_leaves_a_partial_diagnosis(outer_signal):
+    """Outer clears its threshold by 2 dB, inner stays 0.5 dB below its own: the
+    margin between them is under 3 dB but only one family clears, so the grade is "P"
+    (partly), not "N". Planted: grading every close competitor "N" fails it."""
+    x, evidence = outer_signal
+    why = _explain(x, evidence, {"outer": 2.0, "inner": -0.5, "ball": -10.0})
     assert (why.label, why.grade) == ("outer", "P"), why
+    assert not any("both clear" in n for n in why.notes)
 
 
 def test_healthy_is_only_partly_diagnosed_when_a_family_could_not_be_judged(outer_signal):

@@ -14,6 +14,7 @@ import numpy as np
 from sklearn.base import BaseEstimator, TransformerMixin
 from sklearn.utils.validation import check_is_fitted, validate_data
 
+from .._params import keep_params
 from ._validation import check_fs, check_rpm
 from .bands import fault_band_features, fault_band_names
 from .indicators import INDICATORS, indicators
@@ -149,16 +150,7 @@ class FaultBandTransformer(TransformerMixin, BaseEstimator):
         separate=False,
         other_shafts=(),
     ):
-        self.bearing = bearing
-        self.fs = fs
-        self.rpm = rpm
-        self.band = band
-        self.prewhiten = prewhiten
-        self.harmonics = harmonics
-        self.tolerance = tolerance
-        self.background_hz = background_hz
-        self.separate = separate
-        self.other_shafts = other_shafts
+        keep_params(self, locals())
 
     def fit(self, X, y=None):
         """Validate ``X`` (n_signals, n_samples) and the parameters; returns self."""
