@@ -30,7 +30,7 @@ Run::
     PYTHONPATH=. python benchmarks/diagnose_healthy_lines.py            # ~1 min
     PYTHONPATH=. python benchmarks/diagnose_healthy_lines.py --out docs
 
-Writes ``OUT/diagnosis_healthy_lines.md`` and ``OUT/diagnosis_healthy_lines.csv``.
+Writes ``OUT/diagnosis_healthy_lines.md`` and ``OUT/results/diagnosis_healthy_lines.csv``.
 """
 
 from __future__ import annotations
@@ -42,6 +42,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import scipy.fft
+from _paths import DOCS, ROOT, results_in
 
 from ballpass.datasets.mfpt import load_mfpt_mat
 from ballpass.datasets.real import load_cwru_mat
@@ -49,7 +50,6 @@ from ballpass.diagnose import envelope_evidence
 from ballpass.diagnose.rules import DEFAULT_THRESHOLD_DB
 from ballpass.signalio import atomic_write
 
-ROOT = Path(__file__).resolve().parent.parent
 SHARED = ROOT.parent / "shared" / "data"
 STATISTICS = ("raw_db", "sk", "coherence_1", "coherence_2", "coherence_3", "cyclic_power")
 
@@ -200,11 +200,11 @@ def main(argv=None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--data", type=Path, default=SHARED,
                         help="folder holding hit/, cwru/ and mfpt/")
-    parser.add_argument("--out", type=Path, default=ROOT / "docs")
+    parser.add_argument("--out", type=Path, default=DOCS)
     args = parser.parse_args(argv)
     table = measure(args.data)
     args.out.mkdir(parents=True, exist_ok=True)
-    atomic_write(args.out / "diagnosis_healthy_lines.csv",
+    atomic_write(results_in(args.out) / "diagnosis_healthy_lines.csv",
                  lambda tmp: table.to_csv(tmp, index=False))
     page = markdown(table)
     atomic_write(args.out / "diagnosis_healthy_lines.md", lambda tmp: tmp.write_text(page))
