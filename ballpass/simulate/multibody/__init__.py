@@ -76,10 +76,12 @@ lose less than 1e-5 per step), rounded down to a divisor of the internal grid
 interval: three steps of 1.74 us per 192 kHz interval on the 6205 reference scene.
 Larger steps (two per interval, lambda_max dt = 2.1) stay stable but bias the mean
 contact forces (the centrifugal load of a 35 Hz ER-16K by 2 % at 4.2 us, 0.5 % at
-1.8 us); benchmarks/multibody_speed.py shows the work-precision. The run starts from
-the quasi-static equilibrium with the centrifugal load and rolling kinematics and
-settles for ``settle_s`` before t = 0, so the cage finds its pockets and its slip
-before the record begins.
+1.8 us); benchmarks/multibody_speed.py shows the work-precision, and that the
+overdamped root is what costs the third step: with Kramer's time halved (that root
+halved, the oscillation unchanged) two steps per interval are as accurate as three.
+The run starts from the quasi-static equilibrium with the centrifugal load and rolling
+kinematics and settles for ``settle_s`` before t = 0, so the cage finds its pockets and
+its slip before the record begins.
 
 Outputs: each sensor reads the housing acceleration (housing spring and damper plus
 every outer contact force weighted by its transmission factor, as in sr5) through the
