@@ -76,10 +76,12 @@ lose less than 1e-5 per step), rounded down to a divisor of the internal grid
 interval: three steps of 1.74 us per 192 kHz interval on the 6205 reference scene.
 Larger steps (two per interval, lambda_max dt = 2.1) stay stable but bias the mean
 contact forces (the centrifugal load of a 35 Hz ER-16K by 2 % at 4.2 us, 0.5 % at
-1.8 us); benchmarks/multibody_speed.py shows the work-precision. The run starts from
-the quasi-static equilibrium with the centrifugal load and rolling kinematics and
-settles for ``settle_s`` before t = 0, so the cage finds its pockets and its slip
-before the record begins.
+1.8 us); benchmarks/multibody_speed.py shows the work-precision, and that the
+overdamped root is what costs the third step: with Kramer's time halved (that root
+halved, the oscillation unchanged) two steps per interval are as accurate as three.
+The run starts from the quasi-static equilibrium with the centrifugal load and rolling
+kinematics and settles for ``settle_s`` before t = 0, so the cage finds its pockets and
+its slip before the record begins.
 
 Outputs: each sensor reads the housing acceleration (housing spring and damper plus
 every outer contact force weighted by its transmission factor, as in sr5) through the
@@ -897,11 +899,12 @@ MULTIBODY = Model(
                 "profiles",
     represents=frozenset({"ball_dynamics", "contact_dynamics", "contact_forces", "envelope",
                           "varying_speed"}),
-    # benchmarks/models_cost.py (docs/models_cost.md): 81-106x sr5 per simulated second
-    # on the 6205 reference scene at 48 kHz, side by side, in three runs on the loaded
-    # shared machine (225x before the trig-free contact tests and the step from the
-    # linearised spectrum, docs/results/multibody_speed.md)
-    relative_cost=90.0,
+    # benchmarks/models_cost.py (docs/models_cost.md): 57x, 68x and 82x sr5 per
+    # simulated second (medians of wall time; 76x, 68x and 87x of CPU time) on the 6205
+    # reference scene at 48 kHz, side by side, in three runs of five rounds on the loaded
+    # shared machine (81-106x in three earlier runs; 225x before the trig-free contact
+    # tests and the step from the linearised spectrum, docs/results/multibody_speed.md)
+    relative_cost=80.0,
     solvers=tuple(SOLVERS),
     fixed_step_solvers=("rk4",),
     reference="M. Nakhaeinejad, M. D. Bryant, 'Dynamic modeling of rolling element bearings "

@@ -415,6 +415,7 @@ def integrate_rk4(y, p, faults, sensors, t0, dt_pre, dt, n_pre, n_sub, n_grid, s
     # initial flags
     rhs(t, y, k1, p, faults, sensors, qi, qo, prev, e1, False)
     rec_i = 0
+    have_k1 = False
     for step in range(total + 1):
         grid = step >= n_pre and (step - n_pre) % n_sub == 0
         if grid:
@@ -427,7 +428,9 @@ def integrate_rk4(y, p, faults, sensors, t0, dt_pre, dt, n_pre, n_sub, n_grid, s
                 if not (abs(y[k]) <= bound[k]):
                     return STATUS_NONFINITE, n_steps, t, n_cross
             if g_i % stride == 0 and rec_i < rec_qi.shape[0]:
-                rhs(t, y, k1, p, faults, sensors, qi, qo, flags, e1, False)
+                # the step's first stage, whose loads are the ones recorded
+                rhs(t, y, k1, p, faults, sensors, qi, qo, flags, e1, True)
+                have_k1 = True
                 for j in range(z):
                     b = 6 + 3 * j
                     rec_qi[rec_i, j] = qi[j]
@@ -442,7 +445,9 @@ def integrate_rk4(y, p, faults, sensors, t0, dt_pre, dt, n_pre, n_sub, n_grid, s
         if step == total:
             break
         h = dt if step >= n_pre else dt_pre
-        rhs(t, y, k1, p, faults, sensors, qi, qo, flags, e1, True)
+        if not have_k1:
+            rhs(t, y, k1, p, faults, sensors, qi, qo, flags, e1, True)
+        have_k1 = False
         if n_faults > 0:
             for j in range(z):
                 for c in range(2):
