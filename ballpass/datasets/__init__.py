@@ -37,6 +37,7 @@ from .examples import example_grid, example_grids
 from .generate import dry_run, generate, regenerate
 from .grid import Grid, read_grid
 from .store import info, load, load_features
+from .twin import twin
 
 __all__ = [
     "Grid",
@@ -70,8 +71,6 @@ def __getattr__(name: str):
         return getattr(importlib.import_module(".mfpt", __name__), name)
     if name == "load_manifest":
         return getattr(importlib.import_module(".manifest", __name__), name)
-    if name == "twin":
-        return getattr(importlib.import_module(".twin", __name__), name)
     if name == "smith_randall_grades":
         return getattr(importlib.import_module(".published", __name__), name)
     raise AttributeError(f"module 'ballpass.datasets' has no attribute {name!r}")

@@ -21,8 +21,8 @@ the sensor's transmission factor; :mod:`ballpass.simulate.impulse`), before its 
 resonator: each impact is a unit-sample pulse of its housing-acceleration step, split
 linearly between the two samples around its time. The pulse train drives ``1 / A(z)``;
 the result is scaled so that its RMS over the row is ``level_db`` above the RMS of the
-background, and a segment of the real healthy recording is added: the recording whose
-speed is nearest the row's, from a start drawn from the row's seed.
+background, and a segment of a real healthy recording is added: one of the recordings
+whose speed is nearest the row's, and the segment's start, drawn from the row's seed.
 
 *Healthy rows* are that: segments of the real healthy recordings, unchanged (float32
 as stored), at the recording's own speed. Their ``group`` is the recording's name, so
@@ -126,9 +126,10 @@ class Machine:
     recordings: tuple
     sha256: str
 
-    def nearest(self, rpm: float) -> MachineRecording:
-        """The recording whose speed is nearest ``rpm`` (the first of a tie)."""
-        return min(self.recordings, key=lambda r: abs(r.rpm - rpm))
+    def nearest(self, rpm: float) -> tuple:
+        """The recordings whose speed is nearest ``rpm`` (all of a tie), in order."""
+        gap = min(abs(r.rpm - rpm) for r in self.recordings)
+        return tuple(r for r in self.recordings if abs(r.rpm - rpm) == gap)
 
     def describe(self) -> dict:
         """JSON-able summary: per recording its name, speed, samples, path order and
@@ -286,9 +287,10 @@ def twin_signal(run, scene) -> tuple[np.ndarray, dict, dict]:
     from ..simulate.impulse import _impacts
 
     machine = load_machine(run.machine)
-    rec = machine.nearest(scene.speed.rpm_start)
     n = scene.n_samples
     rng = np.random.default_rng(np.random.SeedSequence(scene.seed, spawn_key=(_STREAM,)))
+    nearest = machine.nearest(scene.speed.rpm_start)
+    rec = nearest[int(rng.integers(len(nearest)))]
     start = int(rng.integers(0, rec.accel.size - n + 1))
     background = rec.accel[start:start + n]
     columns = {"resonance_hz": math.nan, "resonance_damping": math.nan,
