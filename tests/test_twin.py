@@ -234,3 +234,21 @@ def test_level_db_needs_a_machine():
     with pytest.raises(ValueError, match="level_db .* needs a .machine. table"):
         read_grid({"grid": {"bearing": ["6205"], "fault": ["outer"], "rpm": [900],
                             "level_db": [0.0]}})
+
+
+def test_twin_command(machine, tmp_path, capsys):
+    """``ballpass twin``: writes the grid; bad speeds are one error line naming --rpm's
+    values and write nothing."""
+    from ballpass.cli import main
+
+    folder, _ = machine
+    out = tmp_path / "twin.toml"
+    assert main(["twin", str(folder / "healthy.csv"), "--rpm", "600", "900", "--out",
+                 str(out), "--draws", "3", "--duration", "0.5"]) == 0
+    grid = read_grid(out)
+    assert grid.axes["rpm"] == [600.0, 900.0] and grid.dataset["draws"] == 3
+    bad = tmp_path / "bad.toml"
+    assert main(["twin", str(folder / "healthy.csv"), "--rpm", "0", "--out", str(bad)]) != 0
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "rpm must be shaft speeds > 0" in err[0]
+    assert not bad.exists()

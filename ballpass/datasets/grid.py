@@ -631,6 +631,14 @@ def read_grid(source) -> Grid:
     ``Scene(shaft_harmonics=...)``) and ``sensor_angle_deg`` (the angle of the one
     sensor, degrees from the load line). Each is stored as a column of its own.
 
+    **A twin.** A ``[machine]`` table, ``manifest = "healthy.csv"`` (relative to the
+    TOML file, or absolute), makes the grid a twin of a real machine
+    (:mod:`ballpass.datasets.twin`, written by :func:`~ballpass.datasets.twin`): its
+    rows are simulated faults through the machine's learned transmission path over
+    segments of its healthy recordings, and healthy rows are those segments. Its
+    ``level_db`` axis (required there, refused elsewhere) is the fault's RMS over the
+    background's, dB; healthy points do not multiply over it; one sensor.
+
     **Drawn axes.** Every numeric axis may instead be a distribution (see
     :mod:`ballpass.datasets.distributions`): ``{uniform = [lo, hi]}``,
     ``{log_uniform = [lo, hi]}``, ``{normal = [mean, sigma]}`` or ``{choice = [...]}``.
