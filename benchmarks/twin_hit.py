@@ -24,6 +24,7 @@ import argparse
 import subprocess
 import sys
 import tempfile
+import time
 from pathlib import Path
 
 import numpy as np
@@ -59,14 +60,18 @@ def one_speed(data: Path, speed: int, work: Path, jobs: int) -> tuple[pd.DataFra
     healthy, test = manifests(data, speed, work)
     grid, ds, report = work / f"twin_{speed}.toml", work / f"ds_{speed}", work / f"rep_{speed}"
     ballpass("twin", healthy, "--rpm", *SPEEDS, "--out", grid)
+    t0 = time.perf_counter()
     ballpass("generate", grid, "--out", ds, "--jobs", jobs, "--quiet")
+    t1 = time.perf_counter()
     ballpass("benchmark", ds, "--real", test, "--splits", "sim2real", "--models", MODELS,
              "--out", report, "--quiet")
+    t2 = time.perf_counter()
     results = pd.read_csv(report / "results.csv")
     seeds = pd.read_csv(report / "sim2real_seeds.csv")
     spread = seeds.groupby("model")["balanced_accuracy_3class"].agg(["min", "max"])
     results = results.join(spread, on="model")
     results.insert(0, "input", f"Normal_{speed}")
+    results["generate_s"], results["benchmark_s"] = t1 - t0, t2 - t1
     predictions = pd.read_csv(report / "predictions.csv")
     predictions.insert(0, "input", f"Normal_{speed}")
     return results, predictions
@@ -102,8 +107,20 @@ def figure(predictions: pd.DataFrame, path: Path) -> None:
     fig.savefig(path, dpi=120)
 
 
+def markdown(table: pd.DataFrame) -> str:
+    """The table as a Markdown pipe table (numbers to 3 digits, times to whole s)."""
+    def cell(name, v):
+        if isinstance(v, float):
+            return f"{v:.0f}" if name.endswith("_s") else f"{v:.3f}"
+        return str(v)
+    rows = ["| " + " | ".join(table.columns) + " |", "|" + "---|" * len(table.columns)]
+    rows += ["| " + " | ".join(cell(k, v) for k, v in row.items()) + " |"
+             for _, row in table.iterrows()]
+    return "\n".join(rows)
+
+
 COLUMNS = ["input", "model", "n_test", "recall_healthy", "recall_outer", "recall_inner",
-           "balanced_accuracy_3class", "min", "max"]
+           "balanced_accuracy_3class", "min", "max", "generate_s", "benchmark_s"]
 
 
 def main() -> None:
@@ -130,9 +147,12 @@ def main() -> None:
              "Input: one healthy recording (5.12 s at one speed). Test: every other recording "
              "of the rig, one-second segments (inner and outer faults of 2/5/8 degree arcs at "
              "600/900/1200 rpm, healthy at the two other speeds). Goal: three-class balanced "
-             "accuracy >= 0.9, every class recall >= 0.8. Produced by "
+             "accuracy >= 0.9, every class recall >= 0.8. `min`/`max`: range of the "
+             "balanced accuracy over five training seeds. `generate_s`, `benchmark_s`: wall "
+             "time of `ballpass generate --jobs 2` and `ballpass benchmark --real` (both "
+             "models) on a 2-core machine shared with other work. Produced by "
              "`benchmarks/twin_hit.py`.", "",
-             table.round(3).to_markdown(index=False), "", "![confusion](twin_hit.png)", ""]
+             markdown(table), "", "![confusion](twin_hit.png)", ""]
     (args.out / "twin_hit.md").write_text("\n".join(lines))
     print(table.round(3).to_string(index=False))
 

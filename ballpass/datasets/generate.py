@@ -720,7 +720,8 @@ def dry_run(grid, out_dir=None, n_jobs: int = 1, force: bool = False) -> Estimat
         s for s in manifest["shards"] if shard_complete(folder / s["file"], s["n_rows"])]
     check_resources(grid, folder if folder is not None else Path.cwd(),
                     min(n_jobs, available_cores()), sum(s["n_rows"] for s in done), force)
-    representatives = {m: run for m, run in reversed(models)}
+    # a twin's first point is healthy (a copy of a recording): time its last, a fault
+    representatives = {m: run for m, run in (models if grid.machine else reversed(models))}
     _warm_up(representatives, grid.dataset["solver"])
     seconds, row_bytes = {}, {}
     with tempfile.TemporaryDirectory() as tmp:
