@@ -147,11 +147,11 @@ def main() -> None:
              "Input: one healthy recording (5.12 s at one speed). Test: every other recording "
              "of the rig, one-second segments (inner and outer faults of 2/5/8 degree arcs at "
              "600/900/1200 rpm, healthy at the two other speeds). Goal: three-class balanced "
-             "accuracy >= 0.9, every class recall >= 0.8. `min`/`max`: range of the "
-             "balanced accuracy over five training seeds. `generate_s`, `benchmark_s`: wall "
-             "time of `ballpass generate --jobs 2` and `ballpass benchmark --real` (both "
-             "models) on a 2-core machine shared with other work. Produced by "
-             "`benchmarks/twin_hit.py`.", "",
+             "accuracy >= 0.9, every class recall >= 0.8. `balanced_3class_seed_min`/`_max`: "
+             "range of the balanced accuracy over five training seeds. `generate_s`, "
+             "`benchmark_s`: wall time of `ballpass generate --jobs 2` and "
+             "`ballpass benchmark --real` (both models) on a 2-core machine shared with "
+             "other work. Produced by `benchmarks/twin_hit.py`.", "",
              markdown(table), "", "![confusion](twin_hit.png)", ""]
     (args.out / "twin_hit.md").write_text("\n".join(lines))
     print(table.round(3).to_string(index=False))

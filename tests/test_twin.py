@@ -140,6 +140,7 @@ def test_healthy_rows_are_segments_of_the_recordings(machine, dataset):
         np.testing.assert_array_equal(X[i], rec[start:start + X.shape[1]])
         assert meta.at[i, "group"] == meta.at[i, "background"]
         assert meta.at[i, "rpm"] == 900.0 and math.isnan(meta.at[i, "level_db"])
+        assert math.isnan(meta.at[i, "radial_load_n"])   # a real segment's load is unknown
     # each healthy row picks one of the two 900 rpm recordings (p = 1/2 each): at seed 0
     # both serve (all six on one side would have p = 1/32)
     assert set(meta.loc[healthy, "background"]) == {"first", "second"}

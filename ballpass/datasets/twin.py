@@ -25,8 +25,9 @@ background, and a segment of a real healthy recording is added: one of the recor
 whose speed is nearest the row's, and the segment's start, drawn from the row's seed.
 
 *Healthy rows* are that: segments of the real healthy recordings, unchanged (float32
-as stored), at the recording's own speed. Their ``group`` is the recording's name, so
-no split puts segments of one recording on both sides; a fault row's group is its run.
+as stored), at the recording's own speed (their load, slip and clearance NaN: unknown).
+Their ``group`` is the recording's name, so no split puts segments of one recording on
+both sides; a fault row's group is its run.
 
 Every row keeps the columns of a simulated row (its scene, the fault's size and angle,
 the slip, the load) and adds ``level_db``, ``machine`` (the manifest), ``background``
@@ -298,7 +299,10 @@ def twin_signal(run, scene) -> tuple[np.ndarray, dict, dict]:
                "background": rec.name, "background_start_s": start / rec.fs}
     if not scene.faults:
         accel = background.copy()
-        columns.update(group=rec.name, rpm=rec.rpm, rpm_start=rec.rpm, rpm_end=rec.rpm)
+        # a real segment: its speed is the recording's, its load, slip and clearance
+        # unknown (not the grid point's, which made nothing of it)
+        columns.update(group=rec.name, rpm=rec.rpm, rpm_start=rec.rpm, rpm_end=rec.rpm,
+                       radial_load_n=math.nan, slip=math.nan, clearance_um=math.nan)
     else:
         times, steps, _ = _impacts(scene)
         fault = scipy.signal.lfilter([1.0], rec.a, _pulse_train(times, steps[0], n, scene.fs))
