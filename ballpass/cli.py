@@ -24,6 +24,7 @@ SUBCOMMANDS = {
     "examples": "examples",
     "info": "info",
     "benchmark": "benchmark",
+    "twin": "twin",
     "work-precision": "work_precision",
     "bifurcation": "bifurcation",
 }

@@ -17,6 +17,8 @@ load_cwru     Case Western Reserve University bearing data (.mat) in the same sh
 load_cwru_mat one CWRU .mat recording
 load_mfpt     the MFPT (Society for Machinery Failure Prevention Technology) bearing data
 load_manifest recordings of any rig listed in a table (CSV or Parquet), one row each
+twin          a ready grid of a real machine from its healthy recordings (a manifest):
+              faults through its learned transmission path, over its own background
 smith_randall_grades  Smith & Randall's (2015) grade of each CWRU 12 kHz drive-end record
 fetch_cwru    download CWRU records by number into a local cache, checked
 fetch_mfpt    download and unpack the MFPT data sets into a local cache
@@ -35,6 +37,7 @@ from .examples import example_grid, example_grids
 from .generate import dry_run, generate, regenerate
 from .grid import Grid, read_grid
 from .store import info, load, load_features
+from .twin import twin
 
 __all__ = [
     "Grid",
@@ -52,6 +55,7 @@ __all__ = [
     "load_mfpt",
     "load_manifest",
     "smith_randall_grades",
+    "twin",
     "fetch",
     "fetch_cwru",
     "fetch_mfpt",

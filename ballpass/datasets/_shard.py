@@ -45,11 +45,18 @@ def _simulate_run(run: Run, solver: str, signal_length: int, n_segments: int):
     columns : dict of lists
         Label and parameter columns, one value per row.
     """
-    from ..simulate import simulate
-
     scene = run.build_scene()
-    res = simulate(scene, model=run.model, solver=solver)
-    accel = np.atleast_2d(res.accel)
+    if run.machine is not None:   # a twin's run: learned path and real background
+        from .twin import twin_signal
+
+        accel, info, extra = twin_signal(run, scene)
+        sensor_names = (scene.sensors[0].name,)
+    else:
+        from ..simulate import simulate
+
+        res = simulate(scene, model=run.model, solver=solver)
+        accel, info, extra = np.atleast_2d(res.accel), res.info, {}
+        sensor_names = res.sensor_names
     fault = scene.faults[0] if scene.faults else None
     speed = scene.speed
     scene_json = json.dumps(run.scene, sort_keys=True)
@@ -75,21 +82,23 @@ def _simulate_run(run: Run, solver: str, signal_length: int, n_segments: int):
         "group": run.run_id,
         "repeat": run.repeat,
         "seed": run.seed,
-        "model": res.info["model"],
-        "solver": res.info["solver"],
+        "model": info["model"],
+        "solver": info["solver"],
         "scene": scene_json,
         **run.columns,  # realism axes, and which draw of a drawn grid
+        **extra,
     }
     signals, rows = [], []
-    for k, sensor in enumerate(res.sensor_names):
+    for k, sensor in enumerate(sensor_names):
         for seg in range(n_segments):
             start = seg * signal_length
             signals.append(accel[k, start:start + signal_length])
             t_mid = (start + 0.5 * signal_length) / scene.fs
             rows.append({**per_run, "sensor": sensor, "segment": seg, "start_s": start / scene.fs,
                          # mean speed over the row: a linear ramp's value at its mid-time
-                         "rpm": float(speed.rpm_at(t_mid, scene.duration_s))})
-    columns = {key: [row[key] for row in rows] for key in (*COLUMNS, *run.columns)}
+                         "rpm": extra.get("rpm", float(speed.rpm_at(t_mid, scene.duration_s)))})
+    keys = dict.fromkeys((*COLUMNS, *run.columns, *extra))
+    columns = {key: [row[key] for row in rows] for key in keys}
     return np.asarray(signals, dtype=np.float32), columns
 
 
@@ -140,8 +149,11 @@ def regenerate(row) -> np.ndarray:
         if not isinstance(scene, dict):
             raise TypeError(f"a JSON object is expected, got {type(scene).__name__}")
         built = scene_from_dict(scene)
+        machine = row.get("machine")   # a twin's row: its manifest and level
         run = Run(run_id=int(row["run_id"]), repeat=int(row["repeat"]), model=row["model"],
-                  scene=scene)
+                  scene=scene, machine=machine if isinstance(machine, str) else None,
+                  columns={"level_db": float(row["level_db"])} if isinstance(machine, str)
+                  else {})
         length = round(float(row["duration_s"]) * built.fs)
         segment = int(row["segment"])
     except (TypeError, ValueError) as exc:

@@ -558,6 +558,12 @@ def generate(grid, out_dir, n_jobs: int = 1, executor: cf.Executor | None = None
         raise TypeError(f"executor must be a concurrent.futures.Executor, got {executor!r}")
     models = _resolved_models(grid)
     fingerprint = simulator_fingerprint(models)
+    machine = None
+    if grid.machine is not None:   # a twin: its recordings are part of what decides
+        from .twin import check_machine, write_machine
+
+        machine = check_machine(grid)
+        fingerprint["machine"] = machine.sha256
     folder = Path(out_dir).resolve()
     manifest = _check_existing(folder, grid, fingerprint)
     rows_done = 0 if manifest is None else sum(s["n_rows"] for s in manifest["shards"]
@@ -571,6 +577,8 @@ def generate(grid, out_dir, n_jobs: int = 1, executor: cf.Executor | None = None
         specs = _plan(grid, folder, manifest, features)
         manifest["status"] = "running"
         write_manifest(folder, manifest)
+        if machine is not None:   # the learned paths, for the record
+            write_machine(folder, machine)
         if any(s.simulate for s in specs):
             _warm_up({m: run for m, run in reversed(models)}, grid.dataset["solver"])
         n_workers = 1 if executor is not None else _n_workers(n_jobs, len(specs))
@@ -700,6 +708,10 @@ def dry_run(grid, out_dir=None, n_jobs: int = 1, force: bool = False) -> Estimat
     grid = read_grid(grid)
     n_jobs = _check_jobs(n_jobs)
     models = _resolved_models(grid)
+    if grid.machine is not None:
+        from .twin import check_machine
+
+        check_machine(grid)
     folder = Path(out_dir) if out_dir is not None else None
     manifest = read_manifest(folder) if folder is not None and folder.is_dir() else None
     if manifest is not None and manifest["grid"] != grid.as_dict():
@@ -708,7 +720,8 @@ def dry_run(grid, out_dir=None, n_jobs: int = 1, force: bool = False) -> Estimat
         s for s in manifest["shards"] if shard_complete(folder / s["file"], s["n_rows"])]
     check_resources(grid, folder if folder is not None else Path.cwd(),
                     min(n_jobs, available_cores()), sum(s["n_rows"] for s in done), force)
-    representatives = {m: run for m, run in reversed(models)}
+    # a twin's first point is healthy (a copy of a recording): time its last, a fault
+    representatives = {m: run for m, run in (models if grid.machine else reversed(models))}
     _warm_up(representatives, grid.dataset["solver"])
     seconds, row_bytes = {}, {}
     with tempfile.TemporaryDirectory() as tmp:

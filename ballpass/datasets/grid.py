@@ -88,7 +88,8 @@ MODE_DEFAULTS = {"damping": 0.05, "gain": 1.0}
 #: varying fastest
 AXES = (
     "bearing", "fault", "fault_width_mm", "fault_depth_mm", "fault_angle_deg",
-    "fault_engagement", "rpm", "radial_load_n", "clearance_um", "slip", "snr_db", "noise_rms",
+    "fault_engagement", "level_db", "rpm", "radial_load_n", "clearance_um", "slip", "snr_db",
+    "noise_rms",
     "resonance_hz", "resonance_damping", *REALISM_AXES, "model", "sensor",
 )
 REQUIRED_AXES = ("bearing", "fault", "rpm")
@@ -96,9 +97,14 @@ _FAULT_AXES = {"fault_width_mm": "width_mm", "fault_depth_mm": "depth_mm",
                "fault_angle_deg": "angle_deg", "fault_engagement": "engagement"}
 #: fault axes of ball faults only: race-fault points do not multiply over them
 _BALL_AXES = ("fault_engagement",)
+#: axes of a twin's fault rows (a grid with a [machine] table, :mod:`.twin`): the fault's
+#: RMS over the real background's, dB; not a Scene field, a column of its own
+TWIN_AXES = ("level_db",)
+#: axes that healthy points do not multiply over
+_FAULT_ONLY = (*_FAULT_AXES, *TWIN_AXES)
 _SCENE_AXES = ("radial_load_n", "clearance_um", "slip", "snr_db", "noise_rms", "resonance_hz",
                "resonance_damping")
-_NUMERIC_AXES = (*_FAULT_AXES, "rpm", *_SCENE_AXES, *REALISM_AXES)
+_NUMERIC_AXES = (*_FAULT_AXES, *TWIN_AXES, "rpm", *_SCENE_AXES, *REALISM_AXES)
 _SENSOR_KEYS = {f.name for f in fields(Sensor)}
 
 #: target size of one shard, bytes of float32 signal (shard_size default)
@@ -321,7 +327,12 @@ class Run:
     columns : dict, optional
         Dataset columns of the run beyond the scene's own: the values of its realism
         axes (:data:`REALISM_AXES`) and, in a grid with drawn axes, ``draw`` (which draw
-        of its grid point) and ``draw_seed`` (see :func:`draw_seed`).
+        of its grid point) and ``draw_seed`` (see :func:`draw_seed`); in a twin's grid,
+        ``level_db`` (NaN for a healthy run).
+    machine : str, optional
+        A twin's run (:mod:`ballpass.datasets.twin`): absolute path of the manifest of
+        the machine's healthy recordings, whose learned path and background make its
+        signal. None: a simulated run.
     """
 
     run_id: int
@@ -329,6 +340,7 @@ class Run:
     model: str
     scene: dict
     columns: dict = field(default_factory=dict)
+    machine: str | None = None
 
     @property
     def seed(self) -> int:
@@ -353,6 +365,9 @@ class Grid:
         and ``needs`` (phenomena every run asks for).
     axes : dict
         The [grid] axes as lists of normalized values (ranges expanded).
+    machine : dict or None
+        The [machine] table of a twin (:mod:`ballpass.datasets.twin`), its ``manifest``
+        an absolute path; None for a simulated grid.
 
     Examples
     --------
@@ -371,6 +386,7 @@ class Grid:
     dataset: dict
     axes: dict
     _points: tuple = field(repr=False, compare=False)
+    machine: dict | None = None
 
     # ------------------------------------------------------------ derived sizes
     @property
@@ -459,11 +475,14 @@ class Grid:
                     base = _point_scene(self.dataset, list(self.sensors), values)
                     columns = {"draw": d, "draw_seed": seed}
                 columns.update({k: values[k] for k in realism})
+                if self.machine is not None:
+                    columns["level_db"] = values.get("level_db", math.nan)
+                machine = None if self.machine is None else self.machine["manifest"]
                 for r in range(repeats):
                     run_id = draw_id * repeats + r
                     scene = {**base, "seed": run_seed(root, run_id)}
                     out.append(Run(run_id=run_id, repeat=r, model=model, scene=scene,
-                                   columns=columns))
+                                   columns=columns, machine=machine))
         return tuple(out)
 
     def as_dict(self) -> dict:
@@ -479,7 +498,10 @@ class Grid:
         >>> read_grid(grid.as_dict()) == grid                # round trip
         True
         """
-        return _json_safe({"dataset": dict(self.dataset), "grid": dict(self.axes)})
+        out = {"dataset": dict(self.dataset), "grid": dict(self.axes)}
+        if self.machine is not None:
+            out["machine"] = dict(self.machine)
+        return _json_safe(out)
 
 
 def _load_source(source) -> dict:
@@ -605,6 +627,14 @@ def read_grid(source) -> Grid:
     ``Scene(shaft_harmonics=...)``) and ``sensor_angle_deg`` (the angle of the one
     sensor, degrees from the load line). Each is stored as a column of its own.
 
+    **A twin.** A ``[machine]`` table, ``manifest = "healthy.csv"`` (relative to the
+    TOML file, or absolute), makes the grid a twin of a real machine
+    (:mod:`ballpass.datasets.twin`, written by :func:`~ballpass.datasets.twin`): its
+    rows are simulated faults through the machine's learned transmission path over
+    segments of its healthy recordings, and healthy rows are those segments. Its
+    ``level_db`` axis (required there, refused elsewhere) is the fault's RMS over the
+    background's, dB; healthy points do not multiply over it; one sensor.
+
     **Drawn axes.** Every numeric axis may instead be a distribution (see
     :mod:`ballpass.datasets.distributions`): ``{uniform = [lo, hi]}``,
     ``{log_uniform = [lo, hi]}``, ``{normal = [mean, sigma]}`` or ``{choice = [...]}``.
@@ -654,10 +684,11 @@ def read_grid(source) -> Grid:
     if isinstance(source, Grid):
         return source
     raw = _load_source(source)
-    unknown = set(raw) - {"dataset", "grid"}
+    unknown = set(raw) - {"dataset", "grid", "machine"}
     if unknown:
-        raise ValueError(f"unknown table(s) {sorted(unknown)}; a grid has [dataset] and [grid]")
-    for table in ("dataset", "grid"):
+        raise ValueError(f"unknown table(s) {sorted(unknown)}; a grid has [dataset] and "
+                         "[grid] (and [machine] for a twin)")
+    for table in ("dataset", "grid", "machine"):
         if not isinstance(raw.get(table, {}), dict):
             raise ValueError(f"[{table}] must be a table, got {raw[table]!r}")
     dataset = _dataset_settings(raw.get("dataset", {}))
@@ -676,6 +707,7 @@ def read_grid(source) -> Grid:
     axes = {k: _axis_values(k, grid_raw[k], dataset["fs"]) for k in AXES if k in grid_raw}
     _check_ball_axes(axes)
     _check_realism_axes(axes)
+    machine = _machine_table(raw, source, axes)
     if dataset.get("draws", 1) > 1 and not any(isinstance(v, Distribution)
                                                for v in axes.values()):
         raise ValueError(f"dataset.draws = {dataset['draws']} needs a drawn axis (e.g. "
@@ -690,7 +722,36 @@ def read_grid(source) -> Grid:
         n_runs = len(points) * dataset["repeats"] * dataset.get("draws", 1)
         dataset["shard_size"] = max(1, min(_SHARD_BYTES // run_bytes, _MAX_SHARD_RUNS,
                                            -(-n_runs // _MIN_SHARDS)))
-    return Grid(dataset=dataset, axes=axes, _points=points)
+    return Grid(dataset=dataset, axes=axes, _points=points, machine=machine)
+
+
+def _machine_table(raw: dict, source, axes: dict) -> dict | None:
+    """The validated [machine] table of a twin (its manifest made absolute: relative to
+    the TOML file's folder, or to the current folder for a dict), or None; the twin's
+    axes and constraints are checked (see :mod:`ballpass.datasets.twin`)."""
+    if "machine" not in raw:
+        given = [k for k in TWIN_AXES if k in axes]
+        if given:
+            raise ValueError(f"grid.{given[0]} is the fault's level over a real machine's "
+                             "background: it needs a [machine] table naming the healthy "
+                             "recordings (ballpass twin writes one)")
+        return None
+    table = raw["machine"]
+    unknown = set(table) - {"manifest"}
+    if unknown or "manifest" not in table:
+        raise ValueError(f"[machine] has one key, manifest (the table of the machine's "
+                         f"healthy recordings); got keys {sorted(table)}")
+    if not isinstance(table["manifest"], str) or not table["manifest"].strip():
+        raise ValueError(f"machine.manifest must be a path, got {table['manifest']!r}")
+    base = (Path(source).parent if isinstance(source, (str, os.PathLike)) else Path.cwd())
+    manifest = (base / table["manifest"]).resolve()
+    if "level_db" not in axes:
+        raise ValueError("a twin's grid (with [machine]) needs grid.level_db, the fault's RMS "
+                         "over the background's, dB, e.g. level_db = { uniform = [-10, 15] }")
+    if len(axes.get("sensor", ["loaded"])) != 1:
+        raise ValueError("a twin's grid has one sensor, the machine's accelerometer; "
+                         f"grid.sensor has {len(axes['sensor'])}")
+    return {"manifest": str(manifest)}
 
 
 def _check_ball_axes(axes: dict) -> None:
@@ -714,14 +775,14 @@ def _fault_axes_of(kind: str, axes) -> list[str]:
     none for healthy points, no ball-only axis for race faults."""
     if kind == "healthy":
         return []
-    return [k for k in axes if k in _FAULT_AXES and (kind == "ball" or k not in _BALL_AXES)]
+    return [k for k in axes if k in _FAULT_ONLY and (kind == "ball" or k not in _BALL_AXES)]
 
 
 def count_points(axes: dict) -> int:
     """Grid points of validated axes, counted without building them: healthy points do
     not multiply over the fault axes, race-fault points not over the ball-only ones."""
     other = math.prod(_n_values(v) for k, v in axes.items()
-                      if k not in _FAULT_AXES and k not in ("sensor", "fault"))
+                      if k not in _FAULT_ONLY and k not in ("sensor", "fault"))
     return other * sum(math.prod(_n_values(axes[k]) for k in _fault_axes_of(kind, axes))
                        for kind in axes["fault"])
 
@@ -806,7 +867,7 @@ def _expand(dataset: dict, axes: dict) -> tuple:
     as a Scene. A drawn axis takes its representative value here, and every point is
     also validated with each drawn axis at its extremes in turn."""
     product_axes = [k for k in AXES if k in axes and k != "sensor"]
-    other_axes = [k for k in product_axes if k not in _FAULT_AXES]
+    other_axes = [k for k in product_axes if k not in _FAULT_ONLY]
     sensors = axes.get("sensor", ["loaded"])
     drawn = {k: v for k, v in axes.items() if isinstance(v, Distribution)}
     listed = {k: [v.representative] if k in drawn else v for k, v in axes.items()}

@@ -285,6 +285,40 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
         raise ValueError("return_forces=True: the impulse model does not represent "
                          "contact_forces; use model='sr5' (or model='auto')")
     t_wall = time.perf_counter()
+    t_hit, steps, (before, fault, elem, crossings_edge) = _impacts(scene, params)
+    n_samples = scene.n_samples
+    accel = _ring(t_hit, steps, n_samples, scene.fs, scene.resonance_hz,
+                  scene.resonance_damping)
+    accel -= accel.mean(axis=1, keepdims=True)  # AC-coupled accelerometers, as sr5
+    accel = add_noise(scene, accel)
+    check_finite(scene, accel, "impulse")
+
+    t = np.arange(n_samples) / scene.fs
+    truth = GroundTruth.of_scene(
+        scene, t, FaultCrossings(time_s=before.copy(), fault=fault, element=elem,
+                                 edge=crossings_edge))
+    info = {"solver": solver, "n_impacts": int(t_hit.size), "n_events": int(before.size),
+            "wall_time_s": time.perf_counter() - t_wall}
+    return SimulationResult(accel=accel[0] if len(scene.sensors) == 1 else accel,
+                            fs=scene.fs, t=t, scene=scene,
+                            sensor_names=tuple(s.name for s in scene.sensors),
+                            truth=truth, info=info)
+
+
+def _impacts(scene: Scene, params: ImpulseParameters | None = None):
+    """The impacts of ``scene``: when, and the housing acceleration step each gives each
+    sensor, before any resonator (see the module docstring).
+
+    Returns
+    -------
+    times : ndarray, shape (n_impacts,)
+        Impact times (the ``exit`` crossings), s, ascending.
+    steps : ndarray, shape (n_sensors, n_impacts)
+        Step of housing acceleration at each sensor, m/s^2.
+    crossings : tuple of ndarray
+        Time, fault, element and edge name of every defect crossing (the ground truth's
+        ``fault_crossings``).
+    """
     params = params or ImpulseParameters()
     # K, for the kinematics and the loads; refuses a load beyond the elastic limit
     kh, load_zone = _load_zone(scene, params)
@@ -317,22 +351,7 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
     kappa = np.array([s.attenuation for s in scene.sensors])[:, None]
     cos_rel = np.cos(psi[None, :] - theta)
     steps = np.exp(-kappa * (1.0 - cos_rel)) * cos_rel * dq[None, :] / params.housing_mass
-    accel = _ring(t_hit, steps, n_samples, scene.fs, scene.resonance_hz,
-                  scene.resonance_damping)
-    accel -= accel.mean(axis=1, keepdims=True)  # AC-coupled accelerometers, as sr5
-    accel = add_noise(scene, accel)
-    check_finite(scene, accel, "impulse")
-
-    t = np.arange(n_samples) / scene.fs
-    truth = GroundTruth.of_scene(
-        scene, t, FaultCrossings(time_s=before.copy(), fault=fault, element=elem,
-                                 edge=crossings_edge))
-    info = {"solver": solver, "n_impacts": int(t_hit.size), "n_events": int(before.size),
-            "wall_time_s": time.perf_counter() - t_wall}
-    return SimulationResult(accel=accel[0] if len(scene.sensors) == 1 else accel,
-                            fs=scene.fs, t=t, scene=scene,
-                            sensor_names=tuple(s.name for s in scene.sensors),
-                            truth=truth, info=info)
+    return t_hit, steps, (before, fault, elem, crossings_edge)
 
 
 def _accepts(scene: Scene) -> str | None:

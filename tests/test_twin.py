@@ -1,0 +1,255 @@
+"""The twin of a real machine: the all-pole path fit, and datasets made from a healthy
+recording (``ballpass twin`` -> ``generate``).
+
+Fixture: 1.5 s of the HIT-SM rig's healthy recording at 900 rpm (51.2 kHz), provenance in
+tests/data/README.md, cut into two recordings so that the machine has two groups.
+"""
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+import scipy.linalg
+import scipy.signal
+
+from ballpass.datasets import generate, load, read_grid, regenerate, twin
+from ballpass.datasets.twin import MACHINE_FILE
+from ballpass.diagnose import split_indices
+from ballpass.features.lpc import ar_fit, ar_order, ar_resonances, autocorrelation, levinson
+
+CROP = Path(__file__).parent / "data" / "hit_Normal_900_crop.npy"
+FS = 51_200.0
+
+
+def _mode_poles(freqs_hz, dampings, fs):
+    """Poles z = exp(s / fs) of modes of natural frequency f and damping ratio zeta."""
+    poles = []
+    for f, zeta in zip(freqs_hz, dampings, strict=True):
+        s = 2 * np.pi * f * (-zeta + 1j * math.sqrt(1 - zeta**2))
+        poles += [np.exp(s / fs), np.exp(np.conj(s) / fs)]
+    return poles
+
+
+# ----------------------------------------------------------------------------- lpc
+def test_levinson_solves_the_yule_walker_equations():
+    """The recursion against scipy's Toeplitz solver on the same autocorrelation (an
+    independent solution of the same equations): equal to rounding."""
+    x = np.random.default_rng(1).normal(size=5000).cumsum()
+    r = autocorrelation(x, 12)
+    a, errors = levinson(r, 12)
+    reference = scipy.linalg.solve_toeplitz(r[:12], -r[1:13])
+    np.testing.assert_allclose(a[1:], reference, rtol=1e-9, atol=1e-12)  # float rounding
+    # the prediction error of order p: r[0] + sum a_k r[k] (Makhoul 1975, eq. 38)
+    assert errors[-1] == pytest.approx(r[0] + a[1:] @ r[1:13], rel=1e-9)
+    assert np.all(np.diff(errors) <= 0)   # error never grows with the order
+
+
+def test_ar_fit_recovers_two_modes_of_a_known_ar_process():
+    """White noise through two known modes (2.5 kHz at 3 %, 9 kHz at 1 %): the fit of
+    order 4 gives their frequencies and damping ratios. Planted: ar_resonances without
+    the fs scaling (frequencies in cycles/sample) fails; a sign slip in levinson's
+    reflection coefficient fails."""
+    fs = FS
+    poles = _mode_poles([2500.0, 9000.0], [0.03, 0.01], fs)
+    a_true = np.poly(poles).real
+    x = scipy.signal.lfilter([1.0], a_true, np.random.default_rng(0).normal(size=400_000))
+    a, sigma2 = ar_fit(x, 4)
+    freq, zeta = ar_resonances(a, fs)
+    # Yule-Walker estimates converge as 1/sqrt(N): with N = 4e5 a pole's radius and angle
+    # are off by ~1e-3 of their distance to the unit circle; frequencies to 0.5 %, and the
+    # damping (that distance itself) to 5 % of its value
+    np.testing.assert_allclose(freq, [2500.0, 9000.0], rtol=5e-3)
+    np.testing.assert_allclose(zeta, [0.03, 0.01], rtol=5e-2)
+    # the driving noise had unit variance; its estimate within 1 % (chi2, N = 4e5: 0.2 %)
+    assert sigma2 == pytest.approx(1.0, rel=1e-2)
+
+
+def test_ar_order_by_akaike_does_not_underfit():
+    """An AR(4) process: AIC's penalty (2 per order) is tiny beside the drop of
+    N ln sigma^2 from order 3 to 4 (thousands at N = 4e5), so it never picks fewer than
+    4; AIC is not consistent and may add an order or two, never many. Planted: an AIC
+    without its N (penalty dominating) picks 1 and fails."""
+    poles = _mode_poles([2500.0, 9000.0], [0.03, 0.01], FS)
+    x = scipy.signal.lfilter([1.0], np.poly(poles).real,
+                             np.random.default_rng(2).normal(size=400_000))
+    assert 4 <= ar_order(x, FS, max_order=20) <= 7
+    assert ar_order(x, FS) <= round(FS * 1e-3)   # default cap: one pole per kHz of fs
+
+
+def test_lpc_refuses_bad_input():
+    with pytest.raises(ValueError, match="order must be an int in"):
+        ar_fit(np.random.default_rng(0).normal(size=100), 60)
+    with pytest.raises(ValueError, match="constant"):
+        ar_fit(np.ones(100), 2)
+    with pytest.raises(ValueError, match="fs"):
+        ar_order(np.random.default_rng(0).normal(size=100), -1.0)
+
+
+# ----------------------------------------------------------------------------- twin
+@pytest.fixture(scope="module")
+def machine(tmp_path_factory):
+    """Two healthy recordings of one machine (the crop's halves, 0.75 s each) and their
+    manifest, without a label column."""
+    folder = tmp_path_factory.mktemp("machine")
+    x = np.load(CROP)
+    half = x.size // 2
+    np.save(folder / "first.npy", x[:half])
+    np.save(folder / "second.npy", x[half:])
+    pd.DataFrame({"path": ["first.npy", "second.npy"], "fs": [FS, FS], "rpm": [900, 900],
+                  "bearing": ["6205", "6205"]}).to_csv(folder / "healthy.csv", index=False)
+    return folder, {"first": x[:half], "second": x[half:]}
+
+
+@pytest.fixture(scope="module")
+def dataset(machine, tmp_path_factory):
+    folder, _ = machine
+    grid = twin(folder / "healthy.csv", rpm=[900], out=folder / "grids" / "twin.toml",
+                duration_s=0.25, draws=6, seed=0)
+    out = tmp_path_factory.mktemp("ds") / "twin"
+    summary = generate(grid, out, progress=False)
+    X, meta = load(out)
+    return grid, out, summary, X, meta
+
+
+def test_twin_grid_names_the_machine(machine, dataset):
+    folder, _ = machine
+    grid_path = dataset[0]
+    text = grid_path.read_text()
+    assert 'manifest = "../healthy.csv"' in text   # relative to the grid's folder
+    grid = read_grid(grid_path)
+    assert grid.machine == {"manifest": str((folder / "healthy.csv").resolve())}
+    assert grid.dataset["fs"] == FS and grid.axes["bearing"] == ["6205"]
+    assert grid.axes["fault"] == ["healthy", "outer", "inner", "ball"]
+    assert set(grid.distributions) >= {"level_db", "fault_width_mm"}
+
+
+def test_healthy_rows_are_segments_of_the_recordings(machine, dataset):
+    """Every healthy row is the recording's samples from its stored start, exactly (the
+    fixture is float32, stored as float32); its group is the recording; both recordings
+    serve. Planted: adding the fault signal to healthy rows too fails."""
+    _, recordings = machine
+    *_, X, meta = dataset
+    healthy = meta.index[meta["label"] == "healthy"]
+    assert len(healthy) == 6
+    for i in healthy:
+        rec = recordings[meta.at[i, "background"]]
+        start = round(meta.at[i, "background_start_s"] * FS)
+        np.testing.assert_array_equal(X[i], rec[start:start + X.shape[1]])
+        assert meta.at[i, "group"] == meta.at[i, "background"]
+        assert meta.at[i, "rpm"] == 900.0 and math.isnan(meta.at[i, "level_db"])
+        assert math.isnan(meta.at[i, "radial_load_n"])   # a real segment's load is unknown
+    # each healthy row picks one of the two 900 rpm recordings (p = 1/2 each): at seed 0
+    # both serve (all six on one side would have p = 1/32)
+    assert set(meta.loc[healthy, "background"]) == {"first", "second"}
+
+
+def test_fault_rows_sit_at_their_level_over_the_background(machine, dataset):
+    """A fault row minus its background segment is the fault through the path; its RMS
+    over the background's is level_db (closed form of the scaling). The float32 storage
+    rounds each sample by 6e-8 of its size, so 1e-4 holds at -10 dB. Planted: scaling to
+    the recording's RMS instead of the segment's fails."""
+    _, recordings = machine
+    *_, X, meta = dataset
+    faults = meta.index[meta["label"] != "healthy"]
+    assert set(meta.loc[faults, "label"]) == {"outer", "inner", "ball"}
+    for i in faults:
+        rec = recordings[meta.at[i, "background"]]
+        start = round(meta.at[i, "background_start_s"] * FS)
+        background = rec[start:start + X.shape[1]].astype(float)
+        fault = X[i].astype(float) - background
+        ratio = fault.std() / background.std()
+        assert 20 * np.log10(ratio) == pytest.approx(meta.at[i, "level_db"], abs=1e-3)
+        assert -10 <= meta.at[i, "level_db"] <= 15
+        assert meta.at[i, "group"] == f"run {meta.at[i, 'run_id']}"
+    # ground truth as for a simulated row
+    assert meta.loc[faults, "fault_width_mm"].between(0.2, 3.0).all()
+    assert meta.loc[faults, "slip"].between(0.005, 0.02).all()
+
+
+def test_the_learned_path_is_stored(dataset):
+    _, out, *_ = dataset
+    stored = json.loads((Path(out) / MACHINE_FILE).read_text())
+    assert [r["name"] for r in stored["recordings"]] == ["first", "second"]
+    for r in stored["recordings"]:
+        assert 1 <= r["order"] <= 51 and len(r["a"]) == r["order"] + 1
+        assert all(0 < f < 0.45 * FS for f in r["resonances_hz"])
+
+
+def test_groups_keep_a_recording_out_of_training(dataset):
+    """In every fold of the grouped split, a recording whose segments are tested has no
+    segment in training."""
+    *_, meta = dataset
+    folds = split_indices(meta, "run", n_splits=2)
+    assert folds
+    for train, test in folds:
+        tested = set(meta.loc[test, "background"][meta.loc[test, "label"] == "healthy"])
+        trained = set(meta.loc[train, "background"][meta.loc[train, "label"] == "healthy"])
+        assert not tested & trained
+
+
+def test_twin_rows_regenerate_bit_for_bit(dataset):
+    *_, X, meta = dataset
+    for label in ("healthy", "outer", "inner", "ball"):
+        i = meta.index[meta["label"] == label][0]
+        np.testing.assert_array_equal(regenerate(meta.loc[i]), X[i])
+
+
+def test_twin_dataset_resumes(dataset):
+    grid, out, summary, *_ = dataset
+    assert summary.rows_written == 24
+    assert generate(grid, out, progress=False).rows_written == 0
+
+
+# ----------------------------------------------------------------------------- bad input
+def test_twin_refuses_bad_input(machine, tmp_path):
+    folder, _ = machine
+    for rpm in ([0], [-600], [900, float("nan")]):
+        with pytest.raises(ValueError, match="rpm must be shaft speeds > 0"):
+            twin(folder / "healthy.csv", rpm=rpm, out=tmp_path / "t.toml")
+    table = pd.read_csv(folder / "healthy.csv")
+    table["path"] = [str(folder / p) for p in table["path"]]
+    table.assign(label=["healthy", "inner"]).to_csv(tmp_path / "faulty.csv", index=False)
+    with pytest.raises(ValueError, match="healthy recordings only; second .inner."):
+        twin(tmp_path / "faulty.csv", rpm=[900], out=tmp_path / "t.toml")
+    table.assign(fs=[FS, 48_000.0]).to_csv(tmp_path / "rates.csv", index=False)
+    with pytest.raises(ValueError, match="one machine, but its recordings have fs"):
+        twin(tmp_path / "rates.csv", rpm=[900], out=tmp_path / "t.toml")
+    with pytest.raises(ValueError, match="duration_s = 2 s is longer"):
+        twin(folder / "healthy.csv", rpm=[900], out=tmp_path / "t.toml", duration_s=2.0)
+    assert not (tmp_path / "t.toml").exists()
+
+
+def test_generate_refuses_a_twin_at_another_rate(dataset, tmp_path):
+    """A grid whose fs is not the recordings' is refused before any work."""
+    grid = read_grid(dataset[0]).as_dict()
+    grid["dataset"]["fs"] = 48_000.0
+    with pytest.raises(ValueError, match="dataset.fs = 48000 Hz, but the twin's recordings"):
+        generate(grid, tmp_path / "ds", progress=False)
+    assert not (tmp_path / "ds").exists()
+
+
+def test_level_db_needs_a_machine():
+    with pytest.raises(ValueError, match="level_db .* needs a .machine. table"):
+        read_grid({"grid": {"bearing": ["6205"], "fault": ["outer"], "rpm": [900],
+                            "level_db": [0.0]}})
+
+
+def test_twin_command(machine, tmp_path, capsys):
+    """``ballpass twin``: writes the grid; bad speeds are one error line naming --rpm's
+    values and write nothing."""
+    from ballpass.cli import main
+
+    folder, _ = machine
+    out = tmp_path / "twin.toml"
+    assert main(["twin", str(folder / "healthy.csv"), "--rpm", "600", "900", "--out",
+                 str(out), "--draws", "3", "--duration", "0.5"]) == 0
+    grid = read_grid(out)
+    assert grid.axes["rpm"] == [600.0, 900.0] and grid.dataset["draws"] == 3
+    bad = tmp_path / "bad.toml"
+    assert main(["twin", str(folder / "healthy.csv"), "--rpm", "0", "--out", str(bad)]) != 0
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "rpm must be shaft speeds > 0" in err[0]
+    assert not bad.exists()
