@@ -15,7 +15,7 @@ Run::
 Writes ``twin_hit.md``, ``twin_hit.csv`` (one row per input speed and model: recall per
 class, three-class balanced accuracy, its range over the training seeds) and
 ``twin_hit.png`` (confusion matrices of the recommended pipeline) to ``docs/results``
-(or ``docs`` when that folder does not exist).
+(the page to ``docs``).
 """
 
 from __future__ import annotations
@@ -29,6 +29,7 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
+from _paths import DOCS, results_in
 
 SPEEDS = (600, 900, 1200)
 LABELS = {"Normal": "healthy", "IR": "inner", "OR": "outer"}
@@ -124,11 +125,10 @@ COLUMNS = ["input", "model", "n_test", "recall_healthy", "recall_outer", "recall
 
 
 def main() -> None:
-    here = Path(__file__).resolve().parent.parent
-    docs = here / "docs" / "results" if (here / "docs" / "results").is_dir() else here / "docs"
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--data", type=Path, required=True, help="folder of the HIT-SM .mat files")
-    parser.add_argument("--out", type=Path, default=docs)
+    parser.add_argument("--out", type=Path, default=DOCS,
+                        help="folder of the page (its table and figure go in OUT/results)")
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--speeds", type=int, nargs="+", default=list(SPEEDS))
     args = parser.parse_args()
@@ -140,9 +140,9 @@ def main() -> None:
             predictions.append(p)
     table = pd.concat(results)[COLUMNS].rename(
         columns={"min": "balanced_3class_seed_min", "max": "balanced_3class_seed_max"})
-    args.out.mkdir(parents=True, exist_ok=True)
-    table.round(3).to_csv(args.out / "twin_hit.csv", index=False)
-    figure(pd.concat(predictions), args.out / "twin_hit.png")
+    results_dir = results_in(args.out)
+    table.round(3).to_csv(results_dir / "twin_hit.csv", index=False)
+    figure(pd.concat(predictions), results_dir / "twin_hit.png")
     lines = ["# A twin of the HIT-SM rig from one healthy recording", "",
              "Input: one healthy recording (5.12 s at one speed). Test: every other recording "
              "of the rig, one-second segments (inner and outer faults of 2/5/8 degree arcs at "
@@ -152,7 +152,7 @@ def main() -> None:
              "`benchmark_s`: wall time of `ballpass generate --jobs 2` and "
              "`ballpass benchmark --real` (both models) on a 2-core machine shared with "
              "other work. Produced by `benchmarks/twin_hit.py`.", "",
-             markdown(table), "", "![confusion](twin_hit.png)", ""]
+             markdown(table), "", "![confusion](results/twin_hit.png)", ""]
     (args.out / "twin_hit.md").write_text("\n".join(lines))
     print(table.round(3).to_string(index=False))
 
