@@ -23,9 +23,11 @@ PAGES = [ROOT / "README.md",
          *sorted(p for p in (ROOT / "docs").rglob("*")
                  if p.suffix in (".md", ".rst") and not GENERATED & set(p.parts))]
 EXAMPLES = sorted(p for p in (ROOT / "examples").rglob("*") if p.suffix in (".py", ".rst"))
-#: working-note words: "seed 00x" (not seed00x_ file names), issue numbers, the digest of
-#: the papers, the team's shared folder
-WORDS = re.compile(r"seed 00\d|\bissues?\b|digest|\.\./shared|\bshared/", re.I)
+#: working-note words: "seed 00x" (not seed00x_ file names), issue numbers, the team's
+#: digest of the papers (DIGEST.md; "digest" alone is also a hash, which users may read
+#: of), the team's shared folder
+WORDS = re.compile(r"seed 00\d|\bissues?\b|digest\.md|(?:our|the) digest\b(?! of the rec)"
+                   r"|digest of the papers|\.\./shared|\bshared/", re.I)
 #: a Markdown link or image target, without its title
 LINK = re.compile(r"!?\[[^\]]*\]\(([^)\s]+)")
 
