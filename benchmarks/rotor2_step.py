@@ -46,7 +46,7 @@ def scene(fault, duration: float) -> bp.Scene:
 
 def errors(quick: bool) -> pd.DataFrame:
     """Output-acceleration error of rk4 and Newmark against dopri5 at rtol 1e-10."""
-    steps = {"rk4": (0.1, 0.2, 0.3, 0.4, 0.6) if not quick else (0.2, 0.3, 0.4),
+    steps = {"rk4": (0.1, 0.2, 0.3, 0.35, 0.4, 0.6) if not quick else (0.2, 0.3, 0.35, 0.4),
              "newmark": (0.0125, 0.025, 0.05) if not quick else (0.025, 0.05)}
     rows = []
     for name, fault in FAULTS.items():
