@@ -375,10 +375,10 @@ IMPULSE = Model(
                 "scene's resonance; no contact dynamics",
     represents=frozenset({"envelope", "varying_speed"}),
     # measured by benchmarks/models_cost.py (docs/models_cost.md), 5 interleaved rounds of
-    # 3 back-to-back calls on a busy shared machine: 0.059 and 0.062 of sr5's CPU time per
-    # simulated second at 48 kHz in two runs (0.037-0.039 at 12 kHz); wall-time ratios
-    # 0.015-0.024, which the busy machine flatters (sr5's longer calls wait more for a core)
-    relative_cost=0.059,
+    # 3 back-to-back calls on a busy shared machine: 0.050 of sr5's CPU time per simulated
+    # second at 48 kHz (0.041 at 12 kHz); wall-time ratio 0.021 (IQR 0.020-0.038), which
+    # the busy machine flatters (sr5's longer calls wait more for a core)
+    relative_cost=0.05,
     solvers=("analytic",),
     fixed_step_solvers=(),
     reference="P. D. McFadden, J. D. Smith, J. Sound Vib. 96 (1984) 69-82; D. Ho, R. B. "

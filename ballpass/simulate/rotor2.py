@@ -742,10 +742,11 @@ ROTOR2 = Model(
                 "localized defects; RK4 (Newmark-beta as in the paper on request)",
     represents=frozenset({"rotor_dynamics", "contact_dynamics", "contact_forces",
                           "varying_speed"}),
-    # wall time per simulated second against sr5, side by side: 2.05x (11 interleaved
-    # rounds, range 1.8-2.6) on the 6205 reference scene at 48 kHz with the rk4 default
-    # (benchmarks/rotor2_step.py, docs/rotor2_step.md); 25x with the old Newmark step
-    relative_cost=2.0,
+    # wall time per simulated second against sr5, side by side, on the 6205 reference
+    # scene at 48 kHz with the rk4 default: 1.13 (CPU time 1.12; 5 interleaved rounds,
+    # benchmarks/models_cost.py, docs/models_cost.md) and 0.98 (11 rounds, range
+    # 0.82-1.16, benchmarks/rotor2_step.py); 0.71 at 12 kHz; 25x with the old Newmark step
+    relative_cost=1.1,
     solvers=tuple(SOLVERS),
     fixed_step_solvers=("rk4", "newmark"),
     reference="Dynamic behaviour of rotor roller bearing system with bearing defects "

@@ -897,11 +897,11 @@ MULTIBODY = Model(
                 "profiles",
     represents=frozenset({"ball_dynamics", "contact_dynamics", "contact_forces", "envelope",
                           "varying_speed"}),
-    # benchmarks/models_cost.py (docs/models_cost.md): 81-106x sr5 per simulated second
-    # on the 6205 reference scene at 48 kHz, side by side, in three runs on the loaded
-    # shared machine (225x before the trig-free contact tests and the step from the
-    # linearised spectrum, benchmarks/results/multibody_speed.md)
-    relative_cost=90.0,
+    # benchmarks/models_cost.py (docs/models_cost.md): 99x sr5 per simulated second on
+    # the 6205 reference scene at 48 kHz (CPU time 97x; 81-106x in three earlier runs),
+    # side by side on the loaded shared machine (225x before the trig-free contact tests
+    # and the step from the linearised spectrum, benchmarks/results/multibody_speed.md)
+    relative_cost=99.0,
     solvers=tuple(SOLVERS),
     fixed_step_solvers=("rk4",),
     reference="M. Nakhaeinejad, M. D. Bryant, 'Dynamic modeling of rolling element bearings "
