@@ -148,6 +148,49 @@ def test_default_rk4_step_within_1e2_on_the_cost_scene():
     assert _accel_error(res, ref) < 1e-2
 
 
+@pytest.mark.parametrize("tangents", [True, False])
+def test_force_is_the_contact_law_at_times_visited_out_of_order(tangents):
+    """The force against an independent evaluation (each roller's angle from its own
+    sines and cosines, a sharp outer-race notch's depth by hand, Hertz's law) at times
+    visited out of order and repeated, as the integrators do: catches kinematics
+    cached per time but not refreshed (planted: never recomputed after the first call
+    fails by the load zone's motion), and the force without tangents differing from
+    the one with them. Tolerance 1e-9 of the largest force: the two differ only by the
+    rounding of the roller angles (a rotation per roller against direct sines)."""
+    from ballpass.simulate import _kernels as K
+    from ballpass.simulate import rotor2 as R
+
+    fault = bp.Fault("outer", width_mm=3.0, depth_mm=0.1, edge="sharp", angle_deg=20.0)
+    scene = bp.Scene(bearing="6205", rpm=1797, radial_load_n=500, duration_s=0.1,
+                     fault=fault, fs=48_000.0)
+    bound = R._bind(scene, Rotor2Parameters())
+    p = bound.p
+    force = R.rotor2_force if tangents else R.rotor2_force_only
+    rng = np.random.default_rng(0)
+    z = int(p[K.P_Z])
+    row = R.P_FAULTS  # the notch's row of the fault table
+    # at 14 ms and 51.2 ms a loaded roller sits in the notch
+    for t in (0.0, 0.014, 0.0, 0.0371, 0.014, 0.0371, 0.0512):
+        x = bound.x0 * (1.0 + 0.3 * rng.standard_normal(2))
+        v = 0.01 * rng.standard_normal(2)
+        f, kx, kv = np.zeros(2), np.zeros((2, 2)), np.zeros((2, 2))
+        force(t, x, v, p, f, kx, kv)
+        theta = p[K.P_W0] * t
+        phi = p[R.P_PHI0] + 2 * np.pi * np.arange(z) / z + p[K.P_CAGE] * theta
+        off = (phi - p[row + K.F_CENTRE] + np.pi) % (2 * np.pi) - np.pi
+        depth = np.where(np.abs(off) < p[row + K.F_HALF], p[row + K.F_DEPTH], 0.0)
+        delta = x[0] * np.cos(phi) + x[1] * np.sin(phi) - p[K.P_CLEAR] - depth
+        q = p[K.P_KH] * np.maximum(delta, 0.0) ** 1.5
+        ref = np.array([q @ np.cos(phi), q @ np.sin(phi)])
+        ref += p[R.P_CR] * v - np.array([p[K.P_FR] + p[K.P_MS] * p[K.P_G], 0.0])
+        u = theta + p[R.P_UPH]  # the unbalance m_u e w^2 at constant speed
+        ref -= p[R.P_MUE] * p[K.P_W0] ** 2 * np.array([np.cos(u), np.sin(u)])
+        np.testing.assert_allclose(f, ref, rtol=0, atol=1e-9 * np.abs(q).max())
+        if tangents:  # dQ/d(delta) = 1.5 Q / delta projected on the rollers
+            dq = np.where(delta > 0, 1.5 * q / np.where(delta > 0, delta, 1.0), 0.0)
+            np.testing.assert_allclose(kx[0, 0], dq @ np.cos(phi) ** 2, rtol=1e-9)
+
+
 def _line(x, fs, f):
     """Amplitude of x (Hann window) at exactly the frequency f, same unit as x."""
     t = np.arange(x.size) / fs

@@ -675,11 +675,17 @@ def fault_offset(t, p, walk, faults, i, j):
     outer race (phase 0), 1 = the inner race (phase pi). Same arithmetic as
     :func:`fault_depths` (both go through :func:`path_offset`).
     """
-    cage, _ = cage_angle(t, p, walk)
+    return _offset_at(cage_angle(t, p, walk)[0], shaft_angle(t, p), p, faults, i, j)
+
+
+@njit(cache=True, error_model="numpy")
+def _offset_at(cage, theta, p, faults, i, j):
+    """:func:`fault_offset` from the cage angle ``cage`` and shaft angle ``theta`` (rad)
+    at its time, which every path at that time shares."""
     step = TWO_PI / p[P_Z]
     if int(faults[i, F_KIND]) == KIND_BALL:
         return path_offset(faults, i, p, cage + step * int(faults[i, F_ELEM]), 0.0, j)
-    return path_offset(faults, i, p, cage + step * j, shaft_angle(t, p), 0)
+    return path_offset(faults, i, p, cage + step * j, theta, 0)
 
 
 @njit(cache=True, error_model="numpy")
@@ -759,12 +765,18 @@ def find_crossings(p, walk, faults, t_scan, levels_per_fault, before, after, ind
     """
     z = int(p[P_Z])
     n = 0
+    # the cage and shaft angles at the scan times, shared by every path and fault
+    cage = np.empty(t_scan.shape[0])
+    theta = np.empty(t_scan.shape[0])
+    for k in range(t_scan.shape[0]):
+        cage[k] = cage_angle(t_scan[k], p, walk)[0]
+        theta[k] = shaft_angle(t_scan[k], p)
     for i in range(faults.shape[0]):
         n_paths = 2 if int(faults[i, F_KIND]) == KIND_BALL else z
         for j in range(n_paths):
-            o_prev = fault_offset(t_scan[0], p, walk, faults, i, j)
+            o_prev = _offset_at(cage[0], theta[0], p, faults, i, j)
             for k in range(1, t_scan.shape[0]):
-                o_next = fault_offset(t_scan[k], p, walk, faults, i, j)
+                o_next = _offset_at(cage[k], theta[k], p, faults, i, j)
                 if abs(o_next - o_prev) < math.pi:
                     for lv in range(4):
                         level = levels_per_fault[i, lv]

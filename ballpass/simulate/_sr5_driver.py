@@ -472,11 +472,11 @@ SR4 = Model(
                 "acceleration (no resonator)",
     represents=frozenset({"contact_dynamics", "contact_forces", "varying_speed", "waviness",
                           *(SR5_SCENE_OPTIONS - {"structural_modes"})}),
-    # measured by benchmarks/models_cost.py (docs/models_cost.md: 2.7 at 48 kHz, 1.5 at
+    # measured by benchmarks/models_cost.py (docs/models_cost.md: 3.1 at 48 kHz, 1.3 at
     # 12 kHz, median of interleaved rounds): the same steps as sr5, but its output, the
     # housing acceleration, is evaluated from the contact forces at every internal
     # sample, while sr5's resonators are advanced exactly
-    relative_cost=2.7,
+    relative_cost=3.1,
     solvers=tuple(SOLVERS),
     fixed_step_solvers=("rk4",),
     reference=_REFERENCE,

@@ -142,6 +142,13 @@ def _stiffness_and_load_zone(bearing: Bearing, load_n: float,
     return kh, bearing.load_distribution(load_n, stiffness=kh)
 
 
+@functools.lru_cache(maxsize=64)
+def _sr5_parameters(shaft_mass: float, stiffness: float) -> SR5Parameters:
+    """sr5's parameters with this shaft mass and contact stiffness, validated once per
+    process (frozen, so shared between runs)."""
+    return SR5Parameters(shaft_mass=shaft_mass, contact_stiffness=stiffness)
+
+
 def impact_amplitudes(scene: Scene, psi: np.ndarray, depth_m: np.ndarray,
                       params: ImpulseParameters | None = None) -> np.ndarray:
     """Force released by an element at angle ``psi`` dropping into a defect, N.
@@ -208,9 +215,9 @@ def _ring(times: np.ndarray, steps: np.ndarray, n_samples: int, fs: float, f_n: 
     -a e^(-sigma tau) (cos w_d tau - sigma/w_d sin w_d tau), tau = t - t_k >= 0. With
     n0 = ceil(t_k fs) and the sub-sample lag f = n0 - t_k fs, the ring at n0 + m is
     D [alpha C_m + beta S_m] with C_m = r^m cos(theta m), S_m = r^m sin(theta m),
-    r = e^(-sigma/fs), theta = w_d / fs: both are impulse responses of one two-pole
-    recursion, so every ring is injected at its first sample and run by
-    :func:`_ring_kernel`, exactly (no truncation, no resampling).
+    r = e^(-sigma/fs), theta = w_d / fs: the real and imaginary parts of z^m with
+    z = r e^(i theta), which :func:`_ring_kernel` sums over the rings exactly (no
+    truncation, no resampling).
     """
     w_n = 2.0 * math.pi * f_n
     sigma = zeta * w_n
@@ -234,37 +241,53 @@ def _ring(times: np.ndarray, steps: np.ndarray, n_samples: int, fs: float, f_n: 
 
 @njit(cache=True, error_model="numpy")
 def _ring_kernel(n0, alpha, beta, r, theta, out):
-    """Run the two-pole recursion of :func:`_ring` over the output samples.
+    """Evaluate the rings of :func:`_ring` at the output samples.
 
     ``n0`` (sorted) holds the first sample of each ring, ``alpha``/``beta``
-    (n_sensors, n_rings) its weights on C_m and S_m. C_m is the impulse response of
-    (1 - r cos(theta) z^-1) / den and S_m of r sin(theta) z^-1 / den, with
-    den = 1 - 2 r cos(theta) z^-1 + r^2 z^-2; ``out`` (n_sensors, n_samples) is written.
+    (n_sensors, n_rings) its weights on C_m and S_m; ``out`` (n_sensors, n_samples) is
+    written. With z = r e^(i theta), the rings started at or before sample n sum to
+    Re(A z^(n - s)), where s is the latest start and the complex amplitude
+    A = sum_k (alpha_k - i beta_k) z^(s - n0_k) is carried from start to start; between
+    starts every sample is one product with a tabulated power z^m, independent of its
+    neighbours (no recursion through the samples, so the loop vectorises).
     """
-    rc = r * math.cos(theta)
-    rs = r * math.sin(theta)
-    a1 = 2.0 * rc
-    a2 = r * r
+    n_out = out.shape[1]
     m = n0.shape[0]
+    # powers z^0 .. z^span, span the longest stretch without a new ring (capped: longer
+    # stretches advance by z^span per block)
+    span = n_out if m == 0 else max(n0[0], n_out - n0[m - 1])
+    for k in range(1, m):
+        span = max(span, n0[k] - n0[k - 1])
+    span = min(span, _SPAN)
+    pr = np.empty(span + 1)
+    pi = np.empty(span + 1)
+    for j in range(span + 1):
+        mag = r ** j
+        pr[j] = mag * math.cos(theta * j)
+        pi[j] = mag * math.sin(theta * j)
     for i in range(out.shape[0]):
-        y1 = 0.0
-        y2 = 0.0
-        pu = 0.0
-        pv = 0.0
+        out[i, :n_out if m == 0 else n0[0]] = 0.0
+        ar = 0.0
+        ai = 0.0
         k = 0
-        for n in range(out.shape[1]):
-            u = 0.0
-            v = 0.0
-            while k < m and n0[k] == n:
-                u += alpha[i, k]
-                v += beta[i, k]
+        while k < m:
+            s = n0[k]
+            while k < m and n0[k] == s:  # rings starting on the same sample
+                ar += alpha[i, k]
+                ai -= beta[i, k]
                 k += 1
-            y = u - rc * pu + rs * pv + a1 * y1 - a2 * y2
-            out[i, n] = y
-            y2 = y1
-            y1 = y
-            pu = u
-            pv = v
+            end = n0[k] if k < m else n_out
+            while s < end:  # Re(A z^j) up to the next start, A carried by z^gap
+                gap = min(end - s, span)
+                for j in range(gap):
+                    out[i, s + j] = ar * pr[j] - ai * pi[j]
+                ar, ai = ar * pr[gap] - ai * pi[gap], ar * pi[gap] + ai * pr[gap]
+                s += gap
+
+
+#: most powers of z :func:`_ring_kernel` tabulates (a longer stretch without a new ring
+#: advances block by block)
+_SPAN = 4096
 
 
 def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=None,
@@ -325,8 +348,8 @@ def _impacts(scene: Scene, params: ImpulseParameters | None = None):
     # the sr5 kinematics of this scene: parameter vector, slip walk and fault table from
     # the scene's own seed (the sr4 binding without its static equilibrium: no state is
     # integrated)
-    bm = build_model(scene, SR5Parameters(shaft_mass=params.shaft_mass, contact_stiffness=kh),
-                     resonator=False, equilibrium=False)
+    bm = build_model(scene, _sr5_parameters(params.shaft_mass, kh), resonator=False,
+                     equilibrium=False)
     n_samples = scene.n_samples
     # sr5's event horizon (the end of its internal grid), so both list the same entries
     # and exits; the ends of the edge ramps (columns 1, 2 of the levels) are sr5's
@@ -371,10 +394,10 @@ IMPULSE = Model(
                 "scene's resonance; no contact dynamics",
     represents=frozenset({"envelope", "varying_speed"}),
     # measured by benchmarks/models_cost.py (docs/models_cost.md), 5 interleaved rounds of
-    # 3 back-to-back calls on a busy shared machine: 0.059 and 0.062 of sr5's CPU time per
-    # simulated second at 48 kHz in two runs (0.037-0.039 at 12 kHz); wall-time ratios
-    # 0.015-0.024, which the busy machine flatters (sr5's longer calls wait more for a core)
-    relative_cost=0.059,
+    # 3 back-to-back calls on a busy shared machine: 0.050 of sr5's CPU time per simulated
+    # second at 48 kHz (0.041 at 12 kHz); wall-time ratio 0.021 (IQR 0.020-0.038), which
+    # the busy machine flatters (sr5's longer calls wait more for a core)
+    relative_cost=0.05,
     solvers=("analytic",),
     fixed_step_solvers=(),
     reference="P. D. McFadden, J. D. Smith, J. Sound Vib. 96 (1984) 69-82; D. Ho, R. B. "

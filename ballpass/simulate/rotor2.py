@@ -79,9 +79,17 @@ with Newton iterations on the contact forces, :func:`._second_order.newmark_for`
 stable, but second order: the contact mode rings for ~15 periods after every roller
 pass and impact and its phase error, (omega dt)^2 / 12 per radian, accumulates, so the
 output acceleration is within 1e-2 of dopri5 only for omega_c dt <~ 0.05 (about one
-step per 5 us output sample at 48 kHz). RK4 reaches it at omega_c dt = 0.35-0.4;
-the default 0.3 gives 3e-3 to 4e-3 on the 6205 reference scene with and without a
+step per 5 us output sample at 48 kHz). RK4 reaches it at omega_c dt ~ 0.38-0.4 on
+the 6205 reference scene (5.3e-3 to 7.0e-3 at 0.35), but the NJ 305 paper's scene with
+its roller defect errs 1.2e-2 in displacement at 0.35 (tests/test_rotor2.py); the
+default 0.3 gives 2.8e-3 to 3.9e-3 on the 6205 reference scene with and without a
 defect (docs/rotor2_step.md).
+
+Cost: every RK4 step evaluates the force twice at its midpoint and twice at its end;
+the kinematics of those times (roller angles, the defect depth under each roller, the
+unbalance angle) are computed once per time and cached in ``p``
+(:func:`_kinematics`), and the explicit integrators skip the force's tangents, which
+only Newmark's Newton iterations read.
 """
 
 from __future__ import annotations
@@ -252,18 +260,12 @@ def _defect_depth(j, phi, theta, n_faults, p):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _contact(j, delta, vn, tilt, phi, theta, n_faults, n_lam, p):
-    """Roller j at angle phi and shaft angle theta: its load Q (N), dQ/d(delta) (N/m)
-    and contact damping (N s/m), given its rigid approach delta = x cos(phi) +
-    y sin(phi) - c_r (m), the rotor's velocity along it vn (m/s) and the tilt across its
-    length l gamma cos(phi) (m). Exactly 0 load when separated; the defect depth is only
-    looked up for a roller the approach (the largest over its laminae) brings into
-    contact, since a defect only deepens the gap. ``n_faults`` and ``n_lam`` are
-    ``p[P_NF]`` and ``p[P_NLAM]`` as ints."""
-    if delta + 0.5 * abs(tilt) <= 0.0:
-        return 0.0, 0.0, 0.0
-    if n_faults > 0:
-        delta -= _defect_depth(j, phi, theta, n_faults, p)
+def _contact(delta, vn, tilt, n_lam, p):
+    """One roller's load Q (N), dQ/d(delta) (N/m) and contact damping (N s/m), given its
+    compression delta = x cos(phi) + y sin(phi) - c_r - h (m, the defect depth h under
+    it already taken off), the rotor's velocity along it vn (m/s) and the tilt across
+    its length l gamma cos(phi) (m). Exactly 0 load when separated. ``n_lam`` is
+    ``p[P_NLAM]`` as an int."""
     n = p[_K.P_NH]
     if n_lam == 1:  # aligned: one Palmgren (or Hertz) term
         if delta <= 0.0:
@@ -291,64 +293,108 @@ def _contact(j, delta, vn, tilt, phi, theta, n_faults, n_lam, p):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def rotor2_force(t, x, v, p, f, kx, kv):
-    """Generalised force of M a + f = 0 (contacts minus loads) and its tangents, for
-    the integrators of :mod:`._second_order`. The roller angles phi_j = phi_0 +
-    2 pi j / Z + c theta are stepped by a rotation of 2 pi / Z (two sines and cosines
-    per call instead of two per roller)."""
+def _kinematics(t, p):
+    """Offset k0 in ``p`` of the kinematics at time t, recomputed unless they are the
+    last call's: p[k0] = t, p[k0 + 1], p[k0 + 2] the cos and sin of the unbalance
+    angle, then per roller j the cos and sin of phi_j and the defect depth under it (m)
+    at p[k0 + 3 + 3 j ...]. A Runge-Kutta step evaluates the force twice at each of
+    two times (its midpoint, its end), with the same kinematics. The roller angles
+    phi_j = phi_0 + 2 pi j / Z + c theta are stepped by a rotation of 2 pi / Z (two
+    sines and cosines per time instead of two per roller)."""
+    n_faults = int(p[P_NF])
+    k0 = P_FAULTS + n_faults * _K.N_FCOLS
+    if p[k0] == t:
+        return k0
     z = int(p[_K.P_Z])
     theta = _K.shaft_angle(t, p)
     phi = p[P_PHI0] + p[_K.P_CAGE] * theta
     cs, sn = math.cos(phi), math.sin(phi)
     pitch = _K.TWO_PI / z
     cz, sz = p[_K.P_COS_STEP], p[_K.P_SIN_STEP]
+    for j in range(z):
+        r = k0 + 3 + 3 * j
+        p[r] = cs
+        p[r + 1] = sn
+        p[r + 2] = _defect_depth(j, phi, theta, n_faults, p) if n_faults > 0 else 0.0
+        cs, sn = cs * cz - sn * sz, sn * cz + cs * sz
+        phi += pitch
+    theta += p[P_UPH]
+    p[k0 + 1] = math.cos(theta)
+    p[k0 + 2] = math.sin(theta)
+    p[k0] = t
+    return k0
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _force(t, x, v, p, f, kx, kv, tangents):
+    """Generalised force of M a + f = 0 (contacts minus loads) into f and, with
+    ``tangents`` (a constant at each caller), its tangents into kx and kv."""
+    k0 = _kinematics(t, p)
+    z = int(p[_K.P_Z])
     clear = p[_K.P_CLEAR]
     length_tilt = p[P_LEN] * p[P_TILT]
-    n_faults, n_lam = int(p[P_NF]), int(p[P_NLAM])
+    reach = 0.5 * abs(length_tilt)  # the most a tilt brings a lamina closer, m
+    n_lam = int(p[P_NLAM])
     x0, x1, v0, v1 = x[0], x[1], v[0], v[1]
     # sums in scalars (stores into f, kx, kv may alias x and v for the compiler)
     f0 = f1 = kxx = kxy = kyy = cxx = cxy = cyy = 0.0
     for j in range(z):
-        q, dq, c = _contact(j, x0 * cs + x1 * sn - clear, v0 * cs + v1 * sn,
-                            length_tilt * cs, phi, theta, n_faults, n_lam, p)
+        r = k0 + 3 + 3 * j
+        cs, sn = p[r], p[r + 1]
+        delta = x0 * cs + x1 * sn - clear
+        if delta + reach <= 0.0:  # separated, whatever the defect and the tilt
+            continue
+        q, dq, c = _contact(delta - p[r + 2], v0 * cs + v1 * sn, length_tilt * cs, n_lam, p)
         if q > 0.0:
             f0 += q * cs
             f1 += q * sn
-            kxx += dq * cs * cs
-            kxy += dq * cs * sn
-            kyy += dq * sn * sn
-            cxx += c * cs * cs
-            cxy += c * cs * sn
-            cyy += c * sn * sn
-        cs, sn = cs * cz - sn * sz, sn * cz + cs * sz
-        phi += pitch
+            if tangents:
+                kxx += dq * cs * cs
+                kxy += dq * cs * sn
+                kyy += dq * sn * sn
+                cxx += c * cs * cs
+                cxy += c * cs * sn
+                cyy += c * sn * sn
     c_r = p[P_CR]
-    theta += p[P_UPH]
     w = _K.shaft_rate(t, p)
     dw = (p[_K.P_W1] - p[_K.P_W0]) / p[_K.P_T]
     mue = p[P_MUE]
-    cu, su = math.cos(theta), math.sin(theta)
+    cu, su = p[k0 + 1], p[k0 + 2]
     f[0] = f0 + c_r * v0 - p[_K.P_FR] - p[_K.P_MS] * p[_K.P_G] - mue * (w * w * cu + dw * su)
     f[1] = f1 + c_r * v1 - mue * (w * w * su - dw * cu)
-    kx[0, 0] = kxx
-    kx[0, 1] = kx[1, 0] = kxy
-    kx[1, 1] = kyy
-    kv[0, 0] = cxx + c_r
-    kv[0, 1] = kv[1, 0] = cxy
-    kv[1, 1] = cyy + c_r
+    if tangents:
+        kx[0, 0] = kxx
+        kx[0, 1] = kx[1, 0] = kxy
+        kx[1, 1] = kyy
+        kv[0, 0] = cxx + c_r
+        kv[0, 1] = kv[1, 0] = cxy
+        kv[1, 1] = cyy + c_r
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def rotor2_force(t, x, v, p, f, kx, kv):
+    """Generalised force of M a + f = 0 and its tangents (:func:`_force`), for the
+    Newmark integrator of :mod:`._second_order`, whose Newton iterations use them."""
+    _force(t, x, v, p, f, kx, kv, True)
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def rotor2_force_only(t, x, v, p, f, kx, kv):
+    """The generalised force alone (kx, kv untouched), for the explicit integrators
+    (RK4, DOPRI5), which never read the tangents."""
+    _force(t, x, v, p, f, kx, kv, False)
 
 
 @njit(cache=True, error_model="numpy")
 def _roller(j, t, x, v, p):
     """Roller j at time t for rotor state (x, v): load Q (N), dQ/d(delta) (N/m), contact
-    damping (N s/m) and the cos and sin of its angle (one roller at a time; the force
-    kernel steps all rollers by a rotation)."""
-    theta = _K.shaft_angle(t, p)
-    phi = p[P_PHI0] + _K.TWO_PI * j / p[_K.P_Z] + p[_K.P_CAGE] * theta
-    cs, sn = math.cos(phi), math.sin(phi)
-    q, dq, c = _contact(j, x[0] * cs + x[1] * sn - p[_K.P_CLEAR], v[0] * cs + v[1] * sn,
-                        p[P_LEN] * p[P_TILT] * cs, phi, theta, int(p[P_NF]),
-                        int(p[P_NLAM]), p)
+    damping (N s/m) and the cos and sin of its angle (the force's own arithmetic, one
+    roller at a time)."""
+    k0 = _kinematics(t, p)
+    r = k0 + 3 + 3 * j
+    cs, sn = p[r], p[r + 1]
+    q, dq, c = _contact(x[0] * cs + x[1] * sn - p[_K.P_CLEAR] - p[r + 2],
+                        v[0] * cs + v[1] * sn, p[P_LEN] * p[P_TILT] * cs, int(p[P_NLAM]), p)
     return q, dq, c, cs, sn
 
 
@@ -362,8 +408,8 @@ def _loads_many(t, x, v, p, out):
 
 #: the integrators compiled for rotor2's force
 _newmark = _I.newmark_for(rotor2_force)
-_dopri5 = _I.dopri5_for(rotor2_force)
-_rk4 = _I.rk4_for(rotor2_force)
+_dopri5 = _I.dopri5_for(rotor2_force_only)
+_rk4 = _I.rk4_for(rotor2_force_only)
 
 
 # ---------------------------------------------------------------------- binding
@@ -443,7 +489,9 @@ def _bind(scene: Scene, params: Rotor2Parameters) -> _Bound:
     z = b.n_elements
     psi0 = math.radians(params.cage_angle_deg) + 2.0 * math.pi * np.arange(z) / z
     faults, levels = _fault_table(scene, psi0)
-    p = np.zeros(P_FAULTS + faults.size)
+    # parameters, the fault table, then the kinematics cache of _kinematics (its time
+    # NaN: none cached yet)
+    p = np.zeros(P_FAULTS + faults.size + 3 + 3 * b.n_elements)
     p[_K.P_MS] = params.rotor_mass_kg
     p[_K.P_KH] = kh
     p[_K.P_NH] = b.load_exponent
@@ -467,7 +515,8 @@ def _bind(scene: Scene, params: Rotor2Parameters) -> _Bound:
     p[P_NLAM] = params.n_laminae if params.misalignment_rad != 0.0 else 1
     p[P_LEN] = (b.roller_length_mm or 0.0) * 1e-3
     p[P_NF] = faults.shape[0]
-    p[P_FAULTS:] = faults.ravel()
+    p[P_FAULTS:P_FAULTS + faults.size] = faults.ravel()
+    p[P_FAULTS + faults.size] = math.nan
     x0 = np.array([ld.deflection_m, ld.lateral_deflection_m])
     scale = abs(b.radial_clearance_m) + max(deflection, 1e-7)
     # time to cross the ramps of the defects deep enough to unload a roller
@@ -536,16 +585,15 @@ def _crossings(scene: Scene, p: np.ndarray, levels: np.ndarray, t_end: float) ->
                           edge=np.concatenate(edges)[order])
 
 
-def _rk4_breaks(scene: Scene, bound: _Bound, t_end: float, dt_max: float):
+def _rk4_breaks(cr: FaultCrossings, bound: _Bound, t_end: float, dt_max: float):
     """Breaks of the rk4 solver and the largest step between them.
 
-    The breaks are the fault-edge and ramp-end crossings of :func:`_crossings` (where
-    the defect depth under a roller is not smooth in time); a segment that lies on a
+    The breaks are the fault-edge and ramp-end crossings ``cr`` of :func:`_crossings`
+    (where the defect depth under a roller is not smooth in time); a segment that lies on a
     ramp (from an ``entry`` or ``ramp_start`` crossing to the ramp's end) takes steps
     of at most 1 / :data:`RK4_RAMP_STEPS` of the ramp's duration, the others
     ``dt_max``.
     """
-    cr = _crossings(scene, bound.p, bound.levels, t_end)
     keep = (cr.time_s > 0.0) & (cr.time_s < t_end)
     breaks = np.unique(cr.time_s[keep])
     seg_dt = np.full(breaks.size + 1, dt_max)
@@ -598,16 +646,21 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
     mass = np.eye(2) * bound.mass
     info = {"solver": solver, "internal_fs": 1.0 / h_out,
             "contact_hz": bound.omega / (2.0 * math.pi)}
+    # the crossings up to the end of the internal grid: the rk4 breaks, and the ground
+    # truth up to the last output sample (each crossing is a closed form of its own)
+    t_end = (n_out - 1) * h_out
+    crossings = _crossings(scene, bound.p, bound.levels, t_end)
     if solver == "rk4":
         dt_max = dt if dt is not None else DT_RK4_OMEGA / bound.omega
-        t_end = (n_out - 1) * h_out
-        breaks, seg_dt = _rk4_breaks(scene, bound, t_end, dt_max)
+        breaks, seg_dt = _rk4_breaks(crossings, bound, t_end, dt_max)
         xs = np.empty((n_out, 2))
         vs = np.empty((n_out, 2))
         acc = np.empty((n_out, 2))
+        # x and v are only read for the contact forces, at the output samples: without
+        # them only row 0 is written (the untouched rows cost no memory traffic)
         status, n_steps, t_fail = _rk4(bound.p, np.linalg.inv(mass), bound.x0, np.zeros(2),
                                        h_out, n_out, breaks, seg_dt, 1e4, bound.x_scale,
-                                       oversample, xs, vs, acc)
+                                       oversample if return_forces else n_out, xs, vs, acc)
         info.update(n_steps=int(n_steps), n_rejected=0, dt_s=dt_max, n_events=breaks.size)
         step_text = f"dt = {dt_max:.3g} s"
     elif solver == "newmark":
@@ -668,7 +721,8 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
         displacement = xs[idx].T.copy()
     truth = GroundTruth.of_scene(
         scene, t,
-        _crossings(scene, bound.p, bound.levels, t[-1]),
+        FaultCrossings(*(getattr(crossings, k)[crossings.time_s <= t[-1]]
+                         for k in ("time_s", "fault", "element", "edge"))),
         contact_forces=forces,
         element_angles=element_angles,
         displacement=displacement,
@@ -688,10 +742,11 @@ ROTOR2 = Model(
                 "localized defects; RK4 (Newmark-beta as in the paper on request)",
     represents=frozenset({"rotor_dynamics", "contact_dynamics", "contact_forces",
                           "varying_speed"}),
-    # wall time per simulated second against sr5, side by side: 2.05x (11 interleaved
-    # rounds, range 1.8-2.6) on the 6205 reference scene at 48 kHz with the rk4 default
-    # (benchmarks/rotor2_step.py, docs/rotor2_step.md); 25x with the old Newmark step
-    relative_cost=2.0,
+    # wall time per simulated second against sr5, side by side, on the 6205 reference
+    # scene at 48 kHz with the rk4 default: 1.13 (CPU time 1.12; 5 interleaved rounds,
+    # benchmarks/models_cost.py, docs/models_cost.md) and 0.98 (11 rounds, range
+    # 0.82-1.16, benchmarks/rotor2_step.py); 0.71 at 12 kHz; 25x with the old Newmark step
+    relative_cost=1.1,
     solvers=tuple(SOLVERS),
     fixed_step_solvers=("rk4", "newmark"),
     reference="Dynamic behaviour of rotor roller bearing system with bearing defects "
