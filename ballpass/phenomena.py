@@ -48,6 +48,10 @@ PHENOMENA: dict[str, str] = {
     "ehl_film": "the elastohydrodynamic lubricant film of Liu & Shao (2015): its "
                 "thickness at the inner and outer contacts adds to every contact "
                 "approach (Scene(needs=(..., 'ehl_film')))",
+    "ball_race_sprung_mass": "Nabhan & Rashed (2020)'s lumped degrees of freedom: inner "
+                             "race, a ball coordinate between the races and outer race "
+                             "on their own springs, and a 2.1 kHz sprung mass, with the "
+                             "paper's parameter table",
     "intermittent_faults": "ball defects that meet the races on some revolutions only, "
                            "as a ball's spin axis wanders (Fault(engagement<1))",
 }
