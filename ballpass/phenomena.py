@@ -52,6 +52,9 @@ PHENOMENA: dict[str, str] = {
                              "race, a ball coordinate between the races and outer race "
                              "on their own springs, and a 2.1 kHz sprung mass, with the "
                              "paper's parameter table",
+    "axial_load": "an axial (thrust) load on a ball bearing (Scene(axial_load_n=...)): "
+                  "contact angles that grow with it and a load zone that widens to the "
+                  "whole ring",
     "intermittent_faults": "ball defects that meet the races on some revolutions only, "
                            "as a ball's spin axis wanders (Fault(engagement<1))",
 }

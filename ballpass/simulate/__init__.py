@@ -109,10 +109,10 @@ def scene_needs(scene: Scene, *, return_forces: bool = False) -> frozenset:
     Derived from the scene's fields (a speed ramp needs ``varying_speed``, waviness
     ``waviness``, gears ``gear_mesh``, ``clearance_um`` ``mounted_clearance``, extra
     ``resonances`` ``structural_modes``, a pit fault ``pit_faults``, a fault with
-    ``engagement < 1`` ``intermittent_faults``: a model that ignores a field the scene
-    sets would silently drop it) plus ``Scene(needs=...)`` for what the fields cannot
-    say; a scene that states no needs asks for ``envelope`` and
-    ``contact_dynamics``. ``return_forces=True`` adds ``contact_forces``.
+    ``engagement < 1`` ``intermittent_faults``, ``axial_load_n > 0`` ``axial_load``: a
+    model that ignores a field the scene sets would silently drop it) plus
+    ``Scene(needs=...)`` for what the fields cannot say; a scene that states no needs
+    asks for ``envelope`` and ``contact_dynamics``. ``return_forces=True`` adds ``contact_forces``.
 
     Parameters
     ----------
@@ -153,6 +153,8 @@ def scene_needs(scene: Scene, *, return_forces: bool = False) -> frozenset:
         needs.add("pit_faults")
     if any(f.engagement < 1.0 for f in scene.faults):
         needs.add("intermittent_faults")
+    if scene.axial_load_n > 0:
+        needs.add("axial_load")
     if return_forces:
         needs.add("contact_forces")
     return frozenset(needs)
