@@ -94,13 +94,75 @@ def test_scene_validates_axial_load():
         B6205.with_clearance(-0.001).combined_load_distribution(0.0, 100.0)
 
 
-def test_models_refuse_an_axial_load_they_cannot_carry():
+def test_models_that_cannot_carry_an_axial_load_refuse_it():
     scene = bp.Scene(bearing="6205", axial_load_n=300.0, duration_s=0.05)
     assert "axial_load" in bp.simulate.scene_needs(scene)
-    with pytest.raises(ValueError, match="sr5 lacks axial_load"):
-        bp.simulate.resolve_model(scene)
+    assert bp.simulate.resolve_model(scene) == "sr5"
+    for name in ("impulse", "rotor2", "multibody", "gearbox", "nabhan2020"):
+        assert "axial_load" not in bp.simulate.MODELS[name].represents
     with pytest.raises(ValueError, match="does not represent axial_load"):
-        bp.simulate.resolve_model(scene, "sr5")
-    # asked for explicitly, the signal comes without it and says so
-    res = bp.simulate(scene, model="sr5", allow_unrepresented=True)
-    assert "axial_load" in res.info["model_reason"]
+        bp.simulate.resolve_model(scene, "rotor2")
+    with pytest.raises(ValueError, match="preloaded bearing"):
+        bp.simulate.resolve_model(bp.Scene(bearing="6205", axial_load_n=300.0,
+                                           clearance_um=-2.0), "sr5")
+
+
+def _sr5(radial, axial, **kw):
+    scene = bp.Scene(bearing="6205", rpm=1797.0, radial_load_n=radial, axial_load_n=axial,
+                     gravity=False, duration_s=0.5, fs=48_000.0, **kw)
+    return scene, bp.simulate(scene, model="sr5")
+
+
+def test_sr5_static_state_is_the_combined_load_equilibrium():
+    from ballpass.simulate.sr5 import SR5Parameters, build_model
+
+    scene = bp.Scene(bearing="6205", radial_load_n=500.0, axial_load_n=500.0, gravity=False)
+    bm = build_model(scene, SR5Parameters())
+    ld = B6205.combined_load_distribution(500.0, 500.0)
+    # sr5 solves the radial balance with the axial offset held at the rigid-ring value:
+    # the same ring displacement (roots to 1e-9 of the load)
+    assert bm.y0[0] - bm.y0[2] == pytest.approx(ld.radial_deflection_m, rel=1e-6)
+    # and its kernel loads the shaft with each ball's radial share Q_j cos(alpha_j)
+    from ballpass.simulate import _kernels as K
+
+    kin = K.kinematics_scratch(9)
+    K.kinematics(0.0, bm.p, bm.walk, bm.faults, kin)
+    nd = bm.n_state // 2
+    core = np.concatenate((bm.y0[:4], bm.y0[nd:nd + 4]))
+    K.contact_loads(core, bm.p, kin, 4)
+    np.testing.assert_allclose(np.mod(kin[K.K_PSI, :9], 2 * np.pi),
+                               np.radians(ld.element_angles_deg), atol=1e-12)
+    radial_share = ld.element_loads_n * np.cos(np.radians(ld.contact_angles_deg))
+    np.testing.assert_allclose(kin[K.K_Q, :9], radial_share, rtol=1e-6)
+
+
+def test_pure_axial_load_silences_the_varying_compliance():
+    """Nine balls equally loaded: their radial resultant is zero at every cage angle, so
+    the BPFO excitation of a healthy bearing vanishes (under a radial load it is what
+    the healthy signal is)."""
+    _, radial = _sr5(500.0, 0.0)
+    _, axial = _sr5(0.0, 500.0)
+    rms = [np.sqrt(np.mean(r.accel**2)) for r in (radial, axial)]
+    # measured 0.118 against 1.7e-6 m/s^2: the rest is rounding; 1e-3 leaves room
+    assert rms[1] < 1e-3 * rms[0]
+
+
+def test_pure_axial_load_removes_the_load_zone_from_the_bpfo_line():
+    """An outer-race fault in the unloaded zone (180 deg) is silent under a radial load
+    and strikes like one in the load zone under a pure axial load (every ball carries
+    F_a / (Z sin alpha)). Sensor on the load line, no transmission loss, so that only
+    the load decides."""
+    def bpfo_line(radial, axial, angle):
+        scene, res = _sr5(radial, axial, fault=bp.Fault("outer", width_mm=0.5, depth_mm=0.1,
+                                                          angle_deg=angle),
+                          sensors=(bp.Sensor(angle_deg=0.0, attenuation=0.0),))
+        f, a = bp.features.envelope_spectrum(res.accel, res.fs, band=(8000.0, 20000.0))
+        return a[np.abs(f - scene.frequencies.bpfo) <= 1.01 * (f[1] - f[0])].max()
+
+    radial = bpfo_line(500.0, 0.0, 180.0) / bpfo_line(500.0, 0.0, 0.0)
+    axial = bpfo_line(0.0, 500.0, 180.0) / bpfo_line(0.0, 500.0, 0.0)
+    assert radial < 1e-6          # measured 1e-13: the ball never loads the fault
+    # measured 1.16: the same order, as the equal loads demand; the 16 % left between the
+    # two positions is not explained (the pedestal and the sensor see the two mirror
+    # images alike), so only the order of magnitude is asked
+    assert 0.5 < axial < 2.0
