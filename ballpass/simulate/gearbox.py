@@ -347,8 +347,7 @@ GEARBOX = Model(
                 "error, tooth faults) coupled to the sr5 bearing-pedestal model",
     # the bearing is sr5's (clearance, pits, intermittent defects through its fault
     # table) and the further structural modes follow its resonator as in sr5
-    # sr5's bearing without its axial load (not passed through the gear coupling)
-    represents=(SR5.represents - {"axial_load"}) | {"gear_mesh"},
+    represents=SR5.represents | {"gear_mesh"},
     # side by side with sr5 on the same 6208 scene without gears (1 s at 48 kHz, inner
     # fault, Tran, Furch & Cu helical pair): 16x after sr5's mass change (10x before, and 3x with
     # the seed's spall: docs/seed004.md)
