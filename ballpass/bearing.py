@@ -38,6 +38,7 @@ import numbers
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
 
+from ._combined_load import CombinedLoadDistribution, axial_integral, combined_load_distribution
 from ._contact import (
     HertzFactors,
     LoadDistribution,
@@ -65,6 +66,8 @@ __all__ = [
     "series_stiffness",
     "stribeck_integral",
     "stribeck_qmax",
+    "axial_integral",
+    "CombinedLoadDistribution",
 ]
 
 
@@ -671,6 +674,33 @@ class Bearing:
             stiffness=float(k),
             load_exponent=n,
         )
+
+    def combined_load_distribution(self, radial_load_n: float,
+                                   axial_load_n: float) -> CombinedLoadDistribution:
+        """Ball loads and contact angles under a radial and an axial load (rigid rings).
+
+        See :func:`ballpass._combined_load.combined_load_distribution` (Harris & Kotzalas
+        ch. 7, Jones): under a pure axial load every ball carries F_a / (Z sin alpha),
+        the contact angle alpha growing with the load; a radial load on top shifts the
+        load zone (epsilon > 0.5, the whole ring from epsilon = 1).
+
+        Parameters
+        ----------
+        radial_load_n, axial_load_n : float
+            F_r and F_a, N, >= 0.
+
+        Returns
+        -------
+        CombinedLoadDistribution
+
+        Examples
+        --------
+        >>> import ballpass as bp
+        >>> ld = bp.Bearing.catalog("6205").combined_load_distribution(500.0, 500.0)
+        >>> bool(ld.epsilon > 1.0), int((ld.element_loads_n > 0).sum())   # whole ring
+        (True, 9)
+        """
+        return combined_load_distribution(self, radial_load_n, axial_load_n)
 
 
 #: Catalogue: designation -> constructor keywords. Dimensions in mm.

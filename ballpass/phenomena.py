@@ -48,6 +48,13 @@ PHENOMENA: dict[str, str] = {
     "ehl_film": "the elastohydrodynamic lubricant film of Liu & Shao (2015): its "
                 "thickness at the inner and outer contacts adds to every contact "
                 "approach (Scene(needs=(..., 'ehl_film')))",
+    "ball_race_sprung_mass": "Nabhan & Rashed (2020)'s lumped degrees of freedom: inner "
+                             "race, a ball coordinate between the races and outer race "
+                             "on their own springs, and a 2.1 kHz sprung mass, with the "
+                             "paper's parameter table",
+    "axial_load": "an axial (thrust) load on a ball bearing (Scene(axial_load_n=...)): "
+                  "contact angles that grow with it and a load zone that widens to the "
+                  "whole ring",
     "intermittent_faults": "ball defects that meet the races on some revolutions only, "
                            "as a ball's spin axis wanders (Fault(engagement<1))",
 }
@@ -86,7 +93,7 @@ def check_needs(needs: Iterable[str] | str, name: str = "needs") -> frozenset[st
     >>> check_needs("envelop")                              # doctest: +ELLIPSIS
     Traceback (most recent call last):
         ...
-    ValueError: needs names an unknown phenomenon 'envelop'; allowed: ball_dynamics, ...
+    ValueError: needs names an unknown phenomenon 'envelop'; allowed: axial_load, ...
     """
     if isinstance(needs, str):
         needs = (needs,)

@@ -444,6 +444,11 @@ class Scene:
         A gear pair whose pinion sits on the bearing's shaft and turns at ``rpm`` (a
         :class:`~ballpass.GearPair` or a preset name such as ``"seed004"``); the scene
         then needs ``gear_mesh`` (the ``gearbox`` model). Default None.
+    axial_load_n : float, optional
+        Axial (thrust) load on the inner ring, N, in [0, 1e6]; ball bearings only. A
+        positive value makes the scene need ``axial_load``: the balls' contact angle
+        grows and the load zone widens (:meth:`Bearing.combined_load_distribution`).
+        Default 0.
 
     Examples
     --------
@@ -474,6 +479,7 @@ class Scene:
     noise_slope_db_oct: float = 0.0
     shaft_harmonics: tuple = ()
     gears: GearPair | str | None = None
+    axial_load_n: float = 0.0
 
     def __post_init__(self) -> None:
         bearing = self.bearing
@@ -496,6 +502,12 @@ class Scene:
 
         object.__setattr__(self, "radial_load_n",
                            _number("radial_load_n", self.radial_load_n, 0.0, 1e6))
+        object.__setattr__(self, "axial_load_n",
+                           _number("axial_load_n", self.axial_load_n, 0.0, 1e6))
+        if self.axial_load_n > 0 and bearing.element != "ball":
+            raise ValueError(f"axial_load_n={self.axial_load_n!r} needs a ball bearing: the "
+                             f"{bearing.name} has rollers, whose line contacts carry no axial "
+                             "load in ballpass; use axial_load_n=0")
         object.__setattr__(self, "duration_s",
                            _number("duration_s", self.duration_s, 0.0, 3600.0, lo_open=True))
         object.__setattr__(self, "fs", _number("fs", self.fs, 1000.0, 1e6))
@@ -564,7 +576,8 @@ class Scene:
         self._check_realism()
         clearance_mm = (bearing.radial_clearance_mm if self.clearance_um is None
                         else self.clearance_um * 1e-3)
-        if self.radial_load_n == 0 and not self.gravity and clearance_mm >= 0.0:
+        if (self.radial_load_n == 0 and self.axial_load_n == 0 and not self.gravity
+                and clearance_mm >= 0.0):
             # a preload (negative clearance) loads every element by itself
             raise ValueError("radial_load_n=0 with gravity=False leaves the bearing without "
                              "any load: no load zone and no static equilibrium. Give a "

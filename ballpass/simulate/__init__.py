@@ -33,6 +33,11 @@ Models (the table behind ``auto``: ``python -m ballpass bearings`` lists bearing
 ``gearbox``
     A gear pair (Tran, Furch & Cu) whose pinion sits on the bearing's shaft, coupled to the sr5
     bearing-pedestal model (see :mod:`.gearbox`); what a scene with ``gears`` runs.
+``nabhan2020``
+    Nabhan & Rashed (2020)'s lumped model with its parameter table: inner race, ball
+    coordinate, outer race, 2.1 kHz sprung mass, sharp notch, no slip (see
+    :mod:`.nabhan2020`); runs only when asked for (``model="nabhan2020"`` or a scene
+    that needs ``ball_race_sprung_mass``).
 
 A new model is one file that builds a :class:`Model` and one line in :data:`MODELS`.
 """
@@ -60,6 +65,7 @@ from ._sr5_driver import SOLVERS, SR4, SR5, build, integrate  # noqa: E402
 from .gearbox import GEARBOX  # noqa: E402
 from .impulse import IMPULSE, ImpulseParameters  # noqa: E402
 from .multibody import MULTIBODY, MultibodyParameters  # noqa: E402
+from .nabhan2020 import NABHAN2020, Nabhan2020Parameters  # noqa: E402
 from .result import SimulationResult  # noqa: E402
 from .rotor2 import ROTOR2, Rotor2Parameters  # noqa: E402
 from .sr5 import BearingModel, SR5Parameters  # noqa: E402
@@ -82,6 +88,7 @@ __all__ = [
     "ImpulseParameters",
     "Rotor2Parameters",
     "MultibodyParameters",
+    "Nabhan2020Parameters",
     "BearingModel",
     "source_fingerprint",
     "work_precision",
@@ -91,7 +98,8 @@ __all__ = [
 
 #: model name -> :class:`Model`, cheapest first
 MODELS: dict[str, Model] = {
-    m.name: m for m in sorted((IMPULSE, SR5, SR4, ROTOR2, MULTIBODY, GEARBOX),
+    m.name: m for m in sorted((IMPULSE, SR5, SR4, ROTOR2, MULTIBODY, GEARBOX,
+                                NABHAN2020),
                               key=lambda m: m.relative_cost)}
 
 
@@ -101,10 +109,10 @@ def scene_needs(scene: Scene, *, return_forces: bool = False) -> frozenset:
     Derived from the scene's fields (a speed ramp needs ``varying_speed``, waviness
     ``waviness``, gears ``gear_mesh``, ``clearance_um`` ``mounted_clearance``, extra
     ``resonances`` ``structural_modes``, a pit fault ``pit_faults``, a fault with
-    ``engagement < 1`` ``intermittent_faults``: a model that ignores a field the scene
-    sets would silently drop it) plus ``Scene(needs=...)`` for what the fields cannot
-    say; a scene that states no needs asks for ``envelope`` and
-    ``contact_dynamics``. ``return_forces=True`` adds ``contact_forces``.
+    ``engagement < 1`` ``intermittent_faults``, ``axial_load_n > 0`` ``axial_load``: a
+    model that ignores a field the scene sets would silently drop it) plus
+    ``Scene(needs=...)`` for what the fields cannot say; a scene that states no needs
+    asks for ``envelope`` and ``contact_dynamics``. ``return_forces=True`` adds ``contact_forces``.
 
     Parameters
     ----------
@@ -145,6 +153,8 @@ def scene_needs(scene: Scene, *, return_forces: bool = False) -> frozenset:
         needs.add("pit_faults")
     if any(f.engagement < 1.0 for f in scene.faults):
         needs.add("intermittent_faults")
+    if scene.axial_load_n > 0:
+        needs.add("axial_load")
     if return_forces:
         needs.add("contact_forces")
     return frozenset(needs)

@@ -43,7 +43,10 @@ P_WR, P_ZETA = 17, 18
 P_US0, P_VS0 = 19, 20
 P_COS_STEP, P_SIN_STEP = 21, 22
 P_CD = 23  # Hunt-Crossley contact damping factor alpha, s/m (0 = no contact damping)
-N_PARAMS = 24
+# axial load (0 = none): A sin(alpha_0) + delta_a, the groove centres' axial offset held at
+# its quasi-static value, m; and A = (f_i + f_o - 1) d, their distance when unloaded, m
+P_AX, P_A = 24, 25
+N_PARAMS = 26
 
 # columns of the fault table: kind code, centre (rad), half extent (rad), depth (m),
 # ramp fraction, element (ball defects), initial angle of that element (rad), ramp
@@ -428,6 +431,17 @@ def hertz(d, kh, nh):
 
 
 @njit(cache=True, error_model="numpy")
+def axial_approach(d, p):
+    """Normal approach (m) and cos(alpha) of a ball whose radial approach is ``d`` (m,
+    clearance and defects included) under an axial load: the groove centres are
+    hypot(P_AX, A + d) apart, A when unloaded (Harris & Kotzalas ch. 7; A + d is
+    A cos(alpha_0) plus the radial displacement along the ball)."""
+    rad = p[P_A] + d
+    s = math.hypot(p[P_AX], rad)
+    return s - p[P_A], rad / s
+
+
+@njit(cache=True, error_model="numpy")
 def contact_load(j, du, dv, ddu, ddv, p, kin):
     """Load of contact j, N, from the ring offset (du, dv) and its rate (ddu, ddv):
     Hertz Q = K max(delta, 0)^n, times the Hunt-Crossley factor 1 + alpha d(delta)/dt
@@ -443,14 +457,19 @@ def contact_load(j, du, dv, ddu, ddv, p, kin):
     cj = kin[K_COS, j]
     sj = kin[K_SIN, j]
     d = du * cj + dv * sj - p[P_CLEAR] - kin[K_DEPTH, j]
+    cos_a = 1.0
+    if p[P_AX] != 0.0:
+        # axial load: the normal approach, and only the radial share Q cos(alpha) acts
+        # on the shaft and pedestal
+        d, cos_a = axial_approach(d, p)
     if d <= 0.0:
         return 0.0
-    q = hertz(d, p[P_KH], p[P_NH])
+    q = hertz(d, p[P_KH], p[P_NH]) * cos_a
     alpha = p[P_CD]
     if alpha == 0.0:
         return q
     vel = (ddu * cj + ddv * sj + (dv * cj - du * sj) * kin[K_CACHE, KC_RATE]
-           - kin[K_DDEPTH, j])
+           - kin[K_DDEPTH, j]) * cos_a
     f = 1.0 + alpha * vel
     return q * f if f > 0.0 else 0.0
 
@@ -495,10 +514,10 @@ def core_forces(y, p, kin, dydt):
     fu = 0.0
     fv = 0.0
     z = int(p[P_Z])
-    if p[P_CD] == 0.0:
-        # without contact damping the loads are K max(delta, 0)^n, branch-free so the
-        # loop vectorises (K 0 sqrt(0) = 0: separated contacts carry exactly zero);
-        # the same values as :func:`contact_load`, summed in the same order
+    if p[P_CD] == 0.0 and p[P_AX] == 0.0:
+        # without contact damping and axial load the loads are K max(delta, 0)^n,
+        # branch-free so the loop vectorises (K 0 sqrt(0) = 0: separated contacts carry
+        # exactly zero); the same values as :func:`contact_load`, summed in the same order
         kh = p[P_KH]
         nh = p[P_NH]
         c = p[P_CLEAR]
@@ -580,7 +599,15 @@ def housing_accel(y, dydt, p, sensors, kin, cage_rate, out, row, rates):
                 if rates:
                     d = du * cj + dv * sj - c - kin[K_DEPTH, j]
                     dd = ddu * cj + ddv * sj + (dv * cj - du * sj) * cage_rate - kin[K_DDEPTH, j]
-                    dq = nh * q / d * dd
+                    if p[P_AX] == 0.0:
+                        dq = nh * q / d * dd
+                    else:
+                        # q = H cos(alpha), H = K delta^n: dq/dd = n H cos^2(alpha) /
+                        # delta + H sin^2(alpha) / s (s the groove centres' distance)
+                        delta, cos_a = axial_approach(d, p)
+                        h = q / cos_a
+                        dq = (nh * h * cos_a * cos_a / delta
+                              + h * (1.0 - cos_a * cos_a) / (p[P_A] + delta)) * dd
                     if alpha != 0.0:
                         # Hunt-Crossley: Q = H (1 + alpha dd); d/dt adds H alpha dd',
                         # dd' from the relative acceleration (the second derivatives

@@ -436,6 +436,11 @@ def _accepts(scene: Scene) -> str | None:
     if "ehl_film" in scene.needs and scene.bearing.element != "ball":
         return ("the EHL film (needs 'ehl_film') is modelled for point contacts only; "
                 f"bearing {scene.bearing.name!r} has rollers")
+    clearance = (scene.bearing.radial_clearance_mm if scene.clearance_um is None
+                 else scene.clearance_um * 1e-3)
+    if scene.axial_load_n > 0 and clearance < 0:
+        return ("an axial load on a preloaded bearing (clearance < 0) is not modelled: "
+                "give clearance_um >= 0 or axial_load_n=0")
     return None
 
 
@@ -454,7 +459,7 @@ SR5 = Model(
     name="sr5",
     description="Sawalhi-Randall 5-DOF: shaft, pedestal and a high-frequency resonator per "
                 "sensor; Hertz contacts, clearance, slip, localized faults",
-    represents=DEFAULT_NEEDS | {"contact_forces", "varying_speed", "waviness",
+    represents=DEFAULT_NEEDS | {"contact_forces", "varying_speed", "waviness", "axial_load",
                                 *SR5_SCENE_OPTIONS},
     relative_cost=1.0,
     solvers=tuple(SOLVERS),
@@ -471,7 +476,7 @@ SR4 = Model(
     description="Sawalhi-Randall 4-DOF: shaft and pedestal, sensors read the housing "
                 "acceleration (no resonator)",
     represents=frozenset({"contact_dynamics", "contact_forces", "varying_speed", "waviness",
-                          *(SR5_SCENE_OPTIONS - {"structural_modes"})}),
+                          "axial_load", *(SR5_SCENE_OPTIONS - {"structural_modes"})}),
     # measured by benchmarks/models_cost.py (docs/models_cost.md: 3.1 at 48 kHz, 1.3 at
     # 12 kHz, median of interleaved rounds): the same steps as sr5, but its output, the
     # housing acceleration, is evaluated from the contact forces at every internal

@@ -47,6 +47,15 @@ Realism options of the scene: mounted clearance or preload (``Scene(clearance_um
 round EDM pits that unload the contact only partly (``Fault(geometry="pit")``), ball
 defects that meet the races intermittently (``Fault(engagement=...)``), several structural modes
 (``Scene(resonances=...)``), coloured background and shaft lines.
+
+Axial load (``Scene(axial_load_n=...)``, ball bearings with clearance >= 0): the rings'
+axial offset is held at the quasi-static value of the rigid-ring equilibrium
+(:meth:`ballpass.Bearing.combined_load_distribution`, Harris & Kotzalas ch. 7); each
+ball is then compressed by hypot(A sin alpha_0 + delta_a, A + d_j) - A, d_j the radial
+approach above, A = (f_i + f_o - 1) d, and only the radial share Q_j cos(alpha_j) acts
+on the shaft and pedestal (:func:`._kernels.axial_approach`). There is no axial degree
+of freedom: the rings are axially rigid about that offset, and the contact constant K
+stays the nominal one (its change with the contact angle is left out).
 """
 
 from __future__ import annotations
@@ -438,6 +447,8 @@ def build_model(scene: Scene, params: SR5Parameters | None = None, *,
     p[K.P_COS_STEP] = math.cos(2.0 * math.pi / b.n_elements)
     p[K.P_SIN_STEP] = math.sin(2.0 * math.pi / b.n_elements)
     p[K.P_CD] = params.contact_damping
+    if scene.axial_load_n > 0.0:
+        p[K.P_AX], p[K.P_A] = _axial_offset(scene, params, clearance, g)
 
     # children of the scene seed: 0 slip, 1 noise, 2 shaft lines, 3 fault draws
     slip_seed, _noise, _lines, fault_seed = np.random.SeedSequence(scene.seed).spawn(4)
@@ -503,6 +514,23 @@ def _check_elastic(scene: Scene, delta_max: float, bearing_load: float) -> None:
             f"{allowed:.3g} N for this bearing.")
 
 
+def _axial_offset(scene: Scene, params: SR5Parameters, clearance: float,
+                  g: float) -> tuple[float, float]:
+    """Axial offset of the groove centres, A sin(alpha_0) + delta_a (m), and their
+    unloaded distance A = (f_i + f_o - 1) d (m) under the scene's axial load.
+
+    delta_a is the quasi-static axial ring displacement of the rigid-ring equilibrium
+    under the axial load and the bearing's radial load (radial load plus the shaft's
+    weight), :meth:`ballpass.Bearing.combined_load_distribution`; sr5 holds it there
+    (no axial degree of freedom: the rings are axially rigid about that position)."""
+    b = scene.bearing.with_clearance(clearance * 1e3)
+    big_a = (b.inner_conformity + b.outer_conformity - 1.0) * b.element_diameter_m
+    alpha_0 = math.acos(1.0 - clearance / big_a)
+    ld = b.combined_load_distribution(scene.radial_load_n + params.shaft_mass * g,
+                                      scene.axial_load_n)
+    return big_a * math.sin(alpha_0) + ld.axial_deflection_m, big_a
+
+
 def _static_state(scene: Scene, params: SR5Parameters, model: tuple, n_res: int, kh: float):
     """Static equilibrium at t = 0, characteristic scales of the state and the largest
     static contact deflection (m).
@@ -532,7 +560,12 @@ def _static_state(scene: Scene, params: SR5Parameters, model: tuple, n_res: int,
 
     def contact(d):
         delta = d[0] * cos_psi + d[1] * sin_psi - c - depth
-        return kh * np.maximum(delta, 0.0) ** n, delta
+        if p[K.P_AX] == 0.0:
+            return kh * np.maximum(delta, 0.0) ** n, delta
+        # axial load: normal approach and the radial share Q cos(alpha) (K.axial_approach)
+        dist = np.hypot(p[K.P_AX], p[K.P_A] + delta)
+        normal = dist - p[K.P_A]
+        return kh * np.maximum(normal, 0.0) ** n * (p[K.P_A] + delta) / dist, normal
 
     def residual(d):
         q, _ = contact(d)
@@ -554,7 +587,8 @@ def _static_state(scene: Scene, params: SR5Parameters, model: tuple, n_res: int,
     if bearing_load <= 0.0 and c >= 0.0:
         du, dv = 0.0, 0.0  # unloaded ring with clearance: centred, no contact
     else:
-        sol = optimize.root(residual, x0=[guess, 0.0], jac=jacobian, method="hybr",
+        sol = optimize.root(residual, x0=[guess, 0.0],
+                            jac=jacobian if p[K.P_AX] == 0.0 else None, method="hybr",
                             options={"xtol": 1e-13})
         # judge by the force residual, not by hybr's progress flag: 1e-9 of the load
         if max(abs(v) for v in residual(sol.x)) * kh > 1e-9 * max(bearing_load, 1.0):
@@ -585,6 +619,10 @@ def _static_state(scene: Scene, params: SR5Parameters, model: tuple, n_res: int,
 
     # scales: contact deflection, its velocity at the contact frequency, resonator
     x_scale = max(abs(du), abs(c), float(np.max(faults[:, K.F_DEPTH], initial=0.0)), 1e-7)
+    if p[K.P_AX] != 0.0:
+        # an axial load compresses every contact by itself: its normal approach sets
+        # the contact frequency (and so the default step)
+        x_scale = max(x_scale, deflection)
     k_lin = n * kh * x_scale ** (n - 1.0) * z / 2.0
     w_c = math.sqrt(k_lin / params.shaft_mass)
     f_scale = max(kh * x_scale**n, load)
