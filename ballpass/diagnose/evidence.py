@@ -505,7 +505,7 @@ def family_scores(readings: LineReadings, resolved) -> tuple[np.ndarray, np.ndar
     """Stage 3 of the evidence: a family's score and scale fit at every scale, dB.
 
     With ``C`` the mean level of the usable carriers and ``S`` the mean over harmonics
-    of the stronger sideband (over the harmonics with both sidebands read): ``(C + S) /
+    of the stronger sideband (the one read where the other is left out): ``(C + S) /
     2`` for the inner race (+-fr) and the ball
     (+-FTF); ``C - max(0, S - C + OUTER_SIDEBAND_MARGIN_DB)`` for the outer race, whose
     +-FTF neighbours only count against it where ``resolved`` (n,) (records of at
@@ -525,9 +525,10 @@ def family_scores(readings: LineReadings, resolved) -> tuple[np.ndarray, np.ndar
     with np.errstate(all="ignore"), _quiet():
         fit = np.nanmean(np.where(is_carrier, level + readings.on_bin_db, np.nan), axis=-1)
         carriers = np.nanmean(np.where(is_carrier, level, np.nan), axis=-1)
-        # The stronger of a pair, where both are read: one of a pair left out (shared)
-        # would turn "the stronger of two" into "the one left", biased low.
-        sidebands = np.nanmean(np.maximum(level[..., side == -1], level[..., side == +1]),
+        # The stronger of a pair; where one is left out (shared), the one read: biased
+        # low, which keeps a family judged on fewer lines from rising on noise (the
+        # stronger of complete pairs alone called 2 of 5 healthy HIT seconds "ball").
+        sidebands = np.nanmean(np.fmax(level[..., side == -1], level[..., side == +1]),
                                axis=-1)
     sidebands = np.where(np.isnan(sidebands), 0.0, sidebands)
     if support > 0:
