@@ -65,7 +65,7 @@ def test_false_alarm_probability_per_record_holds_on_200_noise_records():
     # bearings, overstates this configuration (its strongest evidence averages 3.3 dB
     # against the law's 3.6 dB), so the statement is an upper bound here, not an
     # estimate. Catches a law that understates the search (planted: location 3.0 dB
-    # instead of 3.48, as a law of one reading rather than of a record's strongest
+    # instead of 3.51, as a law of one reading rather than of a record's strongest
     # would: the 50 % threshold calls most records faulty).
     import scipy.stats
 

@@ -79,7 +79,7 @@ DEFAULT_THRESHOLD_DB = 6.0
 #: case of the Gumbel law; the fitted law barely depends on the rate or the length (means
 #: 3.4-3.9 dB over all of them). Noise reaches the default threshold with probability
 #: about 7e-5 per record.
-NOISE_EVIDENCE_GUMBEL = (3.48, 0.262)
+NOISE_EVIDENCE_GUMBEL = (3.51, 0.262)
 
 
 def noise_probability(evidence_db: float) -> float:
