@@ -289,3 +289,18 @@ def test_collisions_widen_with_the_resolution():
     k = [n for n, _, _ in family_lines("ball", 3)].index("1x2xBSF")
     assert shared_lines(orders, 3, 0.02, 2 / 30)["ball"][k]
     assert not shared_lines(orders, 3, 0.02, 2 / 300)["ball"][k]
+
+
+def test_a_ball_not_judged_takes_no_race_line():
+    # A quarter second at 1500 rpm: 2 bins are 8 Hz = 0.33 orders, and the ball's
+    # 1x2xBSF+FTF (5.112 orders) would take 1xBPFI (5.415) with it; but 0.25 s holds
+    # 2.5 cage periods, too few to resolve the +-FTF sidebands, the ball is not judged,
+    # and only carriers are compared: 1xBPFI stays. Catches line-by-line collisions with
+    # an unjudged ball (planted: the inner race was left with one carrier and not
+    # judged, and the envelope model's accuracy on 0.25 s rows fell to 0.57).
+    rpm = 1500.0
+    x = impacts(ORDERS_6205["bpfi"] * rpm / 60, 0.25,
+                modulation=lambda t: 1 + np.cos(2 * np.pi * rpm / 60 * t))
+    ev = envelope_evidence(x, FS, "6205", rpm)
+    assert not ev.shared["inner"][ev.line_names["inner"].index("1xBPFI")]
+    assert np.isinf(ev.evidence_db["ball"][0]) and ev.evidence_db["inner"][0] > 6.0

@@ -185,7 +185,7 @@ def _line_orders(fault: str, harmonics: int, orders: dict) -> np.ndarray:
 
 
 def shared_lines(orders: dict, harmonics: int, slip: float,
-                 resolution: float = 0.0) -> dict:
+                 resolution: float = 0.0, ball_judged: bool = True) -> dict:
     """Per family, a bool per line of :func:`family_lines`: True where the line collides
     with another family's, so that one fault could feed both families' scores.
 
@@ -213,6 +213,10 @@ def shared_lines(orders: dict, harmonics: int, slip: float,
         Largest relative slip searched.
     resolution : float, optional
         Frequency resolution in orders, ``bins / (T fr)`` (default 0).
+    ball_judged : bool, optional
+        False on records too short to resolve the +-FTF sidebands, where the ball is
+        not judged: there is no ball score to keep clean, and only carriers are
+        compared (default True).
 
     Returns
     -------
@@ -234,7 +238,7 @@ def shared_lines(orders: dict, harmonics: int, slip: float,
         side = np.array([s for _, _, s in family_lines(fault, harmonics)])
         # Line against line between the ball and a race; race against race, carriers.
         read = np.concatenate([_line_orders(f, harmonics, orders) for f in others
-                               if "ball" in (f, fault)])
+                               if ball_judged and "ball" in (f, fault)] or [np.empty(0)])
         carriers = np.concatenate([orders[FAULT_FAMILIES[f][0]] * np.arange(1, 2 * harmonics + 1)
                                    for f in others])
         hit_line = _collide(mine, read, slip, resolution)
@@ -733,7 +737,9 @@ def envelope_evidence(
     # Resolution in orders at the slowest speed the check may reach: one mask per batch.
     resolution = COLLISION_BINS * fs / xv.shape[-1] / (stated.min() / 60.0
                                                         * (1.0 - speed_tolerance))
-    shared = shared_lines(orders, harmonics, slip, resolution)
+    slowest_ftf = orders["ftf"] * stated.min() / 60.0 * (1.0 - speed_tolerance)
+    ball_judged = xv.shape[-1] / fs * slowest_ftf >= FTF_RESOLVED_CAGE_PERIODS
+    shared = shared_lines(orders, harmonics, slip, resolution, ball_judged)
     settings = dict(fs=fs, orders=orders, harmonics=harmonics, slip=slip,
                     background_hz=background_hz, prewhiten=prewhiten, bands=bands,
                     shared=shared)
