@@ -112,26 +112,29 @@ def test_shaft_harmonics_of_a_healthy_6203_are_not_faults():
 
 def test_lines_on_shaft_harmonics_say_how_long_a_record_tells_them_apart():
     # The 6203's 2xBSF, computed here from its geometry (d = 6.746 mm, D = 28.5 mm,
-    # contact angle 0): D/d (1 - (d/D)^2) = 3.988 orders, 0.36 Hz below 4x at 1797 rpm.
-    # A healthy channel with a 4x line: on one-second records (1 Hz bins) the ball's
-    # first carrier reads as that shaft line, and explain() says a record of
-    # 3 bins / 0.36 Hz = 8.4 s tells them apart; on ten-second records it does.
+    # contact angle 0): D/d (1 - (d/D)^2) = 3.988 orders; its third harmonic 11.964 is
+    # 1.08 Hz below 12x at 1797 rpm (the first, 3.988, collides with 1xBPFI-fr = 3.947
+    # and is left out). A healthy channel with a 12x line: on one-second records (1 Hz
+    # bins; an 8x line too, so that the second carrier cannot win the scale fit) the
+    # ball's third carrier reads as that shaft line, and explain() says a
+    # record of 3 bins / 1.08 Hz = 2.8 s tells them apart; on ten-second records it does.
     fr = RPM / 60
     ball = 28.5 / 6.746 * (1 - (6.746 / 28.5) ** 2) * fr
-    need = 3.0 / abs(ball - 4 * fr)  # the shaft guard is 3 SES bins of 1/T Hz
+    need = 3.0 / abs(3 * ball - 12 * fr)  # the shaft guard is 3 SES bins of 1/T Hz
     rng = np.random.default_rng(5)
     for seconds in (1.0, 10.0):
         t = np.arange(round(seconds * FS)) / FS
         carrier = bp.features.bandpass(rng.standard_normal(t.size), FS, (2500, 3500))
-        x = carrier * (1 + 0.5 * np.cos(2 * np.pi * 4 * fr * t))
+        x = carrier * (1 + 0.5 * np.cos(2 * np.pi * 8 * fr * t)
+                     + 0.5 * np.cos(2 * np.pi * 12 * fr * t))
         (exp,) = EnvelopeDiagnoser(bearing="6203", fs=FS, rpm=RPM).explain(x[None])
         lines = exp.lines.set_index(["fault", "line"])
         note = [n for n in exp.notes if n.startswith("ball:")]
         if seconds == 1.0:
-            assert lines.loc[("ball", "1x2xBSF"), "on_shaft"]
+            assert lines.loc[("ball", "3x2xBSF"), "on_shaft"]
             assert note and f"at least {need:.1f} s" in note[0], exp.notes
         else:
-            assert not lines.loc[("ball", "1x2xBSF"), "on_shaft"]
+            assert not lines.loc[("ball", "3x2xBSF"), "on_shaft"]
             assert not note, exp.notes
         assert exp.label == "healthy"
 
@@ -243,3 +246,61 @@ def test_fit_refuses_unknown_labels():
     x = np.random.default_rng(0).standard_normal((2, 12_000))
     with pytest.raises(ValueError, match=r"unknown labels \['cage'\]"):
         EnvelopeDiagnoser(fs=FS, rpm=RPM).fit(x, ["healthy", "cage"])
+
+
+def test_a_sideband_on_another_familys_line_feeds_neither():
+    # 2x2xBSF+FTF = 2 x 4.7135 + 0.3983 = 9.825 orders and 2xBPFI-fr = 2 x 5.4152 - 1 =
+    # 9.830 orders (computed here from the geometry) lie 0.05 % apart, inside half the
+    # 2 % slip search: a line there is left out of the ball and of the inner race.
+    # Catches a collision rule that compares carriers only (planted: the ball kept
+    # 2x2xBSF+FTF and read the inner race's line at 0 dB as its own).
+    o = ORDERS_6205
+    ball_side = 2 * o["ball_defect"] + o["ftf"]
+    inner_side = 2 * o["bpfi"] - 1.0
+    assert abs(ball_side - inner_side) < 0.5 * 0.02 * inner_side
+    fr = RPM / 60
+    t = np.arange(24_000) / FS
+    # An envelope line exactly at 2xBPFI-fr on a 3 kHz carrier, in weak noise.
+    x = (1 + np.cos(2 * np.pi * inner_side * fr * t)) * np.sin(2 * np.pi * 3000 * t)
+    x = x + 0.1 * np.random.default_rng(3).standard_normal(t.size)
+    ev = envelope_evidence(x, FS, "6205", RPM)
+    for fault, line in (("ball", "2x2xBSF+FTF"), ("inner", "2xBPFI-fr")):
+        k = ev.line_names[fault].index(line)
+        assert ev.shared[fault][k] and np.isnan(ev.levels_db[fault][0, k])
+    # Nothing else of the two families is left out on the 6205 at 2 s: no other line
+    # lies within half the slip search (or 2 bins, 0.5 Hz) of another family's.
+    # (2xBPFI-fr is also in the 2xBPFI trio, left out for 3xBPFO).
+    assert ev.shared["ball"].sum() == 1 and ev.shared["inner"].sum() == 3
+
+
+def test_collisions_widen_with_the_resolution():
+    # The 6203's 1x2xBSF = 3.988 and 1xBPFI-fr = 3.947 orders (geometry: d = 6.746 mm,
+    # D = 28.5 mm, 8 balls): 0.041 orders apart, just beyond half the 2 % slip search
+    # (0.040) but within 2 bins of a 1 s record at 30 Hz (2 / 30 = 0.067 orders): on 1 s
+    # they collide, on 10 s (0.0067) they do not. Catches the resolution ignored
+    # (planted: resolution 0, the 1 s case fails) or always added to the slip window
+    # (planted: the 10 s case fails).
+    from ballpass.diagnose.evidence import family_lines, shared_lines
+
+    r = 6.746 / 28.5
+    ball, bpfi = 1 / r * (1 - r**2), 4 * (1 + r)
+    assert 0.040 < ball - (bpfi - 1) < 0.042
+    orders = bp.Bearing.catalog("6203").frequencies(1.0).as_dict()
+    k = [n for n, _, _ in family_lines("ball", 3)].index("1x2xBSF")
+    assert shared_lines(orders, 3, 0.02, 2 / 30)["ball"][k]
+    assert not shared_lines(orders, 3, 0.02, 2 / 300)["ball"][k]
+
+
+def test_a_ball_not_judged_takes_no_race_line():
+    # A quarter second at 1500 rpm: 2 bins are 8 Hz = 0.33 orders, and the ball's
+    # 1x2xBSF+FTF (5.112 orders) would take 1xBPFI (5.415) with it; but 0.25 s holds
+    # 2.5 cage periods, too few to resolve the +-FTF sidebands, the ball is not judged,
+    # and only carriers are compared: 1xBPFI stays. Catches line-by-line collisions with
+    # an unjudged ball (planted: the inner race was left with one carrier and not
+    # judged, and the envelope model's accuracy on 0.25 s rows fell to 0.57).
+    rpm = 1500.0
+    x = impacts(ORDERS_6205["bpfi"] * rpm / 60, 0.25,
+                modulation=lambda t: 1 + np.cos(2 * np.pi * rpm / 60 * t))
+    ev = envelope_evidence(x, FS, "6205", rpm)
+    assert not ev.shared["inner"][ev.line_names["inner"].index("1xBPFI")]
+    assert np.isinf(ev.evidence_db["ball"][0]) and ev.evidence_db["inner"][0] > 6.0

@@ -14,10 +14,12 @@ of lines whose spacing the bearing's kinematics fix (Randall & Antoni [1]_, sect
 
 Three traps make a naive family score fail on real machines, and each has a rule here:
 
-1. **Shared harmonics.** For a 6205, 2xBPFI (10.830 orders) and 3xBPFO (10.754) fall
-   in one slip window. A line that another family's carrier can explain within the
-   slip search is left out of *both* families: a family is judged by the harmonics
-   only it explains.
+1. **Shared lines.** For a 6205, 2xBPFI (10.830 orders) and 3xBPFO (10.754) fall
+   in one slip window, and so do 2x2xBSF+FTF (9.825) and 2xBPFI-fr (9.830). A line
+   that another family's lines can explain within the slip search and the frequency
+   resolution is left out of *both* families (:func:`shared_lines`): a family is
+   judged by the lines only it explains, so a race fault's comb cannot feed the ball
+   score nor a ball comb a race's.
 2. **Shaft harmonics.** The 6203 has each defect frequency within 2 % of a shaft
    harmonic (2xBSF 3.988, BPFI 4.947, BPFO 3.053 orders) and a healthy machine's SES
    carries shaft harmonics. Where a shaft harmonic stands out in the SES (6 dB above
@@ -87,6 +89,7 @@ from .speed import estimate_shaft_speed
 
 __all__ = [
     "ALIAS_FREE_FRACTION",
+    "COLLISION_BINS",
     "FAULT_FAMILIES",
     "OUTER_SIDEBAND_MARGIN_DB",
     "EnvelopeEvidence",
@@ -97,6 +100,7 @@ __all__ = [
     "family_scores",
     "line_readings",
     "shaft_resolving_length",
+    "shared_lines",
 ]
 
 #: fault -> (carrier line, sideband spacing, do sidebands support (+1) the fault or
@@ -140,6 +144,10 @@ FTF_RESOLVED_CAGE_PERIODS = 4.0
 #: there and fs/2). Above it the signal is the filter's transition band, attenuated and
 #: possibly aliased: a band there carries no evidence of the machine.
 ALIAS_FREE_FRACTION = 1.0 / 2.56
+#: Two lines of different families closer than this many SES bins (where that is more
+#: than half the slip search) are not told apart: each is read within +-1 bin, so two windows
+#: overlap from 2 bins on (see :func:`shared_lines`).
+COLLISION_BINS = 2.0
 #: Fewest unshared carriers a family needs to be judged.
 MIN_CARRIERS = 2
 #: The scale search reaches ``UPWARD * slip`` above the kinematic frequencies: slip only
@@ -169,20 +177,81 @@ def family_lines(fault: str, harmonics: int) -> list[tuple[str, int, int]]:
     return lines
 
 
-def _shared_carriers(orders: dict, harmonics: int, slip: float) -> dict:
-    """Per family, a bool per harmonic: True where another family's carrier (harmonics
-    1..2H) lies within half the slip search, ``|a - b| <= slip * max(a, b) / 2`` (a
-    common slip moves both lines the same way)."""
+def _line_orders(fault: str, harmonics: int, orders: dict) -> np.ndarray:
+    """Orders (multiples of the shaft speed) of the lines of :func:`family_lines`."""
+    carrier, modulation, _ = FAULT_FAMILIES[fault]
+    return np.array([h * orders[carrier] + side * orders[modulation]
+                     for _, h, side in family_lines(fault, harmonics)])
+
+
+def shared_lines(orders: dict, harmonics: int, slip: float,
+                 resolution: float = 0.0, ball_judged: bool = True) -> dict:
+    """Per family, a bool per line of :func:`family_lines`: True where the line collides
+    with another family's, so that one fault could feed both families' scores.
+
+    Two lines ``a`` and ``b`` (orders) collide when ``|a - b| <= max(slip max(a, b) /
+    2, resolution)``: within half the slip search (a common slip moves both the same
+    way), or, on records too short to resolve that, within the frequency resolution in
+    orders (2 bins: the two lines' +-1 bin windows overlap). A
+    carrier collides with another family's carriers up to harmonic ``2 harmonics`` (a
+    family's higher harmonics are as strong as the ones read) and is left out with its
+    sidebands; any line, carrier or sideband, also collides with the lines another
+    family reads (harmonics 1..``harmonics``, carriers and sidebands) where one of the
+    two families is the ball, and a carrier left out so takes its sidebands with it.
+    Between the two races only carriers are compared: their sidebands differ in
+    spacing (fr against FTF) and a race fault is named by its carriers. On the 6205,
+    2x2xBSF+FTF (9.825 orders) and 2xBPFI-fr (9.830) leave both the ball and the inner
+    race: a race-family comb cannot feed the ball score, nor a ball comb the race's.
+
+    Parameters
+    ----------
+    orders : dict
+        ``BearingFrequencies.as_dict()`` at a shaft speed of 1 Hz.
+    harmonics : int
+        Harmonics read per family.
+    slip : float
+        Largest relative slip searched.
+    resolution : float, optional
+        Frequency resolution in orders, ``bins / (T fr)`` (default 0).
+    ball_judged : bool, optional
+        False on records too short to resolve the +-FTF sidebands, where the ball is
+        not judged: there is no ball score to keep clean, and only carriers are
+        compared (default True).
+
+    Returns
+    -------
+    dict of str to ndarray of bool, shape (3 harmonics,)
+
+    Examples
+    --------
+    >>> import ballpass as bp
+    >>> from ballpass.diagnose.evidence import shared_lines, family_lines
+    >>> orders = bp.Bearing.catalog("6205").frequencies(1.0).as_dict()
+    >>> shared = shared_lines(orders, 3, 0.02)
+    >>> [name for (name, _, _), s in zip(family_lines("ball", 3), shared["ball"]) if s]
+    ['2x2xBSF+FTF']
+    """
     shared = {}
-    for fault, (carrier, _, _) in FAULT_FAMILIES.items():
-        mine = orders[carrier] * np.arange(1, harmonics + 1)
-        others = np.concatenate([
-            orders[c] * np.arange(1, 2 * harmonics + 1)
-            for f, (c, _, _) in FAULT_FAMILIES.items() if f != fault
-        ])
-        gap = np.abs(mine[:, None] - others[None, :])
-        shared[fault] = (gap <= 0.5 * slip * np.maximum(mine[:, None], others[None, :])).any(axis=1)
+    for fault in FAULT_FAMILIES:
+        others = [f for f in FAULT_FAMILIES if f != fault]
+        mine = _line_orders(fault, harmonics, orders)
+        side = np.array([s for _, _, s in family_lines(fault, harmonics)])
+        # Line against line between the ball and a race; race against race, carriers.
+        read = np.concatenate([_line_orders(f, harmonics, orders) for f in others
+                               if ball_judged and "ball" in (f, fault)] or [np.empty(0)])
+        carriers = np.concatenate([orders[FAULT_FAMILIES[f][0]] * np.arange(1, 2 * harmonics + 1)
+                                   for f in others])
+        hit_line = _collide(mine, read, slip, resolution)
+        hit_carrier = _collide(mine[side == 0], carriers, slip, resolution) | hit_line[side == 0]
+        shared[fault] = hit_line | np.repeat(hit_carrier, 3)
     return shared
+
+
+def _collide(mine: np.ndarray, others: np.ndarray, slip: float, resolution: float):
+    """True per ``mine`` where some line of ``others`` lies within the collision window."""
+    gap = np.abs(mine[:, None] - others[None, :])
+    window = np.maximum(0.5 * slip * np.maximum(mine[:, None], others[None, :]), resolution)
+    return (gap <= window).any(axis=1)
 
 
 @dataclass(frozen=True, eq=False)
@@ -202,7 +271,7 @@ class EnvelopeEvidence:
         Frequency of the SES bin that carried each line, and its kinematic frequency
         at the speed used, Hz.
     shared : dict of str to ndarray of bool, shape (n_lines,)
-        Lines left out because another family's carrier explains them.
+        Lines left out because another family's lines explain them (:func:`shared_lines`).
     on_shaft : dict of str to ndarray of bool, shape (n_signals, n_lines)
         Lines that fell on a shaft harmonic standing out of the SES and read as
         background (rule 2 of the module notes).
@@ -371,8 +440,9 @@ def line_readings(ses, notch, df, shaft_hz, orders, fault, harmonics, slip, back
     at the highest harmonic) and each line of :func:`family_lines`: ``10 log10(max SES
     within +-1 bin / background)``, the background the median SES over the line's slip
     search +- ``background_hz``. Bins on a shaft harmonic that stands out (``notch``,
-    (n, n_bins) bool) read as background (0 dB); ``shared`` (H,) marks carriers another
-    family explains, left out with their sidebands.
+    (n, n_bins) bool) read as background (0 dB); ``shared`` marks the lines another
+    family explains (:func:`shared_lines`), left out: (3H,) one per line, or (H,) one
+    per carrier, left out with its sidebands.
 
     Examples
     --------
@@ -392,7 +462,9 @@ def line_readings(ses, notch, df, shaft_hz, orders, fault, harmonics, slip, back
     lines = family_lines(fault, harmonics)
     h = np.array([hh for _, hh, _ in lines], dtype=float)
     side = np.array([ss for _, _, ss in lines], dtype=float)
-    excluded = np.repeat(shared, 3)  # a shared carrier takes its sidebands with it
+    shared = np.asarray(shared, dtype=bool)
+    # Per carrier (H,): a shared carrier takes its sidebands with it; or per line (3H,).
+    excluded = np.repeat(shared, 3) if shared.size == harmonics else shared
     n, n_bins = ses.shape
     f_c = orders[carrier] * shaft_hz
     f_m = orders[modulation] * shaft_hz
@@ -437,7 +509,8 @@ def family_scores(readings: LineReadings, resolved) -> tuple[np.ndarray, np.ndar
     """Stage 3 of the evidence: a family's score and scale fit at every scale, dB.
 
     With ``C`` the mean level of the usable carriers and ``S`` the mean over harmonics
-    of the stronger sideband: ``(C + S) / 2`` for the inner race (+-fr) and the ball
+    of the stronger sideband (the one read where the other is left out): ``(C + S) /
+    2`` for the inner race (+-fr) and the ball
     (+-FTF); ``C - max(0, S - C + OUTER_SIDEBAND_MARGIN_DB)`` for the outer race, whose
     +-FTF neighbours only count against it where ``resolved`` (n,) (records of at
     least :data:`FTF_RESOLVED_CAGE_PERIODS`). The fit is the mean over carriers of the
@@ -456,7 +529,11 @@ def family_scores(readings: LineReadings, resolved) -> tuple[np.ndarray, np.ndar
     with np.errstate(all="ignore"), _quiet():
         fit = np.nanmean(np.where(is_carrier, level + readings.on_bin_db, np.nan), axis=-1)
         carriers = np.nanmean(np.where(is_carrier, level, np.nan), axis=-1)
-        sidebands = np.nanmean(np.fmax(level[..., side == -1], level[..., side == +1]), axis=-1)
+        # The stronger of a pair; where one is left out (shared), the one read: biased
+        # low, which keeps a family judged on fewer lines from rising on noise (the
+        # stronger of complete pairs alone called 2 of 5 healthy HIT seconds "ball").
+        sidebands = np.nanmean(np.fmax(level[..., side == -1], level[..., side == +1]),
+                               axis=-1)
     sidebands = np.where(np.isnan(sidebands), 0.0, sidebands)
     if support > 0:
         score = 0.5 * (carriers + sidebands)
@@ -657,8 +734,15 @@ def envelope_evidence(
     bands = None if band is None else np.array([check_band(band, fs)])
 
     orders = bearing.frequencies(1.0).as_dict()
+    # Resolution in orders at the slowest speed the check may reach: one mask per batch.
+    resolution = COLLISION_BINS * fs / xv.shape[-1] / (stated.min() / 60.0
+                                                        * (1.0 - speed_tolerance))
+    slowest_ftf = orders["ftf"] * stated.min() / 60.0 * (1.0 - speed_tolerance)
+    ball_judged = xv.shape[-1] / fs * slowest_ftf >= FTF_RESOLVED_CAGE_PERIODS
+    shared = shared_lines(orders, harmonics, slip, resolution, ball_judged)
     settings = dict(fs=fs, orders=orders, harmonics=harmonics, slip=slip,
-                    background_hz=background_hz, prewhiten=prewhiten, bands=bands)
+                    background_hz=background_hz, prewhiten=prewhiten, bands=bands,
+                    shared=shared)
     best, n_bands = _best_bands(xv, stated / 60.0, **settings)
     used = stated.copy()
     corrected = np.zeros(len(xv), bool)
@@ -680,7 +764,6 @@ def envelope_evidence(
             corrected[rows] = True
             used[rows] = comb_rpm[rows]
     shaft_hz = used / 60.0
-    shared = _shared_carriers(orders, harmonics, slip)
     names = {f: [name for name, _, _ in family_lines(f, harmonics)] for f in FAULT_FAMILIES}
     nominal = {}
     for fault, (carrier, modulation, _) in FAULT_FAMILIES.items():
@@ -693,7 +776,7 @@ def envelope_evidence(
         levels_db={f: best[f]["level"] for f in FAULT_FAMILIES},
         found_hz={f: best[f]["found"] for f in FAULT_FAMILIES},
         nominal_hz=nominal,
-        shared={f: np.repeat(shared[f], 3) for f in FAULT_FAMILIES},
+        shared=shared,
         on_shaft={f: best[f]["on_shaft"] for f in FAULT_FAMILIES},
         scale={f: best[f]["scale"] for f in FAULT_FAMILIES},
         line_names=names,
@@ -713,11 +796,10 @@ def _strongest(best: dict) -> np.ndarray:
 
 
 def _best_bands(xv, shaft_hz, *, fs, orders, harmonics, slip, background_hz, prewhiten,
-                bands):
+                bands, shared):
     """Each family's evidence in its best band at the shaft speeds ``shaft_hz`` (Hz, one
     per row): ``({fault: {evidence, level, found, on_shaft, scale, band}}, bands with
-    signal)``."""
-    shared = _shared_carriers(orders, harmonics, slip)
+    signal)``; ``shared`` is :func:`shared_lines`'s mask."""
     top = float(np.max(shaft_hz)) * (harmonics * max(orders[c] for c, _, _ in
                                                      FAULT_FAMILIES.values()) + 1.0)
     # The SES is needed up to the highest line's slip search and background, and one

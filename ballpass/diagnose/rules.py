@@ -79,12 +79,18 @@ DEFAULT_THRESHOLD_DB = 6.0
 #: case of the Gumbel law; the fitted law barely depends on the rate or the length (means
 #: 3.4-3.9 dB over all of them). Noise reaches the default threshold with probability
 #: about 7e-5 per record.
-NOISE_EVIDENCE_GUMBEL = (3.48, 0.262)
+NOISE_EVIDENCE_GUMBEL = (3.51, 0.262)
 
 
 def noise_probability(evidence_db: float) -> float:
     """Probability that a record of noise alone reads a family evidence of at least
     ``evidence_db`` (dB), from :data:`NOISE_EVIDENCE_GUMBEL`.
+
+    Per record, not per reading: the law is that of a record's strongest evidence, the
+    maximum over every reading the search makes (bands x slip scales x families, each
+    family's harmonics averaged), so the multiple comparisons are in it. At a threshold
+    it is the per-record false-alarm probability on noise
+    (:attr:`Explanation.false_alarm_probability`).
 
     A statement about the search, not about the machine: a healthy machine's own lines
     (shaft, supply, a varying-compliance line imprinted on a band) are not noise, and a
@@ -134,9 +140,15 @@ class Explanation:
     rpm_stated : float
         Shaft speed given, rev/min.
     noise_probability : float
-        Probability that noise alone reads the record's strongest family evidence or
-        more (:func:`noise_probability`): the false-alarm rate of a threshold set there,
-        on a machine with no lines of its own.
+        Probability that a record of noise alone reads this record's strongest family
+        evidence or more (:func:`noise_probability`): a p-value per record, the whole
+        search (bands x slip scales x families x harmonics, and the speed check) counted
+        once, since the law is that of a record's strongest reading.
+    false_alarm_probability : float
+        Probability that a record of noise alone is called faulty at the thresholds
+        used, per record: :func:`noise_probability` at the lowest family threshold
+        (7e-5 at the default 6 dB). A statement about the search, not the machine: a
+        healthy machine's own lines are not noise.
     lines : pandas.DataFrame
         One row per line of every family: ``fault``, ``line`` (e.g. ``"1xBPFI+fr"``),
         ``harmonic``, ``role`` (``"carrier"``, ``"sideband"``, or ``"refuting
@@ -177,6 +189,7 @@ class Explanation:
     rpm_stated: float
     lines: object
     noise_probability: float = float("nan")
+    false_alarm_probability: float = float("nan")
 
     def __str__(self) -> str:
         head = (
@@ -190,6 +203,9 @@ class Explanation:
         if math.isfinite(self.noise_probability):
             parts.append(f"  noise alone reads the strongest evidence with probability "
                          f"{self.noise_probability:.2g}")
+        if math.isfinite(self.false_alarm_probability):
+            parts.append(f"  false-alarm probability per record of noise at these "
+                         f"thresholds: {self.false_alarm_probability:.2g}")
         if self.label != "healthy":
             lo, hi = self.band_hz[self.label]
             decisive = self.lines[self.lines["decisive"] & ~self.lines["shared"]]
@@ -635,5 +651,6 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
                 rpm_stated=float(ev.rpm_stated[i]),
                 lines=pd.concat(frames, ignore_index=True),
                 noise_probability=noise_probability(max(evidence.values())),
+                false_alarm_probability=noise_probability(min(thresholds.values())),
             ))
         return out
