@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from _processes import children
+from _processes import children, default_sigint
 
 from ballpass.cli import EXIT_BROKEN_PIPE, EXIT_INTERRUPTED, main
 from ballpass.signalio import read_signal, write_signal
@@ -24,7 +24,8 @@ FS = 12_000.0
 def ballpass(*argv, **popen):
     """``python -m ballpass ARGV`` from the worktree, as a user runs it."""
     return subprocess.Popen([sys.executable, "-m", "ballpass", *map(str, argv)], cwd=ROOT,
-                            stderr=subprocess.PIPE, text=True, **popen)
+                            stderr=subprocess.PIPE, text=True, preexec_fn=default_sigint,
+                            **popen)
 
 
 def noise(n: int, channels: int = 1, seed: int = 0) -> np.ndarray:

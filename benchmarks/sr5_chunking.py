@@ -1,0 +1,110 @@
+"""Cost of running the sr4/sr5 integrators in chunks (so that Ctrl-C stops a long
+simulation): integration time with the default chunk size against one call for the
+whole run, side by side.
+
+Each case runs both ways, interleaved round by round (the order alternating) so that
+the machine's load hits both alike; the table gives the median integration time over
+the rounds, the spread (min-max), the ratio of medians and the time of one chunk
+(integration time over the number of calls), the longest a Ctrl-C waits.
+
+    PYTHONPATH=$PWD python benchmarks/sr5_chunking.py        # ~2 min on 2 cores
+
+Writes ``docs/sr5_chunking.md`` and ``docs/sr5_chunking.png``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+from pathlib import Path
+
+import numpy as np
+from _machine import machine
+
+import ballpass as bp
+from ballpass.simulate import _integrators as _I
+
+ROOT = Path(__file__).resolve().parent.parent
+OUTER = bp.Scene("6205", rpm=1797.0, fs=48_000.0, duration_s=2.0,
+                 fault=bp.Fault("outer", width_mm=0.5, depth_mm=0.1))
+INNER = OUTER.replace(fault=bp.Fault("inner", width_mm=0.5, depth_mm=0.1), duration_s=1.0)
+#: case -> (scene, model, solver)
+CASES = {
+    "sr5 rk4, outer, 2 s": (OUTER, "sr5", "rk4"),
+    "sr5 rk4, inner, 1 s": (INNER, "sr5", "rk4"),
+    "sr5 dopri5, outer, 1 s": (OUTER.replace(duration_s=1.0), "sr5", "dopri5"),
+    "sr4 rk4, outer, 1 s": (OUTER.replace(duration_s=1.0), "sr4", "rk4"),
+}
+ONE_CALL = 1 << 62
+
+
+def _time(scene, model, solver, passes) -> tuple[float, int]:
+    """Integration time (s) and passes of the main loop (upper bound: steps plus
+    rejections) of one run with ``passes`` per call."""
+    _I.CHUNK_PASSES = passes
+    res = bp.simulate(scene, model=model, solver=solver)
+    return res.info["integration_time_s"], res.info["n_steps"] + res.info["n_rejected"]
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--rounds", type=int, default=9)
+    args = parser.parse_args(argv)
+    chunk = _I.CHUNK_PASSES
+    for scene, model, solver in CASES.values():  # compile and warm up
+        bp.simulate(scene.replace(duration_s=0.01), model=model, solver=solver)
+    times = {(name, mode): [] for name in CASES for mode in ("chunked", "one call")}
+    passes = {}
+    for r in range(args.rounds):
+        for name, (scene, model, solver) in CASES.items():
+            order = [("chunked", chunk), ("one call", ONE_CALL)]
+            for mode, size in order if r % 2 == 0 else order[::-1]:
+                t, passes[name] = _time(scene, model, solver, size)
+                times[name, mode].append(t)
+    _I.CHUNK_PASSES = chunk
+    rows = []
+    for name in CASES:
+        a, b = np.array(times[name, "chunked"]), np.array(times[name, "one call"])
+        calls = math.ceil(passes[name] / chunk)
+        rows.append((name, np.median(a), a.min(), a.max(), np.median(b), b.min(), b.max(),
+                     np.median(a) / np.median(b), calls, np.median(a) / calls))
+    out = ROOT / "docs"
+    lines = [
+        "# Chunked integration: what interruptibility costs",
+        "",
+        f"Integration time of sr4/sr5 with {chunk} loop passes per kernel call (the "
+        "default) against one call for the whole run; median (min-max) of "
+        f"{args.rounds} interleaved rounds. Machine: {machine()}, shared with other jobs.",
+        "Written by `benchmarks/sr5_chunking.py`.",
+        "",
+        "| case | chunked, s | one call, s | ratio | calls | one chunk, ms |",
+        "|---|---|---|---|---|---|",
+    ]
+    for name, ma, lo_a, hi_a, mb, lo_b, hi_b, ratio, calls, per in rows:
+        lines.append(f"| {name} | {ma:.3f} ({lo_a:.3f}-{hi_a:.3f}) | {mb:.3f} "
+                     f"({lo_b:.3f}-{hi_b:.3f}) | {ratio:.3f} | {calls} | {1e3 * per:.0f} |")
+    (out / "sr5_chunking.md").write_text("\n".join(lines) + "\n")
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(7, 3.2))
+    for i, name in enumerate(CASES):
+        a, b = np.array(times[name, "chunked"]), np.array(times[name, "one call"])
+        ax.plot(np.full(a.size, i - 0.1), a / np.median(b), "o", color="C0", ms=4,
+                label="chunked" if i == 0 else None)
+        ax.plot(np.full(b.size, i + 0.1), b / np.median(b), "s", color="C1", ms=4,
+                label="one call" if i == 0 else None)
+    ax.axhline(1.02, color="grey", ls="--", lw=0.8, label="+2 %")
+    ax.set_xticks(range(len(CASES)), list(CASES), fontsize=7)
+    ax.set_ylabel("integration time / median of one call")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(out / "sr5_chunking.png", dpi=120)
+    print("\n".join(lines))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
