@@ -2,10 +2,13 @@
 simulation): integration time with the default chunk size against one call for the
 whole run, side by side.
 
-Each case runs both ways, interleaved round by round (the order alternating) so that
-the machine's load hits both alike; the table gives the median integration time over
-the rounds, the spread (min-max), the ratio of medians and the time of one chunk
-(integration time over the number of calls), the longest a Ctrl-C waits.
+Each case runs three ways, interleaved round by round (the order rotating) so that the
+machine's load hits all alike: default chunks, one call, and chunks 64 times smaller
+(which magnify the cost of a call). The table gives the median integration time over
+the rounds with its spread (min-max), the median over rounds of the ratio
+chunked / one call within a round (paired, so a load spike hitting one round cancels),
+and the time of one chunk (integration time over the number of calls), the longest a
+Ctrl-C waits.
 
     PYTHONPATH=$PWD python benchmarks/sr5_chunking.py        # ~2 min on 2 cores
 
@@ -48,26 +51,27 @@ def _time(scene, model, solver, passes) -> tuple[float, int]:
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--rounds", type=int, default=9)
+    parser.add_argument("--rounds", type=int, default=15)
     args = parser.parse_args(argv)
     chunk = _I.CHUNK_PASSES
     for scene, model, solver in CASES.values():  # compile and warm up
         bp.simulate(scene.replace(duration_s=0.01), model=model, solver=solver)
-    times = {(name, mode): [] for name in CASES for mode in ("chunked", "one call")}
+    modes = [("chunked", chunk), ("one call", ONE_CALL), ("chunks / 64", chunk // 64)]
+    times = {(name, mode): [] for name in CASES for mode, _ in modes}
     passes = {}
     for r in range(args.rounds):
         for name, (scene, model, solver) in CASES.items():
-            order = [("chunked", chunk), ("one call", ONE_CALL)]
-            for mode, size in order if r % 2 == 0 else order[::-1]:
+            for mode, size in modes[r % 3:] + modes[:r % 3]:
                 t, passes[name] = _time(scene, model, solver, size)
                 times[name, mode].append(t)
     _I.CHUNK_PASSES = chunk
     rows = []
     for name in CASES:
         a, b = np.array(times[name, "chunked"]), np.array(times[name, "one call"])
+        c = np.array(times[name, "chunks / 64"])
         calls = math.ceil(passes[name] / chunk)
         rows.append((name, np.median(a), a.min(), a.max(), np.median(b), b.min(), b.max(),
-                     np.median(a) / np.median(b), calls, np.median(a) / calls))
+                     np.median(a / b), np.median(c / b), calls, np.median(a) / calls))
     out = ROOT / "docs"
     lines = [
         "# Chunked integration: what interruptibility costs",
@@ -77,12 +81,14 @@ def main(argv=None) -> int:
         f"{args.rounds} interleaved rounds. Machine: {machine()}, shared with other jobs.",
         "Written by `benchmarks/sr5_chunking.py`.",
         "",
-        "| case | chunked, s | one call, s | ratio | calls | one chunk, ms |",
-        "|---|---|---|---|---|---|",
+        "| case | chunked, s | one call, s | chunked / one call | chunks / 64: ratio "
+        "| calls | one chunk, ms |",
+        "|---|---|---|---|---|---|---|",
     ]
-    for name, ma, lo_a, hi_a, mb, lo_b, hi_b, ratio, calls, per in rows:
+    for name, ma, lo_a, hi_a, mb, lo_b, hi_b, ratio, ratio64, calls, per in rows:
         lines.append(f"| {name} | {ma:.3f} ({lo_a:.3f}-{hi_a:.3f}) | {mb:.3f} "
-                     f"({lo_b:.3f}-{hi_b:.3f}) | {ratio:.3f} | {calls} | {1e3 * per:.0f} |")
+                     f"({lo_b:.3f}-{hi_b:.3f}) | {ratio:.3f} | {ratio64:.3f} | {calls} "
+                     f"| {1e3 * per:.0f} |")
     (out / "sr5_chunking.md").write_text("\n".join(lines) + "\n")
     import matplotlib
 
