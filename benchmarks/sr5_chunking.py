@@ -8,7 +8,11 @@ machine's load hits all alike: default chunks, one call, and chunks 64 times sma
 the rounds with its spread (min-max), the median over rounds of the ratio
 chunked / one call within a round (paired, so a load spike hitting one round cancels),
 and the time of one chunk (integration time over the number of calls), the longest a
-Ctrl-C waits.
+Ctrl-C waits. On a machine shared with other jobs these ratios scatter by several per
+cent either way, more than chunking can cost, so the cost of a call itself is also
+measured directly: a call that returns at once (no pass allowed), timed over
+thousands of calls; times the number of calls, over the integration time, it bounds
+the overhead.
 
     PYTHONPATH=$PWD python benchmarks/sr5_chunking.py        # ~2 min on 2 cores
 
@@ -19,6 +23,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import time
 from pathlib import Path
 
 import numpy as np
@@ -49,6 +54,28 @@ def _time(scene, model, solver, passes) -> tuple[float, int]:
     return res.info["integration_time_s"], res.info["n_steps"] + res.info["n_rejected"]
 
 
+def _call_cost() -> float:
+    """Seconds per :func:`rk4` call that returns at once (``max_passes`` = 0): the
+    dispatch and argument-unboxing cost every chunk pays; median of 9 batches."""
+    from ballpass.simulate._sr5_driver import _split_times
+    from ballpass.simulate.sr5 import build_model
+
+    bm = build_model(OUTER, None, resonator=True)
+    h_out, n_out = 1.0 / (4 * OUTER.fs), 4 * OUTER.n_samples
+    before, after = _split_times(bm, (n_out - 1) * h_out)
+    out, states = np.empty((n_out, 1)), np.empty((0, bm.n_state))
+    work = _I.rk4_start(bm.y0, *bm.model, bm.n_res, h_out, 6, 1, n_out, before, out, states)
+    args = (*bm.model, bm.n_res, h_out, 6, 1, n_out, before, after, math.inf, math.inf,
+            np.full(bm.n_state, np.inf), out, states, *work, 0)
+    batches = []
+    for _ in range(9):
+        t0 = time.perf_counter()
+        for _ in range(2000):
+            _I.rk4(*args)
+        batches.append((time.perf_counter() - t0) / 2000)
+    return float(np.median(batches))
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--rounds", type=int, default=15)
@@ -65,13 +92,15 @@ def main(argv=None) -> int:
                 t, passes[name] = _time(scene, model, solver, size)
                 times[name, mode].append(t)
     _I.CHUNK_PASSES = chunk
+    call_s = _call_cost()
     rows = []
     for name in CASES:
         a, b = np.array(times[name, "chunked"]), np.array(times[name, "one call"])
         c = np.array(times[name, "chunks / 64"])
         calls = math.ceil(passes[name] / chunk)
         rows.append((name, np.median(a), a.min(), a.max(), np.median(b), b.min(), b.max(),
-                     np.median(a / b), np.median(c / b), calls, np.median(a) / calls))
+                     np.median(a / b), np.median(c / b), calls, np.median(a) / calls,
+                     calls * call_s / np.median(b)))
     out = ROOT / "docs"
     lines = [
         "# Chunked integration: what interruptibility costs",
@@ -82,13 +111,15 @@ def main(argv=None) -> int:
         "Written by `benchmarks/sr5_chunking.py`.",
         "",
         "| case | chunked, s | one call, s | chunked / one call | chunks / 64: ratio "
-        "| calls | one chunk, ms |",
-        "|---|---|---|---|---|---|---|",
+        "| calls | one chunk, ms | calls x call cost / time |",
+        "|---|---|---|---|---|---|---|---|",
     ]
-    for name, ma, lo_a, hi_a, mb, lo_b, hi_b, ratio, ratio64, calls, per in rows:
+    for name, ma, lo_a, hi_a, mb, lo_b, hi_b, ratio, ratio64, calls, per, bound in rows:
         lines.append(f"| {name} | {ma:.3f} ({lo_a:.3f}-{hi_a:.3f}) | {mb:.3f} "
                      f"({lo_b:.3f}-{hi_b:.3f}) | {ratio:.3f} | {ratio64:.3f} | {calls} "
-                     f"| {1e3 * per:.0f} |")
+                     f"| {1e3 * per:.0f} | {100 * bound:.3f} % |")
+    lines += ["", f"Cost of one call that returns at once: {1e6 * call_s:.1f} us (median "
+              "of 9 batches of 2000 calls)."]
     (out / "sr5_chunking.md").write_text("\n".join(lines) + "\n")
     import matplotlib
 
