@@ -178,6 +178,10 @@ class Fault:
                     f"with {bearing.n_elements} elements, got {self.element}"
                 )
         else:
+            if self.element != 0:
+                raise ValueError(
+                    f"fault element={self.element} picks the rolling element of a ball "
+                    f"fault; a {self.kind}-race fault has none (leave element at 0)")
             spacing = math.pi * bearing.pitch_diameter_mm / bearing.n_elements
             if self.width_mm >= spacing:
                 raise ValueError(

@@ -416,6 +416,16 @@ def _fs_from_time(t: np.ndarray, path: Path) -> float:
     return 1.0 / step
 
 
+def _ends_with_newline(path: Path) -> bool:
+    """Whether the file's last byte is a line break (an empty file has none)."""
+    with open(path, "rb") as fh:
+        fh.seek(0, 2)
+        if fh.tell() == 0:
+            return False
+        fh.seek(-1, 2)
+        return fh.read(1) == b"\n"
+
+
 def read_signal(path) -> SignalFile:
     """Read a file written by :func:`write_signal` (or a compatible one).
 
@@ -495,6 +505,10 @@ def _read(path: Path, suffix: str) -> SignalFile:
                 key, _, value = line[1:].strip().partition("=")
                 header[key.strip()] = value
                 n_comments += 1
+        if "fs" in header and not _ends_with_newline(path):
+            # write_signal ends every line: a last line without its end was cut short
+            raise ValueError(f"{path.name} ends in the middle of a line: the file is "
+                             "truncated (a CSV written by ballpass ends with a line break)")
         frame = pd.read_csv(path, skiprows=n_comments)
         meta = json.loads(header["meta"]) if "meta" in header else {}
         fs = float(header["fs"]) if "fs" in header else None

@@ -133,3 +133,16 @@ def test_a_grid_of_ten_million_valid_points_is_refused_before_building_them():
                        "grid": {**grid, "rpm": {"uniform": [600, 1600]},
                                 "radial_load_n": [100, 600, 5099]}})
     assert drawn.n_runs == 3000
+
+
+@pytest.mark.parametrize("call, match", [
+    # found by benchmarks/abuse_sweep.py: a MemoryError after seconds, or a hang
+    (lambda: __import__("ballpass").diagnose.envelope_evidence(X, FS, "6205", 1797,
+                                                               harmonics=10**9),
+     "harmonics must be at most 12,001 here"),
+    (lambda: F.bandpass(X, FS, (1000, 3000), order=10**9),
+     r"order must be an int in \[1, 200\], got 1000000000"),
+    (lambda: F.envelope_spectrum(X, FS, (1000, 3000), order=10**12), r"order must be an int in"),
+])
+def test_more_bombs_refused_before_any_work(call, match):
+    refused_at_once(call, match)

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from _processes import children
+from _processes import children, default_sigint
 
 from ballpass.cli import EXIT_BROKEN_PIPE, EXIT_INTERRUPTED, main
 from ballpass.signalio import read_signal, write_signal
@@ -24,7 +24,8 @@ FS = 12_000.0
 def ballpass(*argv, **popen):
     """``python -m ballpass ARGV`` from the worktree, as a user runs it."""
     return subprocess.Popen([sys.executable, "-m", "ballpass", *map(str, argv)], cwd=ROOT,
-                            stderr=subprocess.PIPE, text=True, **popen)
+                            stderr=subprocess.PIPE, text=True, preexec_fn=default_sigint,
+                            **popen)
 
 
 def noise(n: int, channels: int = 1, seed: int = 0) -> np.ndarray:
@@ -209,3 +210,28 @@ def test_benchmark_split_that_cannot_be_formed_is_one_line(tmp_path, capsys):
     assert err.count("\n") == 1 and "Traceback" not in err
     assert "no split could be formed" in err and "speed: the dataset has a single value" in err
     assert not out.exists()
+
+
+@pytest.mark.parametrize("option, value, field", [
+    ("--width", "-1", "width_mm"), ("--depth", "0", "depth_mm"), ("--load", "-5", "radial_load_n"),
+    ("--duration", "inf", "duration_s"), ("--resonance", "0", "resonance_hz"),
+    ("--damping", "2", "resonance_damping"), ("--fs", "nan", "fs"), ("--rpm", "0", "rpm"),
+    ("--seed", "-1", "seed"),
+])
+def test_scene_options_are_named_as_typed(tmp_path, capsys, option, value, field):
+    # found by benchmarks/abuse_sweep.py: "width_mm must be ..." for --width -1
+    assert main(["simulate", option, value, "--out", str(tmp_path / "x.npz")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"ballpass simulate: error: {option}: {field} ") and err.count("\n") == 1
+
+
+@pytest.mark.parametrize("argv, says", [
+    (["work-precision", "--repeats", "1000000000"], "--repeats must be an int from 1 to 100"),
+    (["bifurcation", "--parameter", "rpm", "--values", *map(str, range(500, 10_502)),
+      "--out", "b.csv"], "--values takes at most 10,000 values"),
+])
+def test_counts_that_would_run_for_ever_are_refused(tmp_path, capsys, monkeypatch, argv, says):
+    # found by benchmarks/abuse_sweep.py: both ran for hours (one run per repeat or value)
+    monkeypatch.chdir(tmp_path)
+    assert main(argv) == 2
+    assert says in capsys.readouterr().err

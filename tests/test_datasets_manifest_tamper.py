@@ -120,6 +120,28 @@ def test_unknown_format_version_refused_with_what_to_do(copy, capsys):
                          "versions 1 to 2.*pip install -U ballpass")
 
 
+@pytest.mark.parametrize("change, says", [
+    # found by benchmarks/abuse_sweep.py: each was a ZeroDivisionError, KeyError or
+    # AttributeError traceback (`ballpass info` included) before the fields were checked
+    (lambda m: m.update(fs=0), r"fs is '0', not a positive number"),
+    (lambda m: m.update(fs="fast"), r"fs is 'fast', not a positive number"),
+    (lambda m: m.pop("fs"), r"has no 'fs': the manifest is damaged"),
+    (lambda m: m.pop("n_rows"), r"has no 'n_rows'"),
+    (lambda m: m.pop("signal_length"), r"has no 'signal_length'"),
+    (lambda m: m.update(signal_length=0), r"signal_length is '0', not a whole number >= 1"),
+    (lambda m: m.pop("grid"), r"has no 'grid'"),
+    (lambda m: m.update(grid="x"), r"grid is 'x', not a table with 'dataset' and 'grid'"),
+])
+def test_missing_or_mistyped_fields_are_named(copy, capsys, change, says):
+    edit(copy, change)
+    every_reader_refuses(copy, capsys, says)
+
+
+def test_json_nested_too_deeply_is_refused_not_a_recursion_error(copy, capsys):
+    (copy / "_manifest.json").write_text("[" * 100_000 + "]" * 100_000)
+    every_reader_refuses(copy, capsys, "nested too deeply")
+
+
 def test_stray_copy_of_a_shard_never_duplicates_rows_after_resume(reference, copy):
     # the run was killed before shard 2; someone drops a copy of shard 0 under its name
     def unfinished(m):

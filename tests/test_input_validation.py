@@ -128,3 +128,32 @@ def test_generate_says_it_compiles_before_the_first_dataset(tmp_path, monkeypatc
     monkeypatch.setattr(_output, "kernels_cached", lambda: False)
     assert main(["generate", str(grid), "--out", str(tmp_path / "ds"), "--no-progress"]) == 0
     assert capsys.readouterr().err.startswith("ballpass: compiling the simulator")
+
+
+# found by benchmarks/abuse_sweep.py: each was accepted, or refused in a library's words
+@pytest.mark.parametrize("call, error, says", [
+    # options of another separation method were ignored, whatever their value
+    (lambda x: F.separate_discrete(x, 12_000.0, 1797, order="abc"), TypeError,
+     "order must be an int"),
+    (lambda x: F.separate_discrete(x, 12_000.0, 1797, nperseg=-1), ValueError,
+     "nperseg must be an int >= 16"),
+    (lambda x: F.separate_discrete(x, 12_000.0, 1797, delay=2.5), TypeError,
+     "delay must be an int"),
+    # "could not convert string to float: 'abc'", "must be real number, not str"
+    (lambda x: F.fault_band_features(x, 12_000.0, "6205", "abc"), TypeError,
+     "rpm must be a number"),
+    (lambda x: F.separate_discrete(x, 12_000.0, "abc"), TypeError, "rpm must be a number"),
+    (lambda x: F.fast_kurtogram(x, 12_000.0, floor_db="abc"), TypeError,
+     "floor_db must be a number of dB"),
+    # truthy values taken for True
+    (lambda x: F.envelope(x, 12_000.0, prewhiten="no"), TypeError,
+     "prewhiten must be True or False, got 'no'"),
+    (lambda x: F.envelope_spectrum(x, 12_000.0, squared=2), TypeError,
+     "squared must be True or False, got 2"),
+    (lambda x: F.fault_band_features(x, 12_000.0, "6205", 1797, shaft_guard="no"),
+     TypeError, "shaft_guard must be True or False"),
+])
+def test_bad_options_are_named(call, error, says):
+    x = np.random.default_rng(0).standard_normal(6000)
+    with pytest.raises(error, match=says):
+        call(x)

@@ -78,3 +78,28 @@ def test_unitless_feature_sets_do_not_move_and_a_trained_model_agrees(features):
         pipe.fit(X, LABELS, rpm=RPM)
         for gain in GAINS:
             assert (pipe.predict(gain * X, rpm=RPM) == pipe.predict(X, rpm=RPM)).all()
+
+
+@pytest.mark.parametrize("scale", [1e-300, 1e-200, 1e200, 1e300])
+def test_envelope_functions_at_extreme_scales(scale):
+    """Found by benchmarks/abuse_sweep.py: at 1e+-100..200 the spectral kurtosis and the
+    envelope evidence were inf/NaN (|X|^4, squared envelopes overflowing), the envelope
+    was inf and order_envelope_spectrum refused the signal in scipy's words. Computed on
+    a copy scaled exactly by a power of two, the scale-free results agree to rounding
+    (1e-9: the rescaled samples differ by one rounding of x * scale) and the scaled ones
+    are exact multiples, inf only beyond the float range."""
+    from ballpass import features as F
+
+    x = np.random.default_rng(3).standard_normal(12_000)
+    _, sk = F.spectral_kurtosis(x, FS)
+    _, sk_s = F.spectral_kurtosis(x * scale, FS)
+    assert np.allclose(sk_s, sk, rtol=1e-9, atol=1e-9)
+    ev, ev_s = envelope_evidence(x, FS, "6205", 1797), envelope_evidence(x * scale, FS,
+                                                                        "6205", 1797)
+    for fault in ev.evidence_db:
+        assert np.allclose(ev_s.evidence_db[fault], ev.evidence_db[fault], atol=TOL_DB)
+    e, e_s = F.envelope(x, FS, (2000, 4000)), F.envelope(x * scale, FS, (2000, 4000))
+    assert np.allclose(e_s / scale, e, rtol=1e-9)
+    # unit^2 beyond the float range at these scales: 0 or inf, never NaN nor a refusal
+    _, amp_s = F.order_envelope_spectrum(x * scale, FS, rpm=1797, band=(2000, 4000))
+    assert not np.isnan(amp_s).any()

@@ -178,3 +178,19 @@ def test_check_output_path(tmp_path):
         with pytest.raises(error, match=match):
             check_output_path(option="--out", **kwargs)
     assert sorted(os.listdir(tmp_path)) == ["afile", "d.csv"]
+
+
+@pytest.mark.parametrize("keep", [0.05, 0.5, 0.999])
+def test_truncated_csv_is_refused_naming_the_file(tmp_path, keep):
+    """A ballpass CSV cut short mid-line (a full disk, a copy interrupted) used to be
+    read as a shorter signal, its last sample a cut-off number (found by
+    benchmarks/abuse_sweep.py). Cut at a line end it stays indistinguishable from a
+    shorter recording; mid-line it is refused."""
+    path = write_signal(tmp_path / "sig.csv", np.arange(1000.0) / 7.0, 1000.0)
+    data = path.read_bytes()
+    cut = int(len(data) * keep)
+    cut -= data[cut - 1:cut] == b"\n"          # mid-line, not just after a line break
+    path.write_bytes(data[:cut])
+    with pytest.raises(ValueError, match="sig.csv ends in the middle of a line: the file "
+                                         "is truncated"):
+        read_signal(path)

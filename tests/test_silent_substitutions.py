@@ -77,3 +77,23 @@ def test_unknown_model_in_a_grid_refused_by_read_grid(grid, where):
     with pytest.raises(ValueError, match=f"{where}: unknown model 'foo'; use 'auto' or one "
                                          "of .*'impulse'"):
         read_grid(grid)
+
+
+@pytest.mark.parametrize("model", ["auto", "sr5", "impulse"])
+def test_unknown_solver_in_a_grid_refused_by_read_grid(model):
+    # found by benchmarks/abuse_sweep.py: "foo" was kept and left to the simulator,
+    # which for model "auto" picked a solver of its own
+    grid = {"dataset": {"duration_s": 0.1, "model": model, "solver": "foo"},
+            "grid": {"bearing": ["6205"], "fault": ["outer"], "rpm": [1797]}}
+    with pytest.raises(ValueError, match=f"dataset.solver: unknown solver 'foo' for model "
+                                         f"'{model}'; use 'auto' or one of"):
+        read_grid(grid)
+
+
+def test_element_of_a_race_fault_refused():
+    # found by benchmarks/abuse_sweep.py: element picks the ball of a ball fault and was
+    # ignored on a race fault, also out of range (99 on a 9-ball bearing)
+    with pytest.raises(ValueError, match="fault element=99 picks the rolling element of a "
+                                         "ball fault; a outer-race fault has none"):
+        bp.Scene(bearing="6205", fault=bp.Fault("outer", element=99), **SHORT)
+    assert bp.Scene(bearing="6205", fault=bp.Fault("ball", element=3), **SHORT)

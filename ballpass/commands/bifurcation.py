@@ -79,7 +79,10 @@ def run(args: argparse.Namespace) -> int:
         figure_writer,
         show_progress,
     )
+    from .simulate import OPTION_OF, named_as_typed
 
+    options = {**OPTION_OF, "discard_s": "--discard", "radial_clearance_mm": "--clearance",
+               "parameter": "--parameter", "model": "--model", "strobe": "--strobe"}
     # every output and value is checked before the first simulation
     out = check_output_path(args.out, option="--out", suffixes=(".csv",))
     plot = None if args.plot is None else check_output_path(args.plot, option="--plot",
@@ -92,18 +95,24 @@ def run(args: argparse.Namespace) -> int:
         values = np.linspace(start, stop, int(num))
     else:
         values = np.asarray(args.values)
-    bearing = bp.Bearing.catalog(args.bearing)
-    if args.clearance is not None:
-        bearing = bearing.with_clearance(args.clearance)
-    fault = None if args.fault == "healthy" else bp.Fault(args.fault, width_mm=args.width,
-                                                          depth_mm=args.depth)
-    # rotor2 has no structural resonance; any valid value below Nyquist will do
-    scene = bp.Scene(bearing=bearing, rpm=args.rpm, radial_load_n=args.load, fault=fault,
-                     duration_s=args.duration, fs=args.fs, resonance_hz=0.4 * args.fs)
-    compile_notice()
-    df = bp.dynamics.bifurcation_diagram(scene, args.parameter, values, model=args.model,
-                                         strobe=args.strobe, discard_s=args.discard,
-                                         n_jobs=args.jobs, progress=show_progress(args))
+        if len(values) > bp.dynamics.MAX_VALUES:   # as many as --range allows
+            raise ValueError(f"--values takes at most {bp.dynamics.MAX_VALUES:,} values (one "
+                             f"simulation each), got {len(values):,}")
+    try:
+        bearing = bp.Bearing.catalog(args.bearing)
+        if args.clearance is not None:
+            bearing = bearing.with_clearance(args.clearance)
+        fault = None if args.fault == "healthy" else bp.Fault(
+            args.fault, width_mm=args.width, depth_mm=args.depth)
+        # rotor2 has no structural resonance; any valid value below Nyquist will do
+        scene = bp.Scene(bearing=bearing, rpm=args.rpm, radial_load_n=args.load, fault=fault,
+                         duration_s=args.duration, fs=args.fs, resonance_hz=0.4 * args.fs)
+        compile_notice()
+        df = bp.dynamics.bifurcation_diagram(scene, args.parameter, values, model=args.model,
+                                             strobe=args.strobe, discard_s=args.discard,
+                                             n_jobs=args.jobs, progress=show_progress(args))
+    except ValueError as exc:
+        raise named_as_typed(exc, options) from None
     table = df.rename(columns={"parameter": args.parameter})
     writes = [(out, lambda tmp: table.to_csv(tmp, index=False))]
     if plot is not None:

@@ -241,6 +241,15 @@ def load_records(args) -> list[Signal]:
     """Every signal of ``args.inputs``, whole, in input order."""
     if args.rpm is not None and not (math.isfinite(args.rpm) and args.rpm > 0):
         raise ValueError(f"--rpm must be a finite speed > 0 rev/min, got {args.rpm:g}")
+    if args.fs is not None and not (math.isfinite(args.fs) and args.fs > 0):
+        raise ValueError(f"--fs must be a finite sampling rate > 0 Hz, got {args.fs:g}")
+    if args.bearing is not None:        # named as typed, and "" is not "from the file"
+        from ballpass import Bearing
+
+        try:
+            Bearing.catalog(args.bearing)
+        except (KeyError, ValueError) as exc:
+            raise ValueError(f"--bearing: {str(exc).strip(chr(34))}") from None
     signals: list[Signal] = []
     for raw in args.inputs:
         path = Path(raw)

@@ -81,8 +81,36 @@ def add_scene_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
 
 
+#: the option that sets each Scene, Fault or GearPair field, for errors that name what
+#: the user typed ("--width: width_mm must be ...")
+OPTION_OF = {"rpm": "--rpm", "rpm_start": "--rpm", "rpm_end": "--rpm",
+             "radial_load_n": "--load", "width_mm": "--width", "depth_mm": "--depth",
+             "angle_deg": "--angle", "duration_s": "--duration", "fs": "--fs",
+             "resonance_hz": "--resonance", "resonance_damping": "--damping",
+             "slip": "--slip", "snr_db": "--snr", "seed": "--seed", "torque_nm": "--torque"}
+
+
+def named_as_typed(exc: ValueError, option_of: dict = OPTION_OF) -> ValueError:
+    """``exc`` with the option that sets the field its message starts with put first
+    ("--width: width_mm must be ..."), or ``exc`` itself."""
+    import re
+
+    field = re.match(r"\w+", str(exc))
+    if field and field[0] in option_of:
+        return ValueError(f"{option_of[field[0]]}: {exc}")
+    return exc
+
+
 def scene_from_args(args):
-    """Build the :class:`~ballpass.Scene` the scene options describe."""
+    """Build the :class:`~ballpass.Scene` the scene options describe; an invalid value
+    is refused naming its option."""
+    try:
+        return _scene_from_args(args)
+    except ValueError as exc:
+        raise named_as_typed(exc) from None
+
+
+def _scene_from_args(args):
     import ballpass as bp
 
     if len(args.rpm) not in (1, 2):

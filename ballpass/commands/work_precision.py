@@ -19,6 +19,9 @@ simulated second: start with a short --duration.
 """
 
 
+#: most timing repeats accepted: the best of a few runs is the timing; 10**9 ran forever
+MAX_REPEATS = 100
+
 def add_parser(subparsers) -> argparse.ArgumentParser:
     """Register ``work-precision`` on the ``ballpass`` command."""
     from .features import add_quiet_argument
@@ -81,8 +84,9 @@ def run(args) -> int:
     csv = None if args.csv is None else check_output_path(args.csv, option="--csv",
                                                            suffixes=(".csv",))
     plot = check_output_path(args.plot, option="--plot", suffixes=FIGURE_SUFFIXES)
-    if args.repeats < 1:
-        raise ValueError(f"--repeats must be an int >= 1, got {args.repeats}")
+    if not 1 <= args.repeats <= MAX_REPEATS:
+        raise ValueError(f"--repeats must be an int from 1 to {MAX_REPEATS} (the best of "
+                         f"a few runs is the timing), got {args.repeats}")
     unknown = sorted(set(args.scipy or ()) - set(SCIPY_METHODS))
     if unknown:
         raise ValueError(f"--scipy takes {', '.join(SCIPY_METHODS)}, got {', '.join(unknown)}")

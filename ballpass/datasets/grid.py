@@ -204,6 +204,18 @@ def _check_model_name(where: str, name) -> None:
                          f"{list(MODELS)}")
 
 
+def _check_solver_name(where: str, name: str, model: str) -> None:
+    """Refuse a solver that is neither ``"auto"`` nor one of the model's (any model's
+    for ``model="auto"``), naming those: a misspelt solver is not silently replaced."""
+    from ..simulate import MODELS
+
+    models = MODELS.values() if model == "auto" else [MODELS[model]]
+    known = sorted({s for m in models for s in m.solvers})
+    if name != "auto" and name not in known:
+        raise ValueError(f"{where}: unknown solver {name!r} for model {model!r}; use "
+                         f"'auto' or one of {known}")
+
+
 def _sensor_value(where: str, v) -> str | dict:
     """A sensor is "loaded", "unloaded" or a table of :class:`~ballpass.Sensor` fields."""
     try:
@@ -239,6 +251,7 @@ def _dataset_settings(raw: dict) -> dict:
     if not isinstance(out["solver"], str):
         raise ValueError(f"dataset.solver must be a str, got {out['solver']!r}")
     _check_model_name("dataset.model", out["model"])
+    _check_solver_name("dataset.solver", out["solver"], out["model"])
     if out["needs"] is not None:  # phenomena every run asks for (Scene(needs=...))
         out["needs"] = sorted(check_needs(out["needs"], "dataset.needs"))
     if out["segment_s"] is not None and out["segment_s"] > out["duration_s"]:

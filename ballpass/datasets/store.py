@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import math
 import warnings
 from pathlib import Path
 
@@ -115,6 +116,9 @@ def read_manifest(folder) -> dict | None:
         manifest = json.loads(path.read_text())
     except (json.JSONDecodeError, UnicodeDecodeError) as exc:
         raise ValueError(f"{path} is not valid JSON: {exc}") from None
+    except RecursionError:
+        raise ValueError(f"{path} is not a ballpass dataset manifest: its JSON is nested "
+                         "too deeply to read") from None
     if not isinstance(manifest, dict) or manifest.get("format") != "ballpass-dataset":
         raise ValueError(f"{path} is not a ballpass dataset manifest")
     shards = manifest.get("shards")
@@ -125,6 +129,7 @@ def read_manifest(folder) -> dict | None:
                          "complete): the manifest is damaged. Generate the dataset again "
                          "into a new folder.")
     _check_version(path, manifest)
+    _check_fields(path, manifest)
     _check_shard_entries(path, shards)
     total = sum(s["n_rows"] for s in shards)
     if manifest.get("n_rows", total) != total:
@@ -142,6 +147,38 @@ def _check_version(path: Path, manifest: dict) -> None:
             f"{path} has format_version {version!r}; this ballpass reads format versions "
             f"1 to {FORMAT_VERSION}. Read it with the ballpass that wrote it (a newer "
             "one: `pip install -U ballpass`), or generate the dataset again.")
+
+
+def _whole(value, least: int = 0) -> bool:
+    return isinstance(value, int) and not isinstance(value, bool) and value >= least
+
+
+#: the top-level fields every format version writes and readers use: name -> (test,
+#: what the value must be)
+_FIELDS = {
+    "grid": (lambda v: isinstance(v, dict) and isinstance(v.get("dataset"), dict)
+             and isinstance(v.get("grid"), dict), "a table with 'dataset' and 'grid' tables"),
+    "n_rows": (_whole, "a whole number >= 0"),
+    "n_runs": (_whole, "a whole number >= 0"),
+    "root_seed": (_whole, "a whole number >= 0"),
+    "fs": (lambda v: isinstance(v, (int, float)) and not isinstance(v, bool)
+           and math.isfinite(v) and v > 0, "a positive number (Hz)"),
+    "signal_length": (lambda v: _whole(v, 1), "a whole number >= 1"),
+    "status": (lambda v: isinstance(v, str), "a text"),
+}
+
+
+def _check_fields(path: Path, manifest: dict) -> None:
+    """Refuse a manifest missing a field the readers use, or holding a value of the
+    wrong type or range there (a damaged or altered manifest), naming the field."""
+    for key, (valid, what) in _FIELDS.items():
+        if key not in manifest:
+            raise ValueError(f"{path} has no {key!r}: the manifest is damaged. Generate the "
+                             "dataset again into a new folder.")
+        if not valid(manifest[key]):
+            raise ValueError(f"{path}: {key} is {str(manifest[key])[:60]!r}, not {what}: "
+                             "the manifest was altered. Generate the dataset again into a "
+                             "new folder.")
 
 
 def _check_shard_entries(path: Path, shards: list) -> None:

@@ -80,8 +80,9 @@ from ..features._validation import (
     check_positive_int,
     check_rpm,
     check_signal,
+    to_unit_scale,
 )
-from ..features.bands import as_bearing
+from ..features.bands import _check_reach, as_bearing
 from ..features.demodulate import BandDemodulator
 from ..features.kurtogram import FLOOR_DB
 from ..features.shaft import SHAFT_GUARD_BINS, SHAFT_GUARD_RELATIVE, shaft_line_bins
@@ -732,6 +733,11 @@ def envelope_evidence(
         raise ValueError(f"speed_tolerance must be in [0, 0.1], got {speed_tolerance!r}")
     stated = np.array(check_rpm(rpm, (len(xv),)), dtype=float)
     bands = None if band is None else np.array([check_band(band, fs)])
+    # before any work: harmonics beyond the envelope spectrum's reach (10**9 exhausted
+    # memory); the search window is +-slip
+    _check_reach(harmonics, slip, background_hz, bearing, stated, fs / 2.0,
+                 xv.shape[-1] // 2 + 1)
+    xv = to_unit_scale(xv)[0]     # every output is a ratio (dB) or a frequency: exact
 
     orders = bearing.frequencies(1.0).as_dict()
     # Resolution in orders at the slowest speed the check may reach: one mask per batch.

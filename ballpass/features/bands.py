@@ -17,6 +17,7 @@ import numpy as np
 
 from ..bearing import Bearing
 from ._validation import (
+    check_flag,
     check_fs,
     check_nonnegative,
     check_positive_int,
@@ -96,7 +97,10 @@ def _check_reach(harmonics: int, tolerance: float, background_hz: float | None,
     if background_hz is not None and background_hz > top_hz:
         raise ValueError(f"background_hz must be at most the spectrum's top frequency, "
                          f"{top_hz:g} Hz, got {background_hz:g}")
-    speeds = np.asarray(rpm, dtype=float)
+    try:
+        speeds = np.asarray(rpm, dtype=float)
+    except (TypeError, ValueError):
+        return  # check_rpm says what is wrong
     if speeds.size == 0 or not (np.isfinite(speeds).all() and (speeds > 0).all()):
         return  # check_rpm says what is wrong
     orders = bearing.frequencies(1.0)
@@ -192,6 +196,7 @@ def fault_band_levels(
     harmonics = check_positive_int("harmonics", harmonics, 1)
     tolerance = check_nonnegative("tolerance", tolerance)
     background_hz = check_nonnegative("background_hz", background_hz)
+    shaft_guard = check_flag("shaft_guard", shaft_guard)
     rpm = check_rpm(rpm, ses.shape[:-1])
     # a background wider than a given spectrum is all of it (no bomb: the windows are
     # cut at its ends), as a spectrum cut below its Nyquist frequency may need

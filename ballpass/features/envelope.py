@@ -28,7 +28,9 @@ import scipy.fft
 import scipy.signal
 
 from ._validation import (
+    MAX_FILTER_ORDER,
     check_band,
+    check_flag,
     check_fs,
     check_positive_int,
     check_signal,
@@ -141,7 +143,7 @@ def bandpass(x, fs: float, band, *, order: int = 4, axis: int = -1) -> np.ndarra
     fs = check_fs(fs)
     xv, k = to_unit_scale(check_signal(x, axis))     # exact; no overflow inside
     band = check_band(band, fs)
-    order = check_positive_int("order", order, 1)
+    order = check_positive_int("order", order, 1, MAX_FILTER_ORDER)
     return np.moveaxis(from_unit_scale(_filter(xv, fs, band, order), k, 1), -1, axis)
 
 
@@ -191,6 +193,8 @@ def _envelope(
 ) -> np.ndarray:
     """Envelope of validated ``x`` (samples last); ``band=None`` picks it per signal
     (above ``fault_hz``, see :func:`fast_kurtogram`)."""
+    squared = check_flag("squared", squared)
+    prewhiten = check_flag("prewhiten", prewhiten)
     if band is None:
         # The band is chosen on the raw signal, where the content floor of the
         # kurtogram is meaningful (pre-whitening flattens the spectrum).
@@ -296,9 +300,11 @@ def envelope(
     True
     """
     fs = check_fs(fs)
-    xv = check_signal(x, axis)
-    order = check_positive_int("order", order, 1)
-    return np.moveaxis(_envelope(xv, fs, band, squared, prewhiten, order, fault_hz), -1, axis)
+    xv, k = to_unit_scale(check_signal(x, axis))   # exact: no overflow on the way
+    order = check_positive_int("order", order, 1, MAX_FILTER_ORDER)
+    e = _envelope(xv, fs, band, squared, prewhiten, order, fault_hz)
+    unit_power = 0 if prewhiten else 2 if squared else 1   # pre-whitened: dimensionless
+    return np.moveaxis(from_unit_scale(e, k, unit_power), -1, axis)
 
 
 def envelope_spectrum(
@@ -370,7 +376,7 @@ def envelope_spectrum(
     """
     fs = check_fs(fs)
     xv, k = to_unit_scale(check_signal(x, axis))   # exact: no overflow on the way
-    order = check_positive_int("order", order, 1)
+    order = check_positive_int("order", order, 1, MAX_FILTER_ORDER)
     e = _envelope(xv, fs, band, squared, prewhiten, order, fault_hz)
     freqs, amp = _amplitude_spectrum(e, window, fs)
     unit_power = 0 if prewhiten else 2 if squared else 1   # pre-whitened: dimensionless

@@ -351,6 +351,8 @@ def fast_kurtogram(
     if 2**nlevel > n / 2:
         raise ValueError(f"nlevel must satisfy 2**nlevel <= n_samples/2 = {n / 2:g}, got {nlevel}")
     min_bandwidth = check_nonnegative("min_bandwidth", min_bandwidth)
+    if isinstance(floor_db, bool) or not isinstance(floor_db, (int, float, np.floating)):
+        raise TypeError(f"floor_db must be a number of dB, got {floor_db!r}")
     if not math.isfinite(floor_db):
         raise ValueError(f"floor_db must be a finite number of dB, got {floor_db!r}")
     fault_hz = check_fault_hz(fault_hz, x.shape[:-1], fs)
@@ -366,7 +368,11 @@ def check_fault_hz(fault_hz, batch_shape: tuple, fs: float):
     that shape (or None)."""
     if fault_hz is None:
         return None
-    values = np.asarray(fault_hz, dtype=float)
+    try:
+        values = np.asarray(fault_hz, dtype=float)
+    except (TypeError, ValueError):
+        raise TypeError(f"fault_hz must be a frequency (Hz) or an array of them, got "
+                        f"{fault_hz!r}") from None
     if not np.all(np.isfinite(values)) or np.any(values < 0) or np.any(values >= fs / 2):
         raise ValueError(
             f"fault_hz must be finite frequencies in [0, fs/2 = {fs / 2:g}) Hz, got {fault_hz!r}"
@@ -516,7 +522,7 @@ def spectral_kurtosis(
     True
     """
     fs = check_fs(fs)
-    x = check_signal(x, axis)
+    x = to_unit_scale(check_signal(x, axis))[0]   # scale-free: |X|^4 neither overflows
     nperseg = check_positive_int("nperseg", nperseg, 2)
     noverlap = nperseg // 2 if noverlap is None else check_positive_int("noverlap", noverlap, 0)
     if noverlap >= nperseg:

@@ -23,7 +23,14 @@ import scipy.integrate
 import scipy.interpolate
 
 from .._resources import available_memory, human_bytes
-from ._validation import check_fs, check_positive_int, check_signal
+from ._validation import (
+    MAX_FILTER_ORDER,
+    check_fs,
+    check_positive_int,
+    check_signal,
+    from_unit_scale,
+    to_unit_scale,
+)
 from .envelope import _amplitude_spectrum, _envelope
 
 __all__ = ["shaft_revolutions", "order_track", "order_envelope_spectrum"]
@@ -77,7 +84,11 @@ def shaft_revolutions(n_samples: int, fs: float, *, rpm=None, tacho=None, pulses
     if (rpm is None) == (tacho is None):
         raise ValueError("give exactly one of rpm (rev/min) and tacho (pulse signal)")
     if rpm is not None:
-        speed = np.asarray(rpm, dtype=float)
+        try:
+            speed = np.asarray(rpm, dtype=float)
+        except (TypeError, ValueError):
+            raise TypeError(f"rpm must be a number or an array of numbers, got {rpm!r}") \
+                from None
         if speed.ndim == 0:
             speed = np.full(n_samples, float(speed))
         if speed.shape != (n_samples,):
@@ -241,9 +252,10 @@ def order_envelope_spectrum(
     3.5
     """
     fs = check_fs(fs)
-    xv = check_signal(x, axis)
-    order = check_positive_int("order", order, 1)
+    xv, k = to_unit_scale(check_signal(x, axis))   # exact: no overflow on the way
+    order = check_positive_int("order", order, 1, MAX_FILTER_ORDER)
     e = _envelope(xv, fs, band, squared, prewhiten, order)
     _, e_angle, spr = _order_track(e, fs, rpm, tacho, pulses_per_rev, samples_per_rev)
     orders, amp = _amplitude_spectrum(e_angle, window, float(spr))
-    return orders, np.moveaxis(amp, -1, axis)
+    unit_power = 0 if prewhiten else 2 if squared else 1   # pre-whitened: dimensionless
+    return orders, np.moveaxis(from_unit_scale(amp, k, unit_power), -1, axis)

@@ -66,7 +66,11 @@ def _speeds(rpm) -> list:
         return [float(rpm)]
     if isinstance(rpm, (list, tuple)):
         return list(rpm)
-    arr = np.asarray(rpm, dtype=float)
+    try:
+        arr = np.asarray(rpm, dtype=float)
+    except (TypeError, ValueError):
+        raise TypeError(f"rpm must be a number, a speed profile or an array of them, got "
+                        f"{rpm!r}") from None
     return [arr] if arr.ndim == 1 else list(arr)
 
 
@@ -192,6 +196,13 @@ def separate_discrete(x, fs: float, rpm=None, method: str = "auto", *, tacho=Non
     xv = check_signal(x, axis, min_samples=16)
     if not isinstance(method, str) or method not in SEPARATION_METHODS:
         raise ValueError(f"method must be one of {SEPARATION_METHODS}, got {method!r}")
+    # every option is checked, also those the method does not use: a bad value is a
+    # mistake to report, not to ignore
+    order = check_positive_int("order", order, 1)
+    if nperseg is not None:
+        nperseg = check_positive_int("nperseg", nperseg, 16)
+    if delay is not None:
+        delay = check_positive_int("delay", delay, 1)
     n = xv.shape[-1]
     speeds = _speeds(rpm)
     if rpm is not None and tacho is not None:
@@ -218,7 +229,6 @@ def separate_discrete(x, fs: float, rpm=None, method: str = "auto", *, tacho=Non
             n_per_rev = 2 * math.ceil(_TSA_UPSAMPLE * fs / (2 * slowest))
             residual = residual - _tsa_periodic(residual, fs, revs, n_per_rev)
     elif method == "lp":
-        order = check_positive_int("order", order, 1)
         if order >= n // 2:
             raise ValueError(f"order must be < n_samples / 2 = {n // 2}, got {order}")
         residual = _lp(xv, order)
@@ -226,7 +236,7 @@ def separate_discrete(x, fs: float, rpm=None, method: str = "auto", *, tacho=Non
         if nperseg is None:
             nperseg = min(2 ** round(math.log2(fs / 2.0)), 2 ** math.floor(math.log2(n / 4)))
         nperseg = check_positive_int("nperseg", nperseg, 16)
-        delay = nperseg // 2 if delay is None else check_positive_int("delay", delay, 1)
+        delay = nperseg // 2 if delay is None else delay
         if nperseg + delay > n:
             raise ValueError(f"nperseg + delay must not exceed n_samples = {n}, got "
                              f"{nperseg} + {delay}")

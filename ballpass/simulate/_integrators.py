@@ -53,7 +53,8 @@ array ``prop``; the common rk4 segment, grid point to grid point, has its own le
 routine (:func:`_emit_grid`).
 
 Status codes: 0 ok, 1 non-finite or unbounded state, 2 step size underflow
-(adaptive), 3 too many steps (adaptive).
+(adaptive), 3 too many steps (adaptive), 4 paused after the call's step budget
+(resumable: the drivers call again in chunks, so Ctrl-C is not held up by a long run).
 """
 
 from __future__ import annotations
@@ -80,6 +81,14 @@ from ._kernels import (
 )
 
 STATUS_OK, STATUS_NONFINITE, STATUS_UNDERFLOW, STATUS_MAX_STEPS = 0, 1, 2, 3
+#: a call that used its step budget and can be resumed (see :func:`rk4`)
+STATUS_PAUSED = 4
+# integer loop state of rk4 carried between calls (the floats: t, refine_end)
+RK4_EV, RK4_N_STEPS, RK4_K_NEXT, RK4_N, RK4_MASK, RK4_DEPTHS, RK4_RAMP = range(7)
+N_RK4_IST = 7
+# integer loop state of dopri5 (the floats: t, h, h_min_used, err_prev)
+DP_K_NEXT, DP_EV, DP_N_ACC, DP_N_REJ, DP_REJECTED = range(5)
+N_DP_IST = 5
 
 # Dormand & Prince (1980) RK5(4)7M tableau
 C2, C3, C4, C5 = 1 / 5, 3 / 10, 4 / 5, 8 / 9
@@ -550,16 +559,79 @@ def _advance(seg, res):
         seg[R_DA0, i] = seg[R_DA1, i]
 
 
+#: passes of an integrator's main loop per call (steps to a grid step end for rk4,
+#: attempted steps for dopri5): :func:`run_chunked` calls the kernel again until it is
+#: done, so Python raises a KeyboardInterrupt (Ctrl-C) between calls, a few hundredths
+#: of a second apart, instead of after the whole run; the calls' overhead is well below
+#: 1 % of their work (benchmarks/sr5_chunking.py)
+CHUNK_PASSES = 1 << 14
+
+
+def run_chunked(kernel, *args, passes: int | None = None):
+    """Call a resumable integrator (:func:`rk4`, :func:`dopri5`) with ``args`` (its
+    arguments but the last, workspace included) and ``passes`` (default
+    :data:`CHUNK_PASSES`) until it returns a status other than ``STATUS_PAUSED``;
+    returns that call's result. The workspace carries every loop variable, so the
+    result does not depend on ``passes``, bit for bit."""
+    passes = CHUNK_PASSES if passes is None else passes
+    while True:
+        result = kernel(*args, passes)
+        if result[0] != STATUS_PAUSED:
+            return result
+
+
 @njit(cache=True, error_model="numpy")
-def rk4(y0, p, walk, faults, sensors, n_res, h_out, mult, n_sub, n_out, ev_before, ev_after,
-        t_ramp, t_impact, bound, out, states):
+def rk4_start(y0, p, walk, faults, sensors, n_res, h_out, mult, n_sub, n_out, ev_before,
+              out, states):
+    """Workspace of an :func:`rk4` run, evaluated at t = 0 (output row 0 written).
+
+    Parameters as in :func:`rk4`.
+
+    Returns
+    -------
+    work : tuple
+        ``(seg, res, prop, kin, tab, ist, fst)``: the segment rows, resonator states,
+        propagators, kinematics, the propagator table of the fast output, and the
+        scalar loop state (integers ``ist``, indices ``RK4_*``; floats ``fst``: time
+        and the end of a refinement), all carried from one :func:`rk4` call to the next.
+    """
+    seg, res, prop, kin = _start(y0, p, walk, faults, sensors, n_res, h_out, out, states)
+    # steps from grid point to grid point of sr5 without states take the fast output,
+    # with the resonator propagators of 1 .. mult grid intervals
+    fast = n_sub == 1 and n_res > 0 and states.shape[0] == 0
+    tab = np.zeros((mult + 1 if fast else 0, 6, 2))
+    for j in range(1, tab.shape[0]):
+        lti_propagator(j * h_out, p[P_WR], p[P_ZETA], tab, j)
+    ist = np.zeros(N_RK4_IST, dtype=np.int64)
+    fst = np.zeros(2)
+    ist[RK4_RAMP] = _on_ramp(kin)  # on a defect's ramp; changes only at events
+    # f0 again (kin holds t = 0): the loaded contacts
+    ist[RK4_MASK] = core_forces(seg[R_Y0], p, kin, seg[R_F0])
+    ist[RK4_K_NEXT] = 1
+    fst[1] = -1.0
+    # outside every localized defect (and without waviness) the fault depths are
+    # exactly zero and stay so until the next event: they are not recomputed (kin's
+    # depth rows stay the zeros the check left)
+    t_end = (n_out - 1) * h_out
+    ist[RK4_DEPTHS] = _depths_needed(0.0, _next_split(0.0, 0, ev_before, t_end), p, walk,
+                                     faults, kin)
+    return seg, res, prop, kin, tab, ist, fst
+
+
+@njit(cache=True, error_model="numpy")
+def rk4(p, walk, faults, sensors, n_res, h_out, mult, n_sub, n_out, ev_before, ev_after,
+        t_ramp, t_impact, bound, out, states, seg, res, prop, kin, tab, ist, fst, max_passes):
     """Classical RK4 on the core with a fixed step of ``mult * h_out / n_sub``, split at
     events, and no longer than h_out on short ramps ending in impacts.
 
+    A call returns after at most ``max_passes`` steps to the next step end on the
+    grid (status ``STATUS_PAUSED``), its loop state saved in the workspace; the next
+    call with the same workspace goes on exactly where it stopped, so a run in many
+    calls is bit-identical to one in a single call (and Python can raise a
+    KeyboardInterrupt in between).
+
     Parameters
     ----------
-    y0 : ndarray (n_state,)
-        Initial full state.
     p, walk, faults, sensors : ndarray
         The model (see :mod:`._kernels`).
     n_res : int
@@ -583,12 +655,16 @@ def rk4(y0, p, walk, faults, sensors, n_res, h_out, mult, n_sub, n_out, ev_befor
         Written with the sensor output at the grid times.
     states : ndarray (n_out, n_state) or (0, n_state)
         Written with the full state at the grid times when it has rows.
+    seg, res, prop, kin, tab, ist, fst : ndarray
+        The workspace from :func:`rk4_start`, updated.
+    max_passes : int
+        Steps to a grid step end in this call (>= 1).
 
     Returns
     -------
-    status, n_steps, t_fail
+    status, n_steps, t
+        Status code, steps taken so far and the time reached (of the failure, if any).
     """
-    seg, res, prop, kin = _start(y0, p, walk, faults, sensors, n_res, h_out, out, states)
     y = seg[R_Y0]
     f0 = seg[R_F0]
     y1 = seg[R_Y1]
@@ -599,31 +675,35 @@ def rk4(y0, p, walk, faults, sensors, n_res, h_out, mult, n_sub, n_out, ev_befor
     tmp = np.empty(N_CORE)
     t_end = (n_out - 1) * h_out
     n_ev = ev_before.shape[0]
-    ev = 0
-    n_steps = 0
-    k_next = 1
-    t = 0.0
-    n = 0
-    # steps from grid point to grid point of sr5 without states take the fast output,
-    # with the resonator propagators of 1 .. mult grid intervals
-    fast = n_sub == 1 and n_res > 0 and states.shape[0] == 0
-    tab = np.zeros((mult + 1 if fast else 0, 6, 2))
-    for j in range(1, tab.shape[0]):
-        lti_propagator(j * h_out, p[P_WR], p[P_ZETA], tab, j)
-    ramp = _on_ramp(kin)  # on a defect's ramp; changes only at events
+    ev = ist[RK4_EV]
+    n_steps = ist[RK4_N_STEPS]
+    k_next = ist[RK4_K_NEXT]
+    n = ist[RK4_N]
+    mask0 = ist[RK4_MASK]
+    depths = ist[RK4_DEPTHS] != 0
+    ramp = ist[RK4_RAMP] != 0
+    t = fst[0]
+    refine_end = fst[1]
+    fast = tab.shape[0] > 0
     h_step = h_out * mult / n_sub
     sub_ramp = mult > 1 and t_impact < RAMP_STEPS * h_step
     # a contact that opens or closes inside a step puts a kink of the Hertz law
     # (Q ~ delta^n, no longer smooth at delta = 0) in it, which costs RK4 its order:
     # such a step is redone from grid point to grid point
-    mask0 = core_forces(y, p, kin, f0)  # f0 again (kin holds t = 0): the loaded contacts
-    refine_end = -1.0
-    # outside every localized defect (and without waviness) the fault depths are
-    # exactly zero and stay so until the next event: they are not recomputed (kin's
-    # depth rows stay the zeros the check left)
-    depths = _depths_needed(0.0, _next_split(0.0, 0, ev_before, t_end), p, walk, faults,
-                            kin)
+    passes = 0
     while t < t_end:
+        if passes == max_passes:
+            ist[RK4_EV] = ev
+            ist[RK4_N_STEPS] = n_steps
+            ist[RK4_K_NEXT] = k_next
+            ist[RK4_N] = n
+            ist[RK4_MASK] = mask0
+            ist[RK4_DEPTHS] = 1 if depths else 0
+            ist[RK4_RAMP] = 1 if ramp else 0
+            fst[0] = t
+            fst[1] = refine_end
+            return STATUS_PAUSED, n_steps, t
+        passes += 1
         n += 1
         q, r = divmod(n, n_sub)
         t_next = min(q * mult, n_out - 1) * h_out
@@ -695,8 +775,34 @@ def rk4(y0, p, walk, faults, sensors, n_res, h_out, mult, n_sub, n_out, ev_befor
 
 
 @njit(cache=True, error_model="numpy")
-def dopri5(y0, p, walk, faults, sensors, n_res, h_out, n_out, ev_before, ev_after, t_ramp,
-           bound, rtol, atol, atol_in, h_max, max_steps, out, states):
+def dopri5_start(y0, p, walk, faults, sensors, n_res, h_out, h_max, out, states):
+    """Workspace of a :func:`dopri5` run, evaluated at t = 0 (output row 0 written).
+
+    Parameters as in :func:`dopri5`.
+
+    Returns
+    -------
+    work : tuple
+        ``(seg, res, prop, kin, h_regime, ist, fst)``: as :func:`rk4_start`'s, with the
+        step size remembered for each regime; the scalar loop state in ``ist``
+        (indices ``DP_*``) and ``fst`` (time, step, smallest step, previous error).
+    """
+    seg, res, prop, kin = _start(y0, p, walk, faults, sensors, n_res, h_out, out, states)
+    h = min(h_max, h_out)
+    # step-size memory for each regime: on a defect's ramp the depth profile sets the
+    # pace, elsewhere the core does; an event switching regimes restarts from the step
+    # last used in the new one instead of paying rejections to get there
+    h_regime = np.array([h, h])
+    ist = np.zeros(N_DP_IST, dtype=np.int64)
+    ist[DP_K_NEXT] = 1
+    fst = np.array([0.0, h, h, 1e-4])
+    return seg, res, prop, kin, h_regime, ist, fst
+
+
+@njit(cache=True, error_model="numpy")
+def dopri5(p, walk, faults, sensors, n_res, h_out, n_out, ev_before, ev_after, t_ramp,
+           bound, rtol, atol, atol_in, h_max, max_steps, out, states, seg, res, prop, kin,
+           h_regime, ist, fst, max_passes):
     """Adaptive Dormand-Prince 5(4) on the core with error control, output on a grid.
 
     The local error estimate of the embedded 4th-order solution is kept below 1 in the
@@ -707,13 +813,16 @@ def dopri5(y0, p, walk, faults, sensors, n_res, h_out, n_out, ev_before, ev_afte
     On the ramps of a defect the resonator excitation follows the depth profile, which
     the core error estimate does not see: it is refined as in :func:`rk4` and the step
     is also controlled by the error of that input (:func:`_input_error`; ``atol_in`` in
-    m/s^2). Other parameters as in :func:`rk4`.
+    m/s^2). A call returns after ``max_passes`` attempted steps (status
+    ``STATUS_PAUSED``) with its loop state in the workspace from
+    :func:`dopri5_start` (``seg, res, prop, kin, h_regime, ist, fst``); the next call
+    goes on exactly where it stopped, as :func:`rk4`'s do. Other parameters as in
+    :func:`rk4`.
 
     Returns
     -------
     status, n_accepted, n_rejected, h_min_used, t_fail
     """
-    seg, res, prop, kin = _start(y0, p, walk, faults, sensors, n_res, h_out, out, states)
     y = seg[R_Y0]
     k1 = seg[R_F0]
     y_new = seg[R_Y1]
@@ -726,21 +835,30 @@ def dopri5(y0, p, walk, faults, sensors, n_res, h_out, n_out, ev_before, ev_afte
     k5 = np.empty(n)
     k6 = np.empty(n)
     tmp = np.empty(n)
-    k_next = 1
     n_ev = ev_before.shape[0]
-    ev = 0
-    t = 0.0
-    h = min(h_max, h_out)
-    h_min_used = h
-    # step-size memory for each regime: on a defect's ramp the depth profile sets the
-    # pace, elsewhere the core does; an event switching regimes restarts from the step
-    # last used in the new one instead of paying rejections to get there
-    h_regime = np.array([h, h])
-    n_acc = 0
-    n_rej = 0
-    rejected = False
-    err_prev = 1e-4
+    k_next = ist[DP_K_NEXT]
+    ev = ist[DP_EV]
+    n_acc = ist[DP_N_ACC]
+    n_rej = ist[DP_N_REJ]
+    rejected = ist[DP_REJECTED] != 0
+    t = fst[0]
+    h = fst[1]
+    h_min_used = fst[2]
+    err_prev = fst[3]
+    passes = 0
     while t < t_end:
+        if passes == max_passes:
+            ist[DP_K_NEXT] = k_next
+            ist[DP_EV] = ev
+            ist[DP_N_ACC] = n_acc
+            ist[DP_N_REJ] = n_rej
+            ist[DP_REJECTED] = 1 if rejected else 0
+            fst[0] = t
+            fst[1] = h
+            fst[2] = h_min_used
+            fst[3] = err_prev
+            return STATUS_PAUSED, n_acc, n_rej, h_min_used, t
+        passes += 1
         if n_acc + n_rej >= max_steps:
             return STATUS_MAX_STEPS, n_acc, n_rej, h_min_used, t
         while ev < n_ev and ev_after[ev] <= t:

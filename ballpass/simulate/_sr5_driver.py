@@ -272,9 +272,11 @@ def integrate(bm: BearingModel, solver: str, *, h_out: float, n_out: int,
             mult, n_sub = math.floor(dt_req / h_out + 1e-9), 1
         else:
             mult, n_sub = 1, math.ceil(h_out / dt_req - 1e-9)
-        status, n_steps, t_fail = _I.rk4(bm.y0, *bm.model, bm.n_res, h_out, mult, n_sub, n_out,
-                                         split_before, split_after, t_ramp, t_impact, bound,
-                                         out, states)
+        work = _I.rk4_start(bm.y0, *bm.model, bm.n_res, h_out, mult, n_sub, n_out,
+                            split_before, out, states)
+        status, n_steps, t_fail = _I.run_chunked(
+            _I.rk4, *bm.model, bm.n_res, h_out, mult, n_sub, n_out, split_before,
+            split_after, t_ramp, t_impact, bound, out, states, *work)
         step = h_out * mult / n_sub
         if dt is not None and abs(step - dt) > 1e-6 * dt:
             warnings.warn(f"dt={dt:g} s rounded to {step:.6g} s so that the steps end on the "
@@ -292,9 +294,10 @@ def integrate(bm: BearingModel, solver: str, *, h_out: float, n_out: int,
             bm.scale[4] * w_r**2 if bm.n_res else 1.0)
         h_max = 0.5 * math.pi / omega  # at least 4 steps per period of the contact mode
         max_steps = int(50 * n_out + 100 * split_before.shape[0] + 10_000)
-        status, n_acc, n_rej, h_min, t_fail = _I.dopri5(
-            bm.y0, *bm.model, bm.n_res, h_out, n_out, split_before, split_after, t_ramp, bound,
-            rtol_v, atol_v, atol_in, h_max, max_steps, out, states)
+        work = _I.dopri5_start(bm.y0, *bm.model, bm.n_res, h_out, h_max, out, states)
+        status, n_acc, n_rej, h_min, t_fail = _I.run_chunked(
+            _I.dopri5, *bm.model, bm.n_res, h_out, n_out, split_before, split_after, t_ramp,
+            bound, rtol_v, atol_v, atol_in, h_max, max_steps, out, states, *work)
         info.update(n_steps=int(n_acc), n_rejected=int(n_rej), dt_min_s=float(h_min),
                     rtol=rtol_v)
         step_text = f"rtol = {rtol_v:g}, smallest step {h_min:.3g} s"
