@@ -35,8 +35,8 @@ point.
 
     PYTHONPATH=$PWD nice -n 10 python benchmarks/abuse_sweep.py     # ~10 min on 2 cores
 
-Writes ``docs/abuse_sweep.md`` (table per kind and the failures) and
-``docs/abuse_sweep.png``.
+Writes ``docs/results/abuse_sweep.md`` (table per kind and the failures) and
+``docs/results/abuse_sweep.png``.
 """
 
 from __future__ import annotations
@@ -63,6 +63,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+from _paths import RESULTS_DIR
 
 ROOT = Path(__file__).resolve().parent.parent
 KINDS = ("security", "manifest", "corrupted", "interrupt", "bomb", "substitution", "scale",
@@ -1207,7 +1208,7 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--kinds", nargs="+", choices=KINDS, default=list(KINDS))
     parser.add_argument("--match", default=None, help="only cases whose name contains this")
-    parser.add_argument("--out", default=str(ROOT / "docs"))
+    parser.add_argument("--out", default=str(RESULTS_DIR))
     args = parser.parse_args(argv)
     # a real memory bomb becomes a MemoryError here, not a machine swapping
     limit = 8 * 2**30

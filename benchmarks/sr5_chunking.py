@@ -16,7 +16,7 @@ the overhead.
 
     PYTHONPATH=$PWD python benchmarks/sr5_chunking.py        # ~2 min on 2 cores
 
-Writes ``docs/sr5_chunking.md`` and ``docs/sr5_chunking.png``.
+Writes ``docs/results/sr5_chunking.md`` and ``docs/results/sr5_chunking.png``.
 """
 
 from __future__ import annotations
@@ -24,15 +24,14 @@ from __future__ import annotations
 import argparse
 import math
 import time
-from pathlib import Path
 
 import numpy as np
 from _machine import machine
+from _paths import RESULTS_DIR
 
 import ballpass as bp
 from ballpass.simulate import _integrators as _I
 
-ROOT = Path(__file__).resolve().parent.parent
 OUTER = bp.Scene("6205", rpm=1797.0, fs=48_000.0, duration_s=2.0,
                  fault=bp.Fault("outer", width_mm=0.5, depth_mm=0.1))
 INNER = OUTER.replace(fault=bp.Fault("inner", width_mm=0.5, depth_mm=0.1), duration_s=1.0)
@@ -101,7 +100,7 @@ def main(argv=None) -> int:
         rows.append((name, np.median(a), a.min(), a.max(), np.median(b), b.min(), b.max(),
                      np.median(a / b), np.median(c / b), calls, np.median(a) / calls,
                      calls * call_s / np.median(b)))
-    out = ROOT / "docs"
+    out = RESULTS_DIR
     lines = [
         "# Chunked integration: what interruptibility costs",
         "",
