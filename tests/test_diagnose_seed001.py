@@ -7,20 +7,18 @@ RMS for healthy and faulty runs alike) at three speeds, one run per point, 0.5 s
 
 from __future__ import annotations
 
-import importlib.util
 from pathlib import Path
 
 import numpy as np
 import pytest
+from _bench import load_benchmark
 
 SCRIPT = Path(__file__).resolve().parent.parent / "benchmarks" / "seed001_ratios.py"
 
 
 @pytest.fixture(scope="module")
 def table():
-    spec = importlib.util.spec_from_file_location("seed001_ratios", SCRIPT)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
+    module = load_benchmark("seed001_ratios")
     return module.ratios(speeds=(500.0, 1500.0, 3000.0), repeats=1, duration_s=0.5, n_jobs=1)
 
 

@@ -5,20 +5,17 @@ Fixture: a 2 s crop of the real record 105 (tests/data, provenance in
 tests/data/README.md) written in tmp_path as the data centre serves it (``105.mat``).
 """
 
-import importlib.util
 from pathlib import Path
 
 import numpy as np
 import scipy.io
+from _bench import load_benchmark
 
 from ballpass.datasets import smith_randall_grades
 from ballpass.datasets._cwru_table import RECORDS
 
 ROOT = Path(__file__).resolve().parent.parent
-_spec = importlib.util.spec_from_file_location("smith_randall_bench",
-                                               ROOT / "benchmarks" / "smith_randall.py")
-bench = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(bench)
+bench = load_benchmark("smith_randall", "smith_randall_bench")
 
 
 def test_every_12k_drive_end_fault_record_is_graded_once():
@@ -71,5 +68,5 @@ def test_the_benchmark_fetches_what_it_scores(tmp_path, monkeypatch):
                         lambda records: asked.extend(records) or [tmp_path / "105.mat"])
     bench.main(["--fetch", "--out", str(tmp_path / "out")])
     assert sorted(asked) == sorted(smith_randall_grades()["record"])
-    assert (tmp_path / "out" / "smith_randall.png").stat().st_size > 0
+    assert (tmp_path / "out" / "results" / "smith_randall.png").stat().st_size > 0
     assert "named: 1 of the 1 found" in (tmp_path / "out" / "smith_randall.md").read_text()

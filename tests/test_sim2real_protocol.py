@@ -1,17 +1,13 @@
 """The sim-to-real study's leave-one-record-out choice of simulator settings never
 looks at the record it scores (benchmarks/sim2real.py)."""
 
-import importlib.util
-from pathlib import Path
 
 import pandas as pd
 import pytest
+from _bench import load_benchmark
 
 pytest.importorskip("sklearn")
-_PATH = Path(__file__).resolve().parent.parent / "benchmarks" / "sim2real.py"
-_spec = importlib.util.spec_from_file_location("sim2real_bench", _PATH)
-sim2real = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(sim2real)
+sim2real = load_benchmark("sim2real", "sim2real_bench")
 
 
 def _pred(rows):
