@@ -54,6 +54,15 @@ class CombinedLoadDistribution:
         radial load at zero clearance, > 0.5 with axial load, inf under pure axial).
     q_max_n : float
         Largest element load, N.
+
+    Examples
+    --------
+    >>> import ballpass as bp
+    >>> ld = bp.Bearing.catalog("6205").combined_load_distribution(1000.0, 500.0)
+    >>> bool(ld.epsilon > 0.5)             # the axial load spreads the load zone
+    True
+    >>> ld.element_loads_n.shape
+    (9,)
     """
 
     element_angles_deg: np.ndarray

@@ -122,7 +122,8 @@ def frequencies(md):
     rows = {}
     for kind, key in (("outer", "bpfo"), ("inner", "bpfi"), ("ball", "ball_defect")):
         sc, res = sim(duration_s=0.05, fault=bp.Fault(kind, width_mm=1.0, depth_mm=0.5,
-                                                      element=8), fs=48_000.0)
+                                                      element=8 if kind == "ball" else 0),
+                      fs=48_000.0)
         entries = res.truth.fault_crossings.entries()
         if kind == "ball":  # timed while the ball is loaded (see the note below)
             psi = res.truth.element_angles[8, (entries * sc.fs).astype(int)]
@@ -295,7 +296,7 @@ def severity(md):
     for kind in ("inner", "outer", "ball"):
         pair = ("outer", "inner") if kind == "ball" else (kind,)
         for level, (w, h) in LEVELS.items():
-            fault = bp.Fault(kind, width_mm=w, depth_mm=h, element=8,
+            fault = bp.Fault(kind, width_mm=w, depth_mm=h, element=8 if kind == "ball" else 0,
                              angle_deg=330.0 if kind == "inner" else 0.0)
             sc, res = sim(duration_s=SEVERITY_S, fault=fault)
             _, r5 = sim("sr5", duration_s=SEVERITY_S, fault=fault)
@@ -423,7 +424,7 @@ def ball_signature(md):
     for kind in ("ball", "inner"):
         for level, (w, h) in LEVELS.items():
             sc, res = sim(duration_s=SEVERITY_S, fault=bp.Fault(
-                kind, width_mm=w, depth_mm=h, element=8,
+                kind, width_mm=w, depth_mm=h, element=8 if kind == "ball" else 0,
                 angle_deg=330.0 if kind == "inner" else 0.0))
             per = passages(res, sc, w, ball=8 if kind == "ball" else None)
             entries = res.truth.fault_crossings.entries()

@@ -27,7 +27,7 @@ LEVELS = {"I": (1.0, 0.5), "II": (1.42, 0.71), "III": (2.82, 1.41)}
 
 def _run(kind, level, duration_s):
     w, h = LEVELS[level]
-    fault = bp.Fault(kind, width_mm=w, depth_mm=h, element=8,
+    fault = bp.Fault(kind, width_mm=w, depth_mm=h, element=8 if kind == "ball" else 0,
                      angle_deg=330.0 if kind == "inner" else 0.0)
     scene = bp.Scene(**{**SCENE, "duration_s": duration_s, "fault": fault})
     return scene, bp.simulate(scene, model="multibody", return_forces=True)
