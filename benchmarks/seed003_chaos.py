@@ -11,7 +11,8 @@
    damping, clearance) at three speeds, each run classed from its Poincare section; and a
    bifurcation diagram over speed for two settings.
 
-    PYTHONPATH=$PWD nice -n 10 python benchmarks/seed003_chaos.py   # ~10 min on 1 core
+    PYTHONPATH=$PWD nice -n 10 python benchmarks/seed003_chaos.py   # ~25 min, busy 2 cores
+    # (the Lyapunov exponents take two thirds; --only STEP reruns one step)
 
 Writes ``docs/results/seed003_chaos_*.csv`` and ``docs/results/seed003_chaos.png``;
 benchmarks/seed003.py quotes them on docs/seed003.md.
