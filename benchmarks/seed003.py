@@ -263,7 +263,11 @@ def _print(df: pd.DataFrame, **kw) -> None:
 CSVS = {"solvers": "seed003_solvers.csv", "cost": "seed003_cost.csv",
         "ceiling": "seed003_ceiling.csv", "lines": "seed003_lines.csv",
         "clearance": "seed003_bifurcation_clearance.csv",
-        "speed": "seed003_bifurcation_speed.csv"}
+        "speed": "seed003_bifurcation_speed.csv",
+        # written by benchmarks/seed003_chaos.py (section 5 of the page)
+        "chaos_agreement": "seed003_chaos_agreement.csv",
+        "chaos_lyapunov": "seed003_chaos_lyapunov.csv", "chaos_sweep": "seed003_chaos_sweep.csv",
+        "chaos_diagrams": "seed003_chaos_diagrams.csv"}
 
 
 def _sections(df: pd.DataFrame) -> pd.DataFrame:
@@ -276,6 +280,66 @@ def _sections(df: pd.DataFrame) -> pd.DataFrame:
 
 def _span(values, fmt: str = "{:.2g}") -> str:
     return f"{fmt.format(min(values))}-{fmt.format(max(values))}"
+
+
+def _chaos(d: dict) -> dict:
+    """Section 5's tables and numbers from benchmarks/seed003_chaos.py's CSVs."""
+    from ballpass.diagnose.report import markdown_table
+
+    agree = d["chaos_agreement"]
+    wide = agree.pivot_table(index=["rpm", "solver"], columns="t_ms", values="max_diff_um",
+                             sort=False)
+    wide.columns = [f"{c} ms" for c in wide.columns]
+    wide = wide.map(lambda v: f"{v:.1e}").reset_index()
+    # the growth rate of the two DOP853 runs' difference between 5 and 60 ms: a
+    # Lyapunov estimate from the solvers alone
+    ivp = agree[agree.solver.str.startswith("solve_ivp DOP853")].set_index(["rpm", "t_ms"])
+    growth = {rpm: float(np.log(ivp.loc[(rpm, 60), "max_diff_um"]
+                                / ivp.loc[(rpm, 5), "max_diff_um"]) / 0.055)
+              for rpm in ivp.index.get_level_values(0).unique()}
+    lyap_tab = d["chaos_lyapunov"][["clearance_mm", "contact_damping_ns_m", "rpm",
+                                    "lyapunov_1_s", "at_half_1_s", "per_roller_pass",
+                                    "doubling_ms"]].rename(columns={
+                         "lyapunov_1_s": "exponent (1/s)", "at_half_1_s": "after half (1/s)",
+                         "per_roller_pass": "per roller pass", "doubling_ms": "doubling (ms)"})
+    lyap = d["chaos_lyapunov"]
+    damped = lyap[lyap.contact_damping_ns_m > 0]
+    lyap = lyap[lyap.contact_damping_ns_m == 0]
+    sweep = d["chaos_sweep"].copy()
+    sweep["unbalance_kg_m"] = sweep["unbalance_kg_m"].map(lambda v: f"{v:.0e}" if v else "0")
+
+    def cell(kind, rel):
+        return f"{kind.replace('non-periodic', 'NP').replace('period ', 'P')} ({rel:.0e})"
+
+    sweep["roller"] = [cell(k, r) for k, r in zip(sweep.roller_strobe, sweep.roller_spread_rel,
+                                                 strict=True)]
+    sweep["shaft"] = [cell(k, r) for k, r in zip(sweep.shaft_strobe, sweep.shaft_spread_rel,
+                                                strict=True)]
+    sw = sweep.pivot_table(index=["unbalance_kg_m", "contact_damping_ns_m", "clearance_mm"],
+                           columns="rpm", values=["roller", "shaft"], aggfunc="first")
+    sw.columns = [f"{a}, {b:.0f} rpm" for a, b in sw.columns]
+    periodic = sweep[sweep.roller_strobe.str.startswith("period")
+                     | sweep.shaft_strobe.str.startswith("period")]
+    diag = d["chaos_diagrams"].groupby(["setting", "rpm"], sort=False).agg(
+        points=("x_um", "size"), section=("section", "first"),
+        spread_rel=("spread_rel", "first"), orbit_um=("orbit_um", "first")).reset_index()
+    dsum = diag.groupby(["setting", "section"], sort=False).agg(
+        speeds=("rpm", lambda v: ", ".join(f"{x:.0f}" for x in v)),
+        spread_rel=("spread_rel", lambda v: _span(v))).reset_index()
+    big = lyap[lyap.clearance_mm == lyap.clearance_mm.max()].lyapunov_1_s
+    small = lyap[(lyap.clearance_mm > 0) & (lyap.clearance_mm < lyap.clearance_mm.max())]
+    zero = lyap[lyap.clearance_mm == 0].lyapunov_1_s
+    return dict(
+        agree_tab=markdown_table(wide), lyap_tab=markdown_table(lyap_tab),
+        sweep_tab=markdown_table(sw.reset_index()), diag_tab=markdown_table(dsum),
+        growth=" / ".join(f"{v:.0f} 1/s at {k:.0f} rpm" for k, v in growth.items()),
+        lam_big=_span(big, "{:.0f}"), lam_small=_span(small.lyapunov_1_s, "{:.0f}"),
+        small_mm=float(small.clearance_mm.iloc[0]) if len(small) else float("nan"),
+        lam_zero=" and ".join(f"{v:.0f}" for v in zero),
+        dbl=_span(lyap[lyap.clearance_mm == lyap.clearance_mm.max()].doubling_ms, "{:.1f}"),
+        n_periodic=len(periodic), n_sweep=len(sweep),
+        lam_damped=" and ".join(f"{r.lyapunov_1_s:.0f} 1/s at {r.rpm:.0f} rpm"
+                                for r in damped.itertuples()))
 
 
 def page(d: dict) -> str:
@@ -333,7 +397,7 @@ def page(d: dict) -> str:
         ceil_range=_span(d["ceiling"]["ceiling_um"]),
         reg_range=_span(regular.line_um),
         s_range=_span(speed.spread_x_um, "{:.0f}"))
-    return PAGE.format(**values)
+    return PAGE.format(**values, **_chaos(d))
 
 
 #: the page's text (a template: ``page`` fills in the tables and the numbers quoted in
