@@ -156,10 +156,9 @@ def _drs_gain(x: np.ndarray, nperseg: int, delay: int) -> np.ndarray:
     return np.clip((coh - rho) / (1 - rho), 0.0, 1.0)
 
 
-def _drs(x: np.ndarray, nperseg: int, delay: int) -> np.ndarray:
-    """Discrete part of each row: the DRS gain applied as a zero-phase FIR filter of
-    odd length nperseg - 1 (Hann-windowed, centred by "same" convolution)."""
-    gain = _drs_gain(x, nperseg, delay)
+def _apply_gain(x: np.ndarray, gain: np.ndarray, nperseg: int) -> np.ndarray:
+    """Each row of ``x`` through the zero-phase FIR filter of the gain (..., nperseg // 2
+    + 1): odd length nperseg - 1, Hann-windowed, centred by "same" convolution."""
     half = nperseg // 2 - 1
     hh = np.fft.irfft(gain, n=nperseg, axis=-1)
     h = np.concatenate((hh[..., -half:], hh[..., :half + 1]), axis=-1) * np.hanning(2 * half + 1)
@@ -287,7 +286,7 @@ def separate_discrete(x, fs: float, rpm=None, method: str = "auto", *, tacho=Non
             raise ValueError(f"nperseg + delay + 3 * (nperseg // 4) (4 Welch segments after "
                              f"the delay) must not exceed n_samples = {n}, got nperseg = "
                              f"{nperseg}, delay = {delay}")
-        residual = xv - _drs(xv, nperseg, delay)
+        residual = xv - _apply_gain(xv, _drs_gain(xv, nperseg, delay), nperseg)
     discrete = xv - residual
     return np.moveaxis(discrete, -1, axis), np.moveaxis(residual, -1, axis)
 
