@@ -170,7 +170,7 @@ def figure(table: pd.DataFrame, path: Path) -> None:
 
     keep = ["raw", "tsa", "drs gain from the exact spectra", "drs (default)",
             "lp (default, order 100)"]
-    fig, ax = plt.subplots(figsize=(8, 4))
+    fig, ax = plt.subplots(figsize=(10, 4))
     records = list(dict.fromkeys(zip(table.fs_hz, table.duration_s, strict=True)))
     width = 0.8 / len(keep)
     for i, name in enumerate(keep):
@@ -184,7 +184,7 @@ def figure(table: pd.DataFrame, path: Path) -> None:
     ax.set_ylabel("BPFI prominence, dB vs exact removal")
     ax.set_title("Separation of a 15-tooth mesh from an inner-race fault (median over seeds "
                  "and speeds)")
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.0, 1.0))
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
