@@ -22,9 +22,16 @@ section 4):
 ``"drs"``
     Discrete/random separation (Antoni & Randall 2004): the discrete part is what the
     signal shares with a copy of itself delayed by ``delay`` samples, longer than the
-    random part's memory. Here the zero-phase gain
-    |S_{x x_delay}(f)| / S_xx(f) (Welch averages over segments of ``nperseg``) is applied
-    to the signal; it is ~1 at discrete lines and ~0 elsewhere. Needs no speed.
+    random part's memory. Here the zero-phase gain is the coherence of the signal and
+    its delayed copy (Welch averages over Hann segments of ``nperseg``, 3/4 overlap),
+    ~1 at discrete lines and ~0 elsewhere once freed of its two biases for a random
+    part: 1/K of a K-average estimate, and the window-overlap share of a delay shorter
+    than a segment (a copy delayed by half a Hann segment shares 17 % of white noise
+    with the signal inside each segment, which a gain |S_xy| / S_xx then passes as
+    "discrete"). Needs no speed. Even with the spectra known exactly, a gain of
+    resolution fs / nperseg notches the random part around every line it removes: how
+    close DRS comes to exact removal is set by the number of shaft revolutions in the
+    record (see the separation page of the documentation).
 
 ``method="auto"`` is ``"tsa"`` when a speed or a tachometer is given, otherwise ``"drs"``.
 
@@ -111,22 +118,66 @@ def _lp(x: np.ndarray, order: int) -> np.ndarray:
     return out
 
 
-def _drs(x: np.ndarray, nperseg: int, delay: int) -> np.ndarray:
-    """Discrete part of each row by the zero-phase DRS gain |S_xy| / S_xx applied as a
-    zero-phase FIR filter (length nperseg - 1, Hann-windowed)."""
+def _overlap_correlation(nperseg: int, lag: int) -> float:
+    """Normalized overlap sum w(n) w(n + lag) / sum w(n)^2 of the Hann window: the part
+    of a white random signal that its own copy ``lag`` samples later shares within one
+    Welch segment (0 from ``lag >= nperseg``)."""
+    if lag >= nperseg:
+        return 0.0
+    w = _signal.get_window("hann", nperseg)
+    return float(np.dot(w[lag:], w[:nperseg - lag]) / np.dot(w, w))
+
+
+def _welch_averages(n_used: int, nperseg: int) -> tuple[int, float]:
+    """(segments, equivalent independent averages) of a Welch estimate over ``n_used``
+    samples with Hann segments of ``nperseg`` overlapping by 3/4: Welch (1967), K over
+    1 + 2 sum_j (1 - j/K) rho_j^2 with rho_j the overlap correlation j steps apart."""
+    step = nperseg // 4
+    k = (n_used - nperseg) // step + 1
+    rho2 = sum((1 - j / k) * _overlap_correlation(nperseg, j * step) ** 2
+               for j in range(1, min(k, 4)))
+    return k, k / (1 + 2 * rho2)
+
+
+def _drs_gain(x: np.ndarray, nperseg: int, delay: int) -> np.ndarray:
+    """Zero-phase DRS gain (..., nperseg // 2 + 1), the estimated fraction of each
+    frequency's amplitude that is discrete: the coherence between ``x`` and its copy
+    ``delay`` samples later, freed of its two biases for a random part (the 1/K of a
+    K-average estimate and the window-overlap share of ``delay < nperseg``)."""
     n = x.shape[-1]
     a, b = x[..., delay:], x[..., :n - delay]
-    _f, s_xy = _signal.csd(a, b, nperseg=nperseg, axis=-1)
-    _f, s_xx = _signal.welch(a, nperseg=nperseg, axis=-1)
-    gain = np.clip(np.abs(s_xy) / np.maximum(s_xx, np.finfo(float).tiny), 0.0, 1.0)
-    # zero-phase impulse response, made causal-symmetric with odd length 2L + 1 so that
-    # "same" convolution centres it exactly (an even length would delay by a sample)
+    kw = dict(nperseg=nperseg, noverlap=3 * nperseg // 4, window="hann", axis=-1)
+    _f, s_ab = _signal.csd(a, b, **kw)
+    _f, s_aa = _signal.welch(a, **kw)
+    _f, s_bb = _signal.welch(b, **kw)
+    tiny = np.finfo(float).tiny
+    coh2 = np.abs(s_ab) ** 2 / np.maximum(s_aa * s_bb, tiny)
+    _k, k_eff = _welch_averages(n - delay, nperseg)
+    # an uncorrelated bin's squared coherence estimate averages 1/K_eff
+    coh = np.sqrt(np.clip((coh2 - 1 / k_eff) / (1 - 1 / k_eff), 0.0, 1.0))
+    # a random part shares rho of itself with its copy inside a segment when delay < nperseg
+    rho = _overlap_correlation(nperseg, delay)
+    return np.clip((coh - rho) / (1 - rho), 0.0, 1.0)
+
+
+def _apply_gain(x: np.ndarray, gain: np.ndarray, nperseg: int) -> np.ndarray:
+    """Each row of ``x`` through the zero-phase FIR filter of the gain (..., nperseg // 2
+    + 1): odd length nperseg - 1, Hann-windowed, centred by "same" convolution."""
     half = nperseg // 2 - 1
     hh = np.fft.irfft(gain, n=nperseg, axis=-1)
     h = np.concatenate((hh[..., -half:], hh[..., :half + 1]), axis=-1) * np.hanning(2 * half + 1)
+    if x.ndim == 1:
+        return _signal.oaconvolve(x, h, mode="same")
     return np.stack([_signal.oaconvolve(x[idx], h[idx], mode="same")
-                     for idx in np.ndindex(x.shape[:-1])]).reshape(x.shape) if x.ndim > 1 \
-        else _signal.oaconvolve(x, h, mode="same")
+                     for idx in np.ndindex(x.shape[:-1])]).reshape(x.shape)
+
+
+def _drs_nperseg(fs: float, n: int) -> int:
+    """Default Welch segment of DRS: the power of 2 nearest fs / 2 (a resolution of
+    about 2 Hz, so that the Hann main lobe of 4 bins fits between the harmonics of a
+    shaft down to ~8 Hz), but at most what leaves 4 segments (3/4 overlap) after a
+    delay of one segment: 11/4 segments in the record."""
+    return min(2 ** round(math.log2(fs / 2.0)), 2 ** math.floor(math.log2(n / 2.75)))
 
 
 def separate_discrete(x, fs: float, rpm=None, method: str = "auto", *, tacho=None,
@@ -157,13 +208,14 @@ def separate_discrete(x, fs: float, rpm=None, method: str = "auto", *, tacho=Non
         AR order of ``"lp"``, >= 1 (default 100, as Sawalhi & Randall use for gearbox
         signals).
     nperseg : int, optional
-        Welch segment of ``"drs"`` (default the power of 2 nearest fs / 2, a resolution
-        of about 2 Hz, capped at n_samples / 4 for at least ~7 averages). DRS must
-        resolve the lines: shaft sidebands closer than about 3 fs / nperseg are only
-        partly removed.
+        Welch segment of ``"drs"``, >= 16 (default the power of 2 nearest fs / 2, a
+        resolution of about 2 Hz, at most the power of 2 that leaves 4 segments after
+        the delay: n_samples / 2.75). DRS must resolve the lines: shaft harmonics closer
+        than about 4 fs / nperseg are only partly removed.
     delay : int, optional
-        Delay of ``"drs"``, samples, longer than the random part's memory (default
-        nperseg // 2).
+        Delay of ``"drs"``, samples, >= 1, longer than the random part's memory
+        (default nperseg: the segments of the signal and of its delayed copy share no
+        sample). ``nperseg + delay + 3 * (nperseg // 4)`` must not exceed n_samples.
     axis : int, optional
         Sample axis (default -1).
 
@@ -176,7 +228,8 @@ def separate_discrete(x, fs: float, rpm=None, method: str = "auto", *, tacho=Non
     ------
     ValueError, TypeError
         Bad arguments, before any work: unknown method, ``"tsa"`` without a speed,
-        a record shorter than two revolutions, ``delay`` not below ``n_samples``.
+        a record shorter than two revolutions, ``"drs"`` with fewer than 4 Welch
+        segments after its delay.
 
     Examples
     --------
@@ -234,13 +287,16 @@ def separate_discrete(x, fs: float, rpm=None, method: str = "auto", *, tacho=Non
         residual = _lp(xv, order)
     else:
         if nperseg is None:
-            nperseg = min(2 ** round(math.log2(fs / 2.0)), 2 ** math.floor(math.log2(n / 4)))
+            nperseg = _drs_nperseg(fs, n)
+            if nperseg < 16:
+                raise ValueError(f"method='drs' needs at least 44 samples, got {n}")
         nperseg = check_positive_int("nperseg", nperseg, 16)
-        delay = nperseg // 2 if delay is None else delay
-        if nperseg + delay > n:
-            raise ValueError(f"nperseg + delay must not exceed n_samples = {n}, got "
-                             f"{nperseg} + {delay}")
-        residual = xv - _drs(xv, nperseg, delay)
+        delay = nperseg if delay is None else check_positive_int("delay", delay, 1)
+        if nperseg + delay + 3 * (nperseg // 4) > n:
+            raise ValueError(f"nperseg + delay + 3 * (nperseg // 4) (4 Welch segments after "
+                             f"the delay) must not exceed n_samples = {n}, got nperseg = "
+                             f"{nperseg}, delay = {delay}")
+        residual = xv - _apply_gain(xv, _drs_gain(xv, nperseg, delay), nperseg)
     discrete = xv - residual
     return np.moveaxis(discrete, -1, axis), np.moveaxis(residual, -1, axis)
 
