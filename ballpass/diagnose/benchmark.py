@@ -154,6 +154,15 @@ def _stratified_group_folds(y, groups, n_splits: int, random_state) -> list:
     return list(cv.split(np.zeros(len(y)), y, groups))
 
 
+#: Folds of a split on a drawn (continuous) axis: quantile bins of its values, each
+#: left out in turn. Four bins leave a quarter of the runs out per fold, as a 4-fold
+#: split would, while each test bin still lies beyond the training range on one side.
+QUANTILE_BINS = 4
+#: An axis not known to be drawn (no ``drawn`` given) with more distinct values than this
+#: is treated as drawn: leaving each value out would cost a fit per value.
+MAX_VALUE_FOLDS = 12
+
+
 def _leave_one_value_out(values: np.ndarray) -> list:
     out = []
     for v in np.unique(values):
@@ -162,8 +171,45 @@ def _leave_one_value_out(values: np.ndarray) -> list:
     return out
 
 
+def _quantile_bins(values: np.ndarray, groups: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Bin index of each row (-1 where the value is NaN) and the bin edges.
+
+    The edges are quantiles of the values over the groups (one value per run), so the
+    bins hold about equal numbers of runs; every row of a group falls in its group's bin.
+    """
+    finite = np.isfinite(values)
+    per_group = pd.Series(values[finite]).groupby(groups[finite]).first().to_numpy()
+    edges = np.unique(np.quantile(per_group, np.linspace(0.0, 1.0, QUANTILE_BINS + 1)))
+    bins = np.full(len(values), -1)
+    # interior edges only: bin k holds edges[k] <= v < edges[k + 1], the last one closed
+    bins[finite] = np.searchsorted(edges[1:-1], values[finite], side="right")
+    return bins, edges
+
+
+def _levels(values: np.ndarray, groups: np.ndarray, name: str, drawn) -> tuple[np.ndarray, str]:
+    """The level of each row that a leave-one-level-out split leaves out, and the rule.
+
+    A listed axis leaves out each of its values; a drawn one (named in ``drawn``, or, when
+    ``drawn`` is None, one with more than :data:`MAX_VALUE_FOLDS` distinct values) each of
+    :data:`QUANTILE_BINS` quantile bins. NaN (no value: healthy rows of a size axis) is
+    level -1.
+    """
+    finite = values[np.isfinite(values)]
+    n_values = np.unique(finite).size
+    is_drawn = n_values > MAX_VALUE_FOLDS if drawn is None else name in drawn
+    if not is_drawn or n_values <= QUANTILE_BINS:
+        levels = np.where(np.isfinite(values), values, -1.0)
+        return levels, f"leave one value of `{name}` out ({n_values} values)"
+    bins, edges = _quantile_bins(values, groups)
+    why = "drawn axis" if drawn is not None else f"more than {MAX_VALUE_FOLDS} values"
+    ranges = ", ".join(f"[{lo:.4g}, {hi:.4g}{']' if k == len(edges) - 2 else ')'}"
+                       for k, (lo, hi) in enumerate(zip(edges[:-1], edges[1:], strict=True)))
+    return bins, (f"leave one of {len(edges) - 1} quantile bins of `{name}` out ({why}, "
+                  f"{n_values} values): {ranges}")
+
+
 def split_indices(meta: pd.DataFrame, split: str, *, n_splits: int = 5,
-                  random_state=0) -> list[tuple[np.ndarray, np.ndarray]]:
+                  random_state=0, drawn=None) -> list[tuple[np.ndarray, np.ndarray]]:
     """Train/test row indices of one split of a dataset.
 
     Parameters
@@ -179,6 +225,12 @@ def split_indices(meta: pd.DataFrame, split: str, *, n_splits: int = 5,
         when the classes have fewer groups.
     random_state : int or None, optional
         Shuffling seed of the k-fold splits (default 0).
+    drawn : collection of str, optional
+        Columns drawn from a distribution (a grid's drawn axes, e.g.
+        ``ballpass.datasets.info(folder)["drawn"]``): ``speed``, ``load`` and
+        ``fault_size`` leave out each of :data:`QUANTILE_BINS` quantile bins of such a
+        column instead of each distinct value. Default None: a column with more than
+        :data:`MAX_VALUE_FOLDS` distinct values counts as drawn.
 
     Returns
     -------
@@ -196,21 +248,33 @@ def split_indices(meta: pd.DataFrame, split: str, *, n_splits: int = 5,
     >>> [(tr.tolist(), te.tolist()) for tr, te in split_indices(meta, "speed")]
     [([2, 3, 6, 7], [0, 1, 4, 5]), ([0, 1, 4, 5], [2, 3, 6, 7])]
     """
+    return _split(meta, split, n_splits, random_state, drawn)[0]
+
+
+def _split(meta: pd.DataFrame, split: str, n_splits: int, random_state, drawn
+           ) -> tuple[list, str]:
+    """:func:`split_indices` and, in words, the rule that made its folds."""
     _check_meta(meta, len(meta), "meta")
     y = meta["label"].to_numpy()
     groups = meta["group"].to_numpy()
+    rule = SPLITS.get(split, "")
     if split == "run":
-        return _stratified_group_folds(y, groups, n_splits, random_state)
+        return _stratified_group_folds(y, groups, n_splits, random_state), rule
     if split == "speed":
-        folds = _leave_one_value_out(np.round(meta["rpm"].to_numpy(float)))
+        levels, rule = _levels(np.round(meta["rpm"].to_numpy(float)), groups, "rpm", drawn)
+        folds = _leave_one_value_out(levels)
     elif split == "load":
         col = _load_column(meta)
-        folds = [] if col is None else _leave_one_value_out(meta[col].to_numpy())
+        if col is None:
+            return [], rule
+        levels, rule = _levels(meta[col].to_numpy(float), groups, col, drawn)
+        folds = _leave_one_value_out(levels)
     elif split == "fault_size":
         width = meta["fault_width_mm"].to_numpy(float) if "fault_width_mm" in meta else None
-        sizes = [] if width is None else np.unique(width[np.isfinite(width)])
-        if len(sizes) < 2:
-            return []
+        if width is None or np.unique(width[np.isfinite(width)]).size < 2:
+            return [], rule
+        levels, rule = _levels(width, groups, "fault_width_mm", drawn)
+        sizes = np.unique(levels[levels != -1])
         # Healthy runs have no size: deal their groups round-robin over the folds.
         healthy = y == "healthy"
         order = np.random.default_rng(random_state).permutation(np.unique(groups[healthy]))
@@ -218,13 +282,15 @@ def split_indices(meta: pd.DataFrame, split: str, *, n_splits: int = 5,
         healthy_fold = np.array([fold_of.get(g, -1) for g in groups])
         folds = []
         for k, size in enumerate(sizes):
-            test = np.flatnonzero((width == size) | (healthy & (healthy_fold == k)))
+            test = np.flatnonzero(((levels == size) & ~healthy)
+                                  | (healthy & (healthy_fold == k)))
             folds.append((np.setdiff1d(np.arange(len(y)), test), test))
+        rule += "; healthy runs dealt over the folds by group"
     elif split == "sensor":
         sensor = meta["sensor"].to_numpy() if "sensor" in meta else np.array([])
         loaded, unloaded = sensor == "loaded", sensor == "unloaded"
         if not (loaded.any() and unloaded.any()):
-            return []
+            return [], rule
         rows = np.flatnonzero(loaded)
         folds = []
         for tr, te in _stratified_group_folds(y[rows], groups[rows], n_splits, random_state):
@@ -234,14 +300,15 @@ def split_indices(meta: pd.DataFrame, split: str, *, n_splits: int = 5,
     elif split == "random":
         k = int(min(n_splits, pd.Series(y).value_counts().min()))
         if k < 2:
-            return []
+            return [], rule
         cv = StratifiedKFold(n_splits=k, shuffle=True, random_state=random_state)
-        return list(cv.split(np.zeros(len(y)), y))
+        return list(cv.split(np.zeros(len(y)), y)), rule
     else:
         raise ValueError(f"split must be one of {sorted(set(SPLITS) - {'sim2real'})}, "
                          f"got {split!r}")
     # A split of one value only (one speed, ...) is no split.
-    return [(tr, te) for tr, te in folds if len(tr) and len(te)] if len(folds) > 1 else []
+    folds = [(tr, te) for tr, te in folds if len(tr) and len(te)] if len(folds) > 1 else []
+    return folds, rule
 
 
 def _disjoint(groups: np.ndarray, train: np.ndarray, test: np.ndarray) -> bool:
@@ -452,6 +519,7 @@ def run_benchmark(
     seeds: int = 5,
     progress: bool = False,
     checkpoint=None,
+    drawn=None,
 ) -> BenchmarkResult:
     """Cross-validate the envelope diagnoser and the classifier pipelines.
 
@@ -497,6 +565,12 @@ def run_benchmark(
         finished split and model), so that an interrupted call resumes where it stopped
         when called again with the same data and settings; work of other data or
         settings found there is discarded. Default None: nothing kept.
+    drawn : collection of str, optional
+        The dataset's drawn (continuous) columns, e.g. ``radial_load_n``: the
+        ``speed``, ``load`` and ``fault_size`` splits leave out quantile bins of them
+        instead of each value (see :func:`split_indices`; default None: a column with
+        many distinct values counts as drawn). ``info["fold_rules"]`` says which rule
+        made each split's folds.
 
     Returns
     -------
@@ -571,13 +645,13 @@ def run_benchmark(
         datasets["real"] = (Xr, meta_r)
 
     plan = []  # (split, folds, test set)
-    skipped = {}
+    skipped, fold_rules = {}, {"sim2real": SPLITS["sim2real"]}
     for split in splits:
         if split == "sim2real":
             plan.append((split, [(np.arange(len(X)), np.arange(len(datasets["real"][0])))],
                          "real"))
             continue
-        folds = split_indices(meta, split, n_splits=n_splits, random_state=random_state)
+        folds, fold_rules[split] = _split(meta, split, n_splits, random_state, drawn)
         if not folds:
             skipped[split] = "the dataset has a single value of this factor"
             continue
@@ -685,6 +759,7 @@ def run_benchmark(
     info = {
         "rows": len(X), "groups": int(meta["group"].nunique()), "bearing": bearing, "fs": fs,
         "few_groups": few,
+        "fold_rules": {split: fold_rules[split] for split, _f, _t in plan},
         "samples_per_row": int(X.shape[1]), "features": features, "n_splits": n_splits,
         "seeds": seeds if "sim2real" in splits else 1,
         "labels": meta["label"].value_counts().to_dict(),

@@ -230,7 +230,8 @@ def write_report(result: BenchmarkResult, out_dir, *, title: str = "Classifier b
     for split in dict.fromkeys(table["split"]) if len(table) else []:
         part = table[table["split"] == split]
         tag = " — OPTIMISTIC, not an estimate of real performance" if split == "random" else ""
-        lines += [f"## `{split}`{tag}", "", SPLITS[split] + ".", "",
+        rule = info.get("fold_rules", {}).get(split, SPLITS[split])
+        lines += [f"## `{split}`{tag}", "", f"Folds: {rule}.", "",
                   markdown_table(part[_COLUMNS[1:]]), ""]
         if split == "sim2real" and len(result.spread):
             lines += ["Three classes (normal, outer, inner; a \"ball\" answer on them is an "
