@@ -678,6 +678,21 @@ def run_benchmark(
                    + (f"; {n_done} fits resumed from {checkpoint}" if n_done else ""),
                    file=sys.stderr)
     interrupted, rows_of, predictions_of, spread = False, {}, {}, []
+    fitted = {}  # (pipeline, split, fold, seed) -> predictions
+
+    def fit_predict(model, split, k, train, test, test_set, seed):
+        """``_fit_predict`` once per pipeline: ``recommended`` is one of the others
+        when ``features`` is its feature set, and is then not fitted again."""
+        key = (_pipeline_of(model, features) if model != "envelope" else model, split, k,
+               seed)
+        if key not in fitted:
+            # one thread: a fit on a few hundred rows gains nothing from OpenMP's
+            # threads, which cost gradient boosting 60x its time on a busy machine
+            with threadpool_limits(1):
+                fitted[key] = _fit_predict(model, train, test, test_set, meta, rows_of,
+                                           diagnoser, features, seed)
+        return fitted[key]
+
     try:
         for name, key, compute in per_row:
             x, m = datasets[key]
@@ -695,11 +710,8 @@ def run_benchmark(
                     continue
                 parts = []
                 for k, (train, test) in enumerate(folds):
-                    # one thread: a fit on a few hundred rows gains nothing from OpenMP's
-                    # threads, which cost gradient boosting 60x its time on a busy machine
-                    with threadpool_limits(1):
-                        y_pred = _fit_predict(model, train, test, test_set, meta, rows_of,
-                                              diagnoser, features, random_state)
+                    y_pred = fit_predict(model, split, k, train, test, test_set,
+                                         random_state)
                     parts.append(pd.DataFrame({
                         "split": split, "model": model, "fold": k, "row": test,
                         "group": test_meta["group"].to_numpy()[test],
@@ -719,9 +731,7 @@ def run_benchmark(
                                **_scores(pred["y_true"], pred["y_pred"])})
                 for k in range(1, seeds) if model != "envelope" else ():
                     seed = None if random_state is None else random_state + k
-                    with threadpool_limits(1):
-                        y = _fit_predict(model, train, test, test_set, meta, rows_of,
-                                         diagnoser, features, seed)
+                    y = fit_predict(model, split, 0, train, test, test_set, seed)
                     spread.append({"split": split, "model": model, "seed": seed,
                                    **_scores(pred["y_true"], y)})
     except KeyboardInterrupt:  # keep what is finished: a partial report that says so
