@@ -10,7 +10,10 @@ the rows of a ``group`` (a run, or a recording) on one side. What each split mea
 ``speed``, ``load``, ``fault_size``
     Leave one shaft speed / load / fault size out: generalisation to an unseen operating
     point or defect size. For ``fault_size`` the healthy runs, which have no size, are
-    spread over the folds by group.
+    spread over the folds by group. On an axis drawn from a distribution (every run its
+    own value) each of :data:`QUANTILE_BINS` quantile bins is left out in turn instead;
+    :attr:`BenchmarkResult.info` ``["fold_rules"]`` and the report say which rule made
+    the folds.
 ``sensor``
     Train on the loaded-zone sensor of some runs, test on the unloaded-zone sensor of
     the other runs: a change of transfer path.
@@ -45,7 +48,7 @@ from threadpoolctl import threadpool_limits
 from tqdm.auto import tqdm
 
 from ..signalio import atomic_write
-from ._names import LABELS, MODELS, RECOMMENDED, SPLITS
+from ._names import LABELS, MODELS, QUANTILE_BINS, RECOMMENDED, SPLITS
 from .evidence import FAULT_FAMILIES
 from .pipelines import make_features, make_pipeline
 from .rules import EnvelopeDiagnoser
@@ -138,10 +141,6 @@ def _stratified_group_folds(y, groups, n_splits: int, random_state) -> list:
     return list(cv.split(np.zeros(len(y)), y, groups))
 
 
-#: Folds of a split on a drawn (continuous) axis: quantile bins of its values, each
-#: left out in turn. Four bins leave a quarter of the runs out per fold, as a 4-fold
-#: split would, while each test bin still lies beyond the training range on one side.
-QUANTILE_BINS = 4
 #: An axis not known to be drawn (no ``drawn`` given) with more distinct values than this
 #: is treated as drawn: leaving each value out would cost a fit per value.
 MAX_VALUE_FOLDS = 12
