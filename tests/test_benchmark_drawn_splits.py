@@ -89,3 +89,23 @@ def test_a_listed_single_value_still_forms_no_split(split):
     meta["radial_load_n"] = 500.0
     meta["fault_width_mm"] = np.where(meta["label"] == "healthy", np.nan, 0.3)
     assert split_indices(meta, split, drawn={"radial_load_n", "fault_width_mm"}) == []
+
+
+def test_cli_reads_the_drawn_axes_of_a_generated_dataset(tmp_path):
+    """`ballpass benchmark` takes the drawn axes from the dataset's grid: a load drawn
+    for each of 12 runs makes 4 bin folds, and the report says so."""
+    from ballpass.cli import main
+    from ballpass.datasets import generate
+
+    grid = {"dataset": {"duration_s": 0.25, "fs": 12_000, "draws": 3, "seed": 1,
+                        "model": "impulse"},
+            "grid": {"bearing": "6205", "fault": ["healthy", "outer", "inner", "ball"],
+                     "rpm": 1797, "resonance_hz": 3000,
+                     "radial_load_n": {"log_uniform": [200, 2000]}}}
+    generate(grid, tmp_path / "ds", progress=False)
+    out = tmp_path / "report"
+    assert main(["benchmark", str(tmp_path / "ds"), "--out", str(out), "--models",
+                 "envelope", "--splits", "load", "-q"]) == 0
+    text = (out / "results.md").read_text()
+    assert "Folds: leave one of 4 quantile bins of `radial_load_n` out (drawn axis" in text
+    assert pd.read_csv(out / "results.csv")["folds"].tolist() == [QUANTILE_BINS]
