@@ -141,6 +141,8 @@ def test_benchmark_and_report(dataset, tmp_path):
     paths = write_report(result, tmp_path)
     text = paths["markdown"].read_text()
     assert "OPTIMISTIC" in text and "confusion_run.png" in text
+    # the rule that made each split's folds: two listed loads, each left out
+    assert "Folds: leave one value of `radial_load_n` out (2 values)." in text
     assert all(p.exists() for p in paths.values())
     assert pd.read_csv(paths["csv"]).shape[0] == len(table)
 

@@ -112,8 +112,10 @@ def run(args) -> int:
 
     from .._validation import check_segment
     from ..datasets import load
+    from ..datasets.grid import drawn_axes
     from ..datasets.manifest import read_recordings
     from ..datasets.real import segment_records
+    from ..datasets.store import read_manifest
     from ..diagnose import run_benchmark, write_report
     from ._output import check_output_path, show_progress
 
@@ -121,6 +123,8 @@ def run(args) -> int:
     if args.real is not None and not Path(args.real).exists():
         raise FileNotFoundError(f"--real: no such file or folder: {args.real}")
     X, meta = load(args.dataset)
+    manifest = read_manifest(args.dataset) or {}
+    drawn = set(drawn_axes(manifest["grid"])) if "grid" in manifest else set()
     real = None
     if args.real is not None:
         rates = sorted(meta["fs"].unique())
@@ -138,7 +142,7 @@ def run(args) -> int:
                            features=args.features, n_splits=args.folds,
                            random_state=args.seed, seeds=args.train_seeds,
                            progress=show_progress(args),
-                           checkpoint=Path(args.out) / "_checkpoint")
+                           checkpoint=Path(args.out) / "_checkpoint", drawn=drawn)
     if result.table.empty and not result.info.get("interrupted", False):
         # every split asked for was skipped: nothing to report
         why = "; ".join(f"{split}: {reason}" for split, reason in result.skipped.items())

@@ -7,9 +7,13 @@ scikit-learn.
 #: Labels the diagnosers predict, in report order.
 LABELS = ("healthy", "outer", "inner", "ball")
 
+#: Trees of the random forest. 100 score as 300 did, side by side on two simulated
+#: datasets (within the spread over folds; docs/benchmark_cost.md), at a third of the cost.
+FOREST_TREES = 100
+
 #: Classifier name -> description (see :func:`ballpass.diagnose.make_classifier`).
 CLASSIFIERS = {
-    "random_forest": "random forest, 300 trees, balanced class weights",
+    "random_forest": f"random forest, {FOREST_TREES} trees, balanced class weights",
     "gradient_boosting": "histogram gradient boosting, balanced class weights",
     "svm": "support-vector machine, RBF kernel, C = 10, balanced class weights",
     "knn": "k nearest neighbours, k = 5",
@@ -44,12 +48,19 @@ MODELS = {
                    f"the `{RECOMMENDED[1]}` features, whatever --features says",
 }
 
+#: Folds of a split on a drawn (continuous) axis: quantile bins of its values, each
+#: left out in turn. Four bins leave a quarter of the runs out per fold, as a 4-fold
+#: split would, while each test bin still lies beyond the training range on one side.
+QUANTILE_BINS = 4
+
 #: Split name -> what it measures (``random`` is optimistic).
 SPLITS = {
     "run": "stratified group k-fold over runs (segments of a run stay together)",
-    "speed": "leave one shaft speed out",
-    "load": "leave one load out",
-    "fault_size": "leave one fault size out (healthy runs dealt over the folds by group)",
+    "speed": "leave one shaft speed out (a drawn speed: one of "
+             f"{QUANTILE_BINS} quantile bins)",
+    "load": f"leave one load out (a drawn load: one of {QUANTILE_BINS} quantile bins)",
+    "fault_size": f"leave one fault size out (a drawn size: one of {QUANTILE_BINS} quantile "
+                  "bins; healthy runs dealt over the folds by group)",
     "sensor": "train on loaded-zone rows, test on unloaded-zone rows of other runs",
     "random": "OPTIMISTIC: k-fold over rows, segments of one run on both sides",
     "sim2real": "train on all simulated rows, test on the real recordings",

@@ -10,7 +10,10 @@ the rows of a ``group`` (a run, or a recording) on one side. What each split mea
 ``speed``, ``load``, ``fault_size``
     Leave one shaft speed / load / fault size out: generalisation to an unseen operating
     point or defect size. For ``fault_size`` the healthy runs, which have no size, are
-    spread over the folds by group.
+    spread over the folds by group. On an axis drawn from a distribution (every run its
+    own value) each of :data:`QUANTILE_BINS` quantile bins is left out in turn instead;
+    :attr:`BenchmarkResult.info` ``["fold_rules"]`` and the report say which rule made
+    the folds.
 ``sensor``
     Train on the loaded-zone sensor of some runs, test on the unloaded-zone sensor of
     the other runs: a change of transfer path.
@@ -45,7 +48,7 @@ from threadpoolctl import threadpool_limits
 from tqdm.auto import tqdm
 
 from ..signalio import atomic_write
-from ._names import LABELS, MODELS, RECOMMENDED, SPLITS
+from ._names import LABELS, MODELS, QUANTILE_BINS, RECOMMENDED, SPLITS
 from .evidence import FAULT_FAMILIES
 from .pipelines import make_features, make_pipeline
 from .rules import EnvelopeDiagnoser
@@ -90,30 +93,14 @@ class BenchmarkResult:
     skipped : dict of str to str
         Splits that could not be formed on this dataset, with the reason.
     info : dict
-        Dataset and settings: rows, groups, features, bearing, fs, ...
+        Dataset and settings: rows, groups, features, bearing, fs, ...;
+        ``fold_rules``: split -> the rule that made its folds, in words (leave one
+        value out, or one quantile bin of a drawn axis).
 
     Examples
     --------
-    Nine simulated runs (one signal each), scored with whole runs held out:
-
-    >>> import numpy as np, pandas as pd
-    >>> import ballpass as bp
-    >>> from ballpass.diagnose import run_benchmark
-    >>> faults = ["outer", "inner"] * 3 + [None] * 3
-    >>> scenes = [bp.Scene("6205", rpm=1797, fs=12_000, duration_s=1.0, resonance_hz=3_000,
-    ...                    fault=bp.Fault(f) if f else None, noise_rms=0.5, seed=i)
-    ...           for i, f in enumerate(faults)]
-    >>> X = np.stack([bp.simulate(s, model="impulse").accel for s in scenes])
-    >>> meta = pd.DataFrame({"label": [f or "healthy" for f in faults], "group": range(9),
-    ...                      "rpm": 1797.0, "bearing": "6205", "fs": 12_000.0})
-    >>> result = run_benchmark(X, meta, splits=["run"], models=["envelope", "logistic"],
-    ...                        n_splits=3)
-    >>> result.table[["split", "model", "n_test", "accuracy"]]
-      split     model  n_test  accuracy
-    0   run  envelope       9       1.0
-    1   run  logistic       9       1.0
-    >>> result.confusion[("run", "envelope")].diagonal().tolist()   # healthy, outer, inner, ball
-    [3, 3, 3, 0]
+    :func:`run_benchmark` returns one; its examples show the table and a confusion
+    matrix.
     """
 
     table: pd.DataFrame
@@ -154,6 +141,11 @@ def _stratified_group_folds(y, groups, n_splits: int, random_state) -> list:
     return list(cv.split(np.zeros(len(y)), y, groups))
 
 
+#: An axis not known to be drawn (no ``drawn`` given) with more distinct values than this
+#: is treated as drawn: leaving each value out would cost a fit per value.
+MAX_VALUE_FOLDS = 12
+
+
 def _leave_one_value_out(values: np.ndarray) -> list:
     out = []
     for v in np.unique(values):
@@ -162,8 +154,45 @@ def _leave_one_value_out(values: np.ndarray) -> list:
     return out
 
 
+def _quantile_bins(values: np.ndarray, groups: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Bin index of each row (-1 where the value is NaN) and the bin edges.
+
+    The edges are quantiles of the values over the groups (one value per run), so the
+    bins hold about equal numbers of runs; every row of a group falls in its group's bin.
+    """
+    finite = np.isfinite(values)
+    per_group = pd.Series(values[finite]).groupby(groups[finite]).first().to_numpy()
+    edges = np.unique(np.quantile(per_group, np.linspace(0.0, 1.0, QUANTILE_BINS + 1)))
+    bins = np.full(len(values), -1)
+    # interior edges only: bin k holds edges[k] <= v < edges[k + 1], the last one closed
+    bins[finite] = np.searchsorted(edges[1:-1], values[finite], side="right")
+    return bins, edges
+
+
+def _levels(values: np.ndarray, groups: np.ndarray, name: str, drawn) -> tuple[np.ndarray, str]:
+    """The level of each row that a leave-one-level-out split leaves out, and the rule.
+
+    A listed axis leaves out each of its values; a drawn one (named in ``drawn``, or, when
+    ``drawn`` is None, one with more than :data:`MAX_VALUE_FOLDS` distinct values) each of
+    :data:`QUANTILE_BINS` quantile bins. NaN (no value: healthy rows of a size axis) is
+    level -1.
+    """
+    finite = values[np.isfinite(values)]
+    n_values = np.unique(finite).size
+    is_drawn = n_values > MAX_VALUE_FOLDS if drawn is None else name in drawn
+    if not is_drawn or n_values <= QUANTILE_BINS:
+        levels = np.where(np.isfinite(values), values, -1.0)
+        return levels, f"leave one value of `{name}` out ({n_values} values)"
+    bins, edges = _quantile_bins(values, groups)
+    why = "drawn axis" if drawn is not None else f"more than {MAX_VALUE_FOLDS} values"
+    ranges = ", ".join(f"[{lo:.4g}, {hi:.4g}{']' if k == len(edges) - 2 else ')'}"
+                       for k, (lo, hi) in enumerate(zip(edges[:-1], edges[1:], strict=True)))
+    return bins, (f"leave one of {len(edges) - 1} quantile bins of `{name}` out ({why}, "
+                  f"{n_values} values): {ranges}")
+
+
 def split_indices(meta: pd.DataFrame, split: str, *, n_splits: int = 5,
-                  random_state=0) -> list[tuple[np.ndarray, np.ndarray]]:
+                  random_state=0, drawn=None) -> list[tuple[np.ndarray, np.ndarray]]:
     """Train/test row indices of one split of a dataset.
 
     Parameters
@@ -179,6 +208,12 @@ def split_indices(meta: pd.DataFrame, split: str, *, n_splits: int = 5,
         when the classes have fewer groups.
     random_state : int or None, optional
         Shuffling seed of the k-fold splits (default 0).
+    drawn : collection of str, optional
+        Columns drawn from a distribution (a grid's drawn axes, e.g.
+        ``ballpass.datasets.info(folder)["drawn"]``): ``speed``, ``load`` and
+        ``fault_size`` leave out each of :data:`QUANTILE_BINS` quantile bins of such a
+        column instead of each distinct value. Default None: a column with more than
+        :data:`MAX_VALUE_FOLDS` distinct values counts as drawn.
 
     Returns
     -------
@@ -196,21 +231,33 @@ def split_indices(meta: pd.DataFrame, split: str, *, n_splits: int = 5,
     >>> [(tr.tolist(), te.tolist()) for tr, te in split_indices(meta, "speed")]
     [([2, 3, 6, 7], [0, 1, 4, 5]), ([0, 1, 4, 5], [2, 3, 6, 7])]
     """
+    return _split(meta, split, n_splits, random_state, drawn)[0]
+
+
+def _split(meta: pd.DataFrame, split: str, n_splits: int, random_state, drawn
+           ) -> tuple[list, str]:
+    """:func:`split_indices` and, in words, the rule that made its folds."""
     _check_meta(meta, len(meta), "meta")
     y = meta["label"].to_numpy()
     groups = meta["group"].to_numpy()
+    rule = SPLITS.get(split, "")
     if split == "run":
-        return _stratified_group_folds(y, groups, n_splits, random_state)
+        return _stratified_group_folds(y, groups, n_splits, random_state), rule
     if split == "speed":
-        folds = _leave_one_value_out(np.round(meta["rpm"].to_numpy(float)))
+        levels, rule = _levels(np.round(meta["rpm"].to_numpy(float)), groups, "rpm", drawn)
+        folds = _leave_one_value_out(levels)
     elif split == "load":
         col = _load_column(meta)
-        folds = [] if col is None else _leave_one_value_out(meta[col].to_numpy())
+        if col is None:
+            return [], rule
+        levels, rule = _levels(meta[col].to_numpy(float), groups, col, drawn)
+        folds = _leave_one_value_out(levels)
     elif split == "fault_size":
         width = meta["fault_width_mm"].to_numpy(float) if "fault_width_mm" in meta else None
-        sizes = [] if width is None else np.unique(width[np.isfinite(width)])
-        if len(sizes) < 2:
-            return []
+        if width is None or np.unique(width[np.isfinite(width)]).size < 2:
+            return [], rule
+        levels, rule = _levels(width, groups, "fault_width_mm", drawn)
+        sizes = np.unique(levels[levels != -1])
         # Healthy runs have no size: deal their groups round-robin over the folds.
         healthy = y == "healthy"
         order = np.random.default_rng(random_state).permutation(np.unique(groups[healthy]))
@@ -218,13 +265,15 @@ def split_indices(meta: pd.DataFrame, split: str, *, n_splits: int = 5,
         healthy_fold = np.array([fold_of.get(g, -1) for g in groups])
         folds = []
         for k, size in enumerate(sizes):
-            test = np.flatnonzero((width == size) | (healthy & (healthy_fold == k)))
+            test = np.flatnonzero(((levels == size) & ~healthy)
+                                  | (healthy & (healthy_fold == k)))
             folds.append((np.setdiff1d(np.arange(len(y)), test), test))
+        rule += "; healthy runs dealt over the folds by group"
     elif split == "sensor":
         sensor = meta["sensor"].to_numpy() if "sensor" in meta else np.array([])
         loaded, unloaded = sensor == "loaded", sensor == "unloaded"
         if not (loaded.any() and unloaded.any()):
-            return []
+            return [], rule
         rows = np.flatnonzero(loaded)
         folds = []
         for tr, te in _stratified_group_folds(y[rows], groups[rows], n_splits, random_state):
@@ -234,14 +283,15 @@ def split_indices(meta: pd.DataFrame, split: str, *, n_splits: int = 5,
     elif split == "random":
         k = int(min(n_splits, pd.Series(y).value_counts().min()))
         if k < 2:
-            return []
+            return [], rule
         cv = StratifiedKFold(n_splits=k, shuffle=True, random_state=random_state)
-        return list(cv.split(np.zeros(len(y)), y))
+        return list(cv.split(np.zeros(len(y)), y)), rule
     else:
         raise ValueError(f"split must be one of {sorted(set(SPLITS) - {'sim2real'})}, "
                          f"got {split!r}")
     # A split of one value only (one speed, ...) is no split.
-    return [(tr, te) for tr, te in folds if len(tr) and len(te)] if len(folds) > 1 else []
+    folds = [(tr, te) for tr, te in folds if len(tr) and len(te)] if len(folds) > 1 else []
+    return folds, rule
 
 
 def _disjoint(groups: np.ndarray, train: np.ndarray, test: np.ndarray) -> bool:
@@ -452,6 +502,7 @@ def run_benchmark(
     seeds: int = 5,
     progress: bool = False,
     checkpoint=None,
+    drawn=None,
 ) -> BenchmarkResult:
     """Cross-validate the envelope diagnoser and the classifier pipelines.
 
@@ -497,6 +548,12 @@ def run_benchmark(
         finished split and model), so that an interrupted call resumes where it stopped
         when called again with the same data and settings; work of other data or
         settings found there is discarded. Default None: nothing kept.
+    drawn : collection of str, optional
+        The dataset's drawn (continuous) columns, e.g. ``radial_load_n``: the
+        ``speed``, ``load`` and ``fault_size`` splits leave out quantile bins of them
+        instead of each value (see :func:`split_indices`; default None: a column with
+        many distinct values counts as drawn). ``info["fold_rules"]`` says which rule
+        made each split's folds.
 
     Returns
     -------
@@ -532,8 +589,12 @@ def run_benchmark(
     ...                      "rpm": 1797.0, "bearing": "6205", "fs": 12_000.0})
     >>> result = run_benchmark(X, meta, splits=["run"], models=["envelope", "logistic"],
     ...                        n_splits=3)
-    >>> result.table["accuracy"].tolist()
-    [1.0, 1.0]
+    >>> result.table[["split", "model", "n_test", "accuracy"]]
+      split     model  n_test  accuracy
+    0   run  envelope       9       1.0
+    1   run  logistic       9       1.0
+    >>> result.confusion[("run", "envelope")].diagonal().tolist()   # healthy, outer, inner, ball
+    [3, 3, 3, 0]
     >>> sorted(result.predictions.columns)
     ['fold', 'group', 'model', 'row', 'split', 'y_pred', 'y_true']
     """
@@ -571,13 +632,13 @@ def run_benchmark(
         datasets["real"] = (Xr, meta_r)
 
     plan = []  # (split, folds, test set)
-    skipped = {}
+    skipped, fold_rules = {}, {"sim2real": SPLITS["sim2real"]}
     for split in splits:
         if split == "sim2real":
             plan.append((split, [(np.arange(len(X)), np.arange(len(datasets["real"][0])))],
                          "real"))
             continue
-        folds = split_indices(meta, split, n_splits=n_splits, random_state=random_state)
+        folds, fold_rules[split] = _split(meta, split, n_splits, random_state, drawn)
         if not folds:
             skipped[split] = "the dataset has a single value of this factor"
             continue
@@ -616,6 +677,21 @@ def run_benchmark(
                    + (f"; {n_done} fits resumed from {checkpoint}" if n_done else ""),
                    file=sys.stderr)
     interrupted, rows_of, predictions_of, spread = False, {}, {}, []
+    fitted = {}  # (pipeline, split, fold, seed) -> predictions
+
+    def fit_predict(model, split, k, train, test, test_set, seed):
+        """``_fit_predict`` once per pipeline: ``recommended`` is one of the others
+        when ``features`` is its feature set, and is then not fitted again."""
+        key = (_pipeline_of(model, features) if model != "envelope" else model, split, k,
+               seed)
+        if key not in fitted:
+            # one thread: a fit on a few hundred rows gains nothing from OpenMP's
+            # threads, which cost gradient boosting 60x its time on a busy machine
+            with threadpool_limits(1):
+                fitted[key] = _fit_predict(model, train, test, test_set, meta, rows_of,
+                                           diagnoser, features, seed)
+        return fitted[key]
+
     try:
         for name, key, compute in per_row:
             x, m = datasets[key]
@@ -633,11 +709,8 @@ def run_benchmark(
                     continue
                 parts = []
                 for k, (train, test) in enumerate(folds):
-                    # one thread: a fit on a few hundred rows gains nothing from OpenMP's
-                    # threads, which cost gradient boosting 60x its time on a busy machine
-                    with threadpool_limits(1):
-                        y_pred = _fit_predict(model, train, test, test_set, meta, rows_of,
-                                              diagnoser, features, random_state)
+                    y_pred = fit_predict(model, split, k, train, test, test_set,
+                                         random_state)
                     parts.append(pd.DataFrame({
                         "split": split, "model": model, "fold": k, "row": test,
                         "group": test_meta["group"].to_numpy()[test],
@@ -657,9 +730,7 @@ def run_benchmark(
                                **_scores(pred["y_true"], pred["y_pred"])})
                 for k in range(1, seeds) if model != "envelope" else ():
                     seed = None if random_state is None else random_state + k
-                    with threadpool_limits(1):
-                        y = _fit_predict(model, train, test, test_set, meta, rows_of,
-                                         diagnoser, features, seed)
+                    y = fit_predict(model, split, 0, train, test, test_set, seed)
                     spread.append({"split": split, "model": model, "seed": seed,
                                    **_scores(pred["y_true"], y)})
     except KeyboardInterrupt:  # keep what is finished: a partial report that says so
@@ -685,6 +756,7 @@ def run_benchmark(
     info = {
         "rows": len(X), "groups": int(meta["group"].nunique()), "bearing": bearing, "fs": fs,
         "few_groups": few,
+        "fold_rules": {split: fold_rules[split] for split, _f, _t in plan},
         "samples_per_row": int(X.shape[1]), "features": features, "n_splits": n_splits,
         "seeds": seeds if "sim2real" in splits else 1,
         "labels": meta["label"].value_counts().to_dict(),

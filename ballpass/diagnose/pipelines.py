@@ -38,6 +38,7 @@ from sklearn.svm import SVC
 
 from ..features import INDICATORS
 from ..features.transformers import FaultBandTransformer, IndicatorTransformer
+from . import _names
 from ._names import CLASSIFIERS, FEATURE_SETS
 from .invariant import EvidenceTransformer
 
@@ -74,7 +75,7 @@ def make_classifier(name: str, *, random_state=0):
     --------
     >>> from ballpass.diagnose import make_classifier
     >>> make_classifier("random_forest").get_params()["n_estimators"]
-    300
+    100
     >>> make_classifier("tree")                             # doctest: +ELLIPSIS
     Traceback (most recent call last):
         ...
@@ -83,7 +84,9 @@ def make_classifier(name: str, *, random_state=0):
     # Grids give one healthy run per operating point against one per fault size and
     # kind: the classes are weighted to count equally (kNN has no weights).
     if name == "random_forest":
-        return RandomForestClassifier(n_estimators=300, class_weight="balanced",
+        # trees are fitted on every core (threads: the trees' fitting releases the GIL)
+        return RandomForestClassifier(n_estimators=_names.FOREST_TREES,
+                                      class_weight="balanced", n_jobs=-1,
                                       random_state=random_state)
     if name == "gradient_boosting":
         return HistGradientBoostingClassifier(class_weight="balanced",
