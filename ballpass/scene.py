@@ -39,6 +39,10 @@ _MEMORY_CHECK_BYTES = 256 * 2**20
 #: 485-520, sec. 3); below 100 Hz a "resonance" sits among the shaft harmonics and the
 #: fault frequencies themselves, and carries no envelope.
 MIN_RESONANCE_HZ = 100.0
+#: most localized faults one scene may hold: the simulators test every element against
+#: every fault at every step, so the cost grows with their number (1000 faults cost
+#: about as much as the rest of a 12 kHz scene); damage spread over a race is waviness
+MAX_FAULTS = 1000
 
 
 def wrap_deg(angle: float) -> float:
@@ -540,6 +544,10 @@ class Scene:
         elif isinstance(faults, Fault):
             faults_t = (faults,)
         elif isinstance(faults, Sequence) and not isinstance(faults, str):
+            if len(faults) > MAX_FAULTS:
+                raise ValueError(
+                    f"fault holds {len(faults)} faults; at most {MAX_FAULTS} localized faults "
+                    f"per scene (for damage spread over a race use Scene(waviness=...))")
             faults_t = tuple(faults)
             for f in faults_t:
                 if not isinstance(f, Fault):

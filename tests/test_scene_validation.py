@@ -116,3 +116,16 @@ def test_demodulation_band_surrounds_the_resonance_inside_the_output_band():
     assert make().demodulation_band == (12_000.0, 18_000.0)
     # close to Nyquist the upper edge is clipped to 0.49 fs
     assert make(fs=12_000.0, resonance_hz=5000.0).demodulation_band == (4000.0, 5880.0)
+
+
+def test_a_fault_bomb_is_refused_before_any_work():
+    """More than MAX_FAULTS localized faults are refused when the scene is built, naming
+    the argument, the limit and the alternative (each fault costs the simulators a test
+    per element and step: 10^5 of them ran for minutes); the limit itself is accepted."""
+    from ballpass.scene import MAX_FAULTS
+
+    one = bp.Fault("outer", width_mm=0.1)
+    assert len(bp.Scene("6205", fault=(one,) * MAX_FAULTS).faults) == MAX_FAULTS
+    with pytest.raises(ValueError, match=rf"fault holds {MAX_FAULTS + 1} faults; at most "
+                                         rf"{MAX_FAULTS} .*waviness"):
+        bp.Scene("6205", fault=(one,) * (MAX_FAULTS + 1))
