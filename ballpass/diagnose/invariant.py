@@ -48,6 +48,7 @@ import numpy as np
 from sklearn.base import BaseEstimator, TransformerMixin
 from sklearn.utils.validation import check_is_fitted, validate_data
 
+from .._params import keep_params
 from ..features import envelope_spectrum
 from ..features._validation import check_fs, check_positive_int, check_rpm
 from .evidence import FAULT_FAMILIES, envelope_evidence, family_lines
@@ -124,12 +125,7 @@ class EvidenceTransformer(TransformerMixin, BaseEstimator):
 
     def __init__(self, bearing="6205", fs=12_000.0, rpm=1797.0, *, harmonics=3,
                  max_order=12.0, order_step=0.25):
-        self.bearing = bearing
-        self.fs = fs
-        self.rpm = rpm
-        self.harmonics = harmonics
-        self.max_order = max_order
-        self.order_step = order_step
+        keep_params(self, locals())
 
     def _check_params(self) -> None:
         check_fs(self.fs)
