@@ -764,7 +764,41 @@ def _bracket(p, walk, faults, i, j, level, a_side, lo, hi, f_lo, f_hi):
 
 
 @njit(cache=True, error_model="numpy")
-def find_crossings(p, walk, faults, t_scan, levels_per_fault, before, after, index):
+def _secant(p, walk, faults, i, j, level, lo, hi, f_lo, f_hi):
+    """The time (s) path j of fault i crosses ``level`` in [lo, hi], to 1e-13 s:
+    false-position steps with the Illinois halving (Dahlquist & Bjorck). Between slip
+    knots at constant speed the offset is linear in time, and one step lands on the
+    crossing to rounding; a knot or a speed ramp inside [lo, hi] takes a few more."""
+    m = lo
+    side = 0  # which end the last step replaced: -1 lo, +1 hi
+    for _ in range(60):
+        m = hi - f_hi * (hi - lo) / (f_hi - f_lo)
+        if not (lo <= m <= hi):
+            m = 0.5 * (lo + hi)
+        f_m = fault_offset(m, p, walk, faults, i, j) - level
+        slope = (f_hi - f_lo) / (hi - lo)
+        if abs(f_m) <= SECANT_TOL_S * abs(slope) or hi - lo <= SECANT_TOL_S:
+            break
+        if (f_m >= 0.0) == (f_lo >= 0.0):
+            lo, f_lo = m, f_m
+            if side == -1:  # the same end twice: halve the other's weight
+                f_hi *= 0.5
+            side = -1
+        else:
+            hi, f_hi = m, f_m
+            if side == 1:
+                f_lo *= 0.5
+            side = 1
+    return m
+
+
+#: time accuracy of :func:`_secant`, s
+SECANT_TOL_S = 1e-13
+
+
+@njit(cache=True, error_model="numpy")
+def find_crossings(p, walk, faults, t_scan, levels_per_fault, before, after, index,
+                   exact=True):
     """Times at which an element crosses a fault edge (or a ramp end), unsorted.
 
     Parameters
@@ -780,10 +814,16 @@ def find_crossings(p, walk, faults, t_scan, levels_per_fault, before, after, ind
         +half (duplicates allowed for sharp edges; NaN to skip).
     before, after : ndarray (capacity,)
         Written with bracketing times (s): ``before < crossing <= after``, adjacent
-        floating-point numbers (see :func:`_bracket`).
+        floating-point numbers (see :func:`_bracket`); with ``exact=False`` both hold
+        the crossing to :data:`SECANT_TOL_S` (:func:`_secant`, a few offsets per
+        crossing instead of the twenty or so of the bracket to adjacent numbers).
     index : ndarray of int64 (capacity, 3)
         Written with the fault, the element (the face for a ball defect) and the
         level of each crossing.
+    exact : bool, optional
+        True (default): brackets to adjacent floating-point numbers, where the
+        integrators split their steps; False: the crossing times to 1e-13 s, enough to
+        place an impact (the impulse model).
 
     Returns
     -------
@@ -816,9 +856,14 @@ def find_crossings(p, walk, faults, t_scan, levels_per_fault, before, after, ind
                             continue
                         if n == before.shape[0]:
                             return -1
-                        before[n], after[n] = _bracket(
-                            p, walk, faults, i, j, level, a_side, t_scan[k - 1], t_scan[k],
-                            o_prev - level, o_next - level)
+                        if exact:
+                            before[n], after[n] = _bracket(
+                                p, walk, faults, i, j, level, a_side, t_scan[k - 1],
+                                t_scan[k], o_prev - level, o_next - level)
+                        else:
+                            before[n] = after[n] = _secant(
+                                p, walk, faults, i, j, level, t_scan[k - 1], t_scan[k],
+                                o_prev - level, o_next - level)
                         index[n, 0] = i
                         index[n, 1] = j
                         index[n, 2] = lv
