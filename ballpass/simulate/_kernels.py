@@ -141,6 +141,34 @@ def kinematics_scratch(z):
     return np.zeros((N_KIN, max(z, KC_INSIDE + 1)))
 
 
+@njit(cache=True, error_model="numpy", inline="always")
+def cached_cos_sin(angle, cache):
+    """cos and sin of ``angle`` (rad), from those of the previous call.
+
+    ``cache`` holds that call's angle, cosine and sine and the number of calls left
+    before an exact refresh (0: nothing cached yet); they are rotated through the small
+    angle between the calls (Taylor series to 8th order: exact to 1e-21 below 0.01 rad),
+    with trigonometric calls only for a larger jump or every ``CACHE_REFRESH`` calls.
+    ``cache`` is updated.
+    """
+    d = angle - cache[0]
+    if cache[3] > 0.0 and abs(d) < 0.01:
+        d2 = d * d
+        cd = 1.0 - d2 * (0.5 - d2 * (1.0 / 24.0 - d2 / 720.0))
+        sd = d * (1.0 - d2 * (1.0 / 6.0 - d2 * (1.0 / 120.0 - d2 / 5040.0)))
+        c = cache[1] * cd - cache[2] * sd
+        sn = cache[2] * cd + cache[1] * sd
+        cache[3] -= 1.0
+    else:
+        c = math.cos(angle)
+        sn = math.sin(angle)
+        cache[3] = CACHE_REFRESH
+    cache[0] = angle
+    cache[1] = c
+    cache[2] = sn
+    return c, sn
+
+
 @njit(cache=True, error_model="numpy")
 def element_angles(t, p, walk, kin):
     """Angular positions of the rolling elements at time t (rad) into ``kin[K_PSI]``.
@@ -155,21 +183,7 @@ def element_angles(t, p, walk, kin):
     """
     step = TWO_PI / p[P_Z]
     cage, rate = cage_angle(t, p, walk)
-    d = cage - kin[K_CACHE, 0]
-    if kin[K_CACHE, 3] > 0.0 and abs(d) < 0.01:
-        d2 = d * d
-        cd = 1.0 - d2 * (0.5 - d2 * (1.0 / 24.0 - d2 / 720.0))
-        sd = d * (1.0 - d2 * (1.0 / 6.0 - d2 * (1.0 / 120.0 - d2 / 5040.0)))
-        c = kin[K_CACHE, 1] * cd - kin[K_CACHE, 2] * sd
-        sn = kin[K_CACHE, 2] * cd + kin[K_CACHE, 1] * sd
-        kin[K_CACHE, 3] -= 1.0
-    else:
-        c = math.cos(cage)
-        sn = math.sin(cage)
-        kin[K_CACHE, 3] = CACHE_REFRESH
-    kin[K_CACHE, 0] = cage
-    kin[K_CACHE, 1] = c
-    kin[K_CACHE, 2] = sn
+    c, sn = cached_cos_sin(cage, kin[K_CACHE])
     kin[K_CACHE, KC_RATE] = rate
     cs = p[P_COS_STEP]
     ss = p[P_SIN_STEP]

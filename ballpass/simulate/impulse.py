@@ -18,9 +18,9 @@ same seed: the cage angle with its random walk (:func:`.sr5._slip_walk`,
 ``res.truth.fault_crossings`` of an impulse run are those of an sr5 run of the same
 scene (sr5 also lists the ends of its edge ramps), their times within 1e-13 s: sr5
 brackets each to adjacent floating-point numbers to split its steps there, an impact
-only needs its time; the impacts are the ``exit`` crossings. Impacts are placed in the angle domain (cage and
-shaft angles) and mapped to time through the speed profile, so a run-up keeps them at
-their kinematic orders; the resonance rings in time, at a fixed frequency.
+only needs its time; the impacts are the ``exit`` crossings. Impacts are placed in
+the angle domain (cage and shaft angles) and mapped to time through the speed profile,
+so a run-up keeps them at their kinematic orders; the resonance rings in time, at a fixed frequency.
 
 *Force released by an element crossing a defect.* An element at angle psi carries the
 quasi-static Stribeck load of :meth:`ballpass.Bearing.load_distribution` (shaft

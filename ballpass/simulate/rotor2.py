@@ -297,10 +297,13 @@ def _kinematics(t, p):
     """Offset k0 in ``p`` of the kinematics at time t, recomputed unless they are the
     last call's: p[k0] = t, p[k0 + 1], p[k0 + 2] the cos and sin of the unbalance
     angle, then per roller j the cos and sin of phi_j and the defect depth under it (m)
-    at p[k0 + 3 + 3 j ...]. A Runge-Kutta step evaluates the force twice at each of
-    two times (its midpoint, its end), with the same kinematics. The roller angles
-    phi_j = phi_0 + 2 pi j / Z + c theta are stepped by a rotation of 2 pi / Z (two
-    sines and cosines per time instead of two per roller)."""
+    at p[k0 + 3 + 3 j ...], then the rotation caches of phi_0 and of the unbalance
+    angle (:func:`._kernels.cached_cos_sin`, 4 slots each). A Runge-Kutta step
+    evaluates the force twice at each of two times (its midpoint, its end), with the
+    same kinematics. The roller angles phi_j = phi_0 + 2 pi j / Z + c theta are stepped
+    by a rotation of 2 pi / Z, and phi_0 and the unbalance angle by a rotation from the
+    previous time: no sine or cosine at most times (they cost a quarter of a step
+    otherwise)."""
     n_faults = int(p[P_NF])
     k0 = P_FAULTS + n_faults * _K.N_FCOLS
     if p[k0] == t:
@@ -308,7 +311,8 @@ def _kinematics(t, p):
     z = int(p[_K.P_Z])
     theta = _K.shaft_angle(t, p)
     phi = p[P_PHI0] + p[_K.P_CAGE] * theta
-    cs, sn = math.cos(phi), math.sin(phi)
+    kc = k0 + 3 + 3 * z  # the rotation caches
+    cs, sn = _K.cached_cos_sin(phi, p[kc:kc + 4])
     pitch = _K.TWO_PI / z
     cz, sz = p[_K.P_COS_STEP], p[_K.P_SIN_STEP]
     for j in range(z):
@@ -318,9 +322,7 @@ def _kinematics(t, p):
         p[r + 2] = _defect_depth(j, phi, theta, n_faults, p) if n_faults > 0 else 0.0
         cs, sn = cs * cz - sn * sz, sn * cz + cs * sz
         phi += pitch
-    theta += p[P_UPH]
-    p[k0 + 1] = math.cos(theta)
-    p[k0 + 2] = math.sin(theta)
+    p[k0 + 1], p[k0 + 2] = _K.cached_cos_sin(theta + p[P_UPH], p[kc + 4:kc + 8])
     p[k0] = t
     return k0
 
@@ -490,8 +492,8 @@ def _bind(scene: Scene, params: Rotor2Parameters) -> _Bound:
     psi0 = math.radians(params.cage_angle_deg) + 2.0 * math.pi * np.arange(z) / z
     faults, levels = _fault_table(scene, psi0)
     # parameters, the fault table, then the kinematics cache of _kinematics (its time
-    # NaN: none cached yet)
-    p = np.zeros(P_FAULTS + faults.size + 3 + 3 * b.n_elements)
+    # NaN: none cached yet) and its two rotation caches (zero: empty)
+    p = np.zeros(P_FAULTS + faults.size + 3 + 3 * b.n_elements + 8)
     p[_K.P_MS] = params.rotor_mass_kg
     p[_K.P_KH] = kh
     p[_K.P_NH] = b.load_exponent
