@@ -82,11 +82,11 @@ import numpy as np
 from numba import njit
 
 from .._validation import check_number
-from ..bearing import Bearing, LoadDistribution
+from ..bearing import LoadDistribution
 from ..scene import STANDARD_GRAVITY, Scene
 from . import _kernels as K
 from ._registry import Model
-from ._shared import OVERSAMPLE, add_noise, check_finite
+from ._shared import OVERSAMPLE, add_noise, check_finite, stiffness_and_load_zone
 from ._sr5_driver import _edge_names, _events
 from .result import FaultCrossings, GroundTruth, SimulationResult
 from .sr5 import SR5Parameters, _check_elastic, build_model
@@ -135,16 +135,6 @@ class ImpulseParameters:
 
 #: the default parameters, validated once
 _DEFAULTS = ImpulseParameters()
-
-
-@functools.lru_cache(maxsize=256)
-def _stiffness_and_load_zone(bearing: Bearing, load_n: float,
-                             stiffness: float | None) -> tuple[float, LoadDistribution]:
-    """K (``stiffness``, or the bearing's two Hertz contacts in series) and the Stribeck
-    equilibrium under ``load_n``: computed once per bearing, load and stiffness in a
-    process, as a dataset holds a few of each and many runs (read-only results)."""
-    kh = stiffness or bearing.hertz_stiffness()
-    return kh, bearing.load_distribution(load_n, stiffness=kh)
 
 
 @functools.lru_cache(maxsize=64)
@@ -200,7 +190,7 @@ def _load_zone(scene: Scene, params: ImpulseParameters) -> tuple[float, LoadDist
     contact deflection above 1 % of the element diameter)."""
     load = scene.radial_load_n + (params.shaft_mass * STANDARD_GRAVITY if scene.gravity else 0.0)
     b = scene.bearing
-    kh, ld = _stiffness_and_load_zone(b, load, params.contact_stiffness)
+    kh, ld = stiffness_and_load_zone(b, load, params.contact_stiffness)
     _check_elastic(scene, (ld.deflection_m - b.radial_clearance_m) * math.cos(b.contact_angle_rad),
                    load)
     return kh, ld

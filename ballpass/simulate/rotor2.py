@@ -113,6 +113,7 @@ from ._shared import (
     add_noise,
     check_finite,
     check_solver_args,
+    stiffness_and_load_zone,
     to_output_rate,
 )
 from .result import FaultCrossings, GroundTruth, SimulationResult
@@ -458,12 +459,18 @@ def contact_omega(scene: Scene, params: Rotor2Parameters | None = None) -> float
     b = scene.bearing
     ld = b.load_distribution(max(_static_load(scene, params), 1.0),
                              cage_angle_deg=params.cage_angle_deg)
+    return _omega_of(ld, params.rotor_mass_kg)
+
+
+def _omega_of(ld, mass: float) -> float:
+    """:func:`contact_omega` of the static equilibrium ``ld``
+    (:meth:`ballpass.Bearing.load_distribution`) of a rotor of ``mass`` kg, rad/s."""
     psi = np.radians(ld.element_angles_deg)
     radial = ld.deflection_m * np.cos(psi) + ld.lateral_deflection_m * np.sin(psi)
     delta = np.maximum(radial - ld.clearance_m, 0.0)
     n = ld.load_exponent
     dq = np.where(delta > 0.0, n * ld.stiffness * delta ** (n - 1.0), 0.0)
-    return float(math.sqrt(np.sum(dq * np.cos(psi) ** 2) / params.rotor_mass_kg))
+    return float(math.sqrt(np.sum(dq * np.cos(psi) ** 2) / mass))
 
 
 def _bind(scene: Scene, params: Rotor2Parameters) -> _Bound:
@@ -475,9 +482,8 @@ def _bind(scene: Scene, params: Rotor2Parameters) -> _Bound:
     if b.element != "roller" and params.misalignment_rad != 0.0:
         raise ValueError(f"misalignment_rad={params.misalignment_rad:g} needs the laminae of "
                          f"a roller; bearing {b.name!r} has balls (use misalignment_rad=0)")
-    kh = b.hertz_stiffness()
     load = _static_load(scene, params)
-    ld = b.load_distribution(load, stiffness=kh, cage_angle_deg=params.cage_angle_deg)
+    kh, ld = stiffness_and_load_zone(b, load, None, params.cage_angle_deg)
     deflection = ld.deflection_m - b.radial_clearance_m
     limit = elastic_limit_m(b)
     if ld.q_max_n > 0 and (ld.q_max_n / kh) ** (1.0 / b.load_exponent) > limit:
@@ -490,7 +496,7 @@ def _bind(scene: Scene, params: Rotor2Parameters) -> _Bound:
     cage_ratio = orders.ftf
     z = b.n_elements
     psi0 = math.radians(params.cage_angle_deg) + 2.0 * math.pi * np.arange(z) / z
-    faults, levels = _fault_table(scene, psi0)
+    faults, levels = _fault_table(scene, psi0, kh)
     # parameters, the fault table, then the kinematics cache of _kinematics (its time
     # NaN: none cached yet) and its two rotation caches (zero: empty)
     p = np.zeros(P_FAULTS + faults.size + 3 + 3 * b.n_elements + 8)
@@ -531,7 +537,11 @@ def _bind(scene: Scene, params: Rotor2Parameters) -> _Bound:
     # duration of each fault's ramps (0: sharp edges)
     t_ramp = np.array([2.0 * row[_K.F_HALF] * row[_K.F_RAMP] / rate[int(row[_K.F_KIND])]
                        for row in faults])
-    return _Bound(p=p, x0=x0, x_scale=np.full(2, scale), omega=contact_omega(scene, params),
+    # the linearised contact frequency from the same equilibrium (contact_omega takes at
+    # least 1 N, so that an unloaded rotor still has a stiffness)
+    omega = _omega_of(ld if load >= 1.0 else stiffness_and_load_zone(
+        b, 1.0, kh, params.cage_angle_deg)[1], params.rotor_mass_kg)
+    return _Bound(p=p, x0=x0, x_scale=np.full(2, scale), omega=omega,
                   mass=params.rotor_mass_kg, t_impact=t_impact, t_ramp=t_ramp, levels=levels)
 
 
@@ -563,23 +573,24 @@ def _crossings(scene: Scene, p: np.ndarray, levels: np.ndarray, t_end: float) ->
         else:
             offset0 = p[P_PHI0] + 2.0 * np.pi * np.arange(z) / z - centre
             rate = cage - 1.0 if fault.kind == "inner" else cage
-        for path, o0 in enumerate(offset0):
-            for k in range(4):
-                if not np.isfinite(lv[k]):
-                    continue  # no ramp: no ramp ends
-                # turns m with theta in [0, theta_end], one spare at each end
-                first = (o0 - lv[k]) / (2.0 * np.pi)
-                last = first + rate * theta_end / (2.0 * np.pi)
-                m = np.arange(np.floor(min(first, last)) - 1, np.ceil(max(first, last)) + 2)
-                theta = (lv[k] - o0 + 2.0 * np.pi * m) / rate
-                theta = theta[(theta >= 0.0) & (theta <= theta_end)]
-                t = (theta / w0 if accel == 0.0
-                     else 2.0 * theta / (w0 + np.sqrt(w0 * w0 + 4.0 * accel * theta)))
-                times.append(t)
-                faults.append(np.full(t.size, i))
-                paths.append(np.full(t.size, path))
-                # an inner-race offset falls: it meets its levels from the top down
-                edges.append(np.full(t.size, names[k] if rate > 0 else names[3 - k]))
+        for k in range(4):
+            if not np.isfinite(lv[k]):
+                continue  # no ramp: no ramp ends
+            # turns m with theta in [0, theta_end] on every path, one spare at each end
+            first = (offset0 - lv[k]) / (2.0 * np.pi)
+            last = first + rate * theta_end / (2.0 * np.pi)
+            m = np.arange(np.floor(min(first.min(), last.min())) - 1,
+                          np.ceil(max(first.max(), last.max())) + 2)
+            theta = (lv[k] - offset0[:, None] + 2.0 * np.pi * m) / rate  # (path, turn)
+            path, turn = np.nonzero((theta >= 0.0) & (theta <= theta_end))
+            theta = theta[path, turn]
+            t = (theta / w0 if accel == 0.0
+                 else 2.0 * theta / (w0 + np.sqrt(w0 * w0 + 4.0 * accel * theta)))
+            times.append(t)
+            faults.append(np.full(t.size, i))
+            paths.append(path)
+            # an inner-race offset falls: it meets its levels from the top down
+            edges.append(np.full(t.size, names[k] if rate > 0 else names[3 - k]))
     t = np.concatenate(times)
     order = np.argsort(t, kind="stable")
     return FaultCrossings(time_s=t[order], fault=np.concatenate(faults)[order],
