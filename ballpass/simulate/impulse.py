@@ -446,11 +446,13 @@ IMPULSE = Model(
                 "slip, Stribeck load-zone and transmission modulation, ringing the "
                 "scene's resonance; no contact dynamics",
     represents=frozenset({"envelope", "varying_speed"}),
-    # measured by benchmarks/models_cost.py (docs/models_cost.md), 5 interleaved rounds of
-    # 3 back-to-back calls on a busy shared machine: 0.050 of sr5's CPU time per simulated
-    # second at 48 kHz (0.041 at 12 kHz); wall-time ratio 0.021 (IQR 0.020-0.038), which
-    # the busy machine flatters (sr5's longer calls wait more for a core)
-    relative_cost=0.05,
+    # measured by benchmarks/models_cost.py (docs/models_cost.md), 15 interleaved rounds
+    # of 3 back-to-back calls on a busy shared machine: wall-time ratio 0.024 (IQR
+    # 0.022-0.031), which the busy machine flatters (sr5's longer calls wait more for a
+    # core), CPU-time ratio 0.048 at 48 kHz; 0.035-0.039 of sr5's thread time side by side
+    # on a quieter machine (0.045 before the impacts went to numba): about 0.3 ms per call
+    # of fixed cost (binding the kinematics, the crossings, four result arrays)
+    relative_cost=0.04,
     solvers=("analytic",),
     fixed_step_solvers=(),
     reference="P. D. McFadden, J. D. Smith, J. Sound Vib. 96 (1984) 69-82; D. Ho, R. B. "

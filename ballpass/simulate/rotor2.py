@@ -88,8 +88,10 @@ defect (docs/rotor2_step.md).
 Cost: every RK4 step evaluates the force twice at its midpoint and twice at its end;
 the kinematics of those times (roller angles, the defect depth under each roller, the
 unbalance angle) are computed once per time and cached in ``p``
-(:func:`_kinematics`), and the explicit integrators skip the force's tangents, which
-only Newmark's Newton iterations read.
+(:func:`_kinematics`), their sines and cosines by a small rotation from the previous
+time, and the explicit integrators skip the force's tangents, which only Newmark's
+Newton iterations read. The steps are most of a call; the outputs at the internal grid
+and the anti-alias decimation about a fifth at 48 kHz (docs/rotor2_step.md).
 """
 
 from __future__ import annotations
@@ -756,10 +758,11 @@ ROTOR2 = Model(
     represents=frozenset({"rotor_dynamics", "contact_dynamics", "contact_forces",
                           "varying_speed"}),
     # wall time per simulated second against sr5, side by side, on the 6205 reference
-    # scene at 48 kHz with the rk4 default: 1.13 (CPU time 1.12; 5 interleaved rounds,
-    # benchmarks/models_cost.py, docs/models_cost.md) and 0.98 (11 rounds, range
-    # 0.82-1.16, benchmarks/rotor2_step.py); 0.71 at 12 kHz; 25x with the old Newmark step
-    relative_cost=1.1,
+    # scene at 48 kHz with the rk4 default: 0.99 (IQR 0.98-1.01, CPU time 0.97; 15
+    # interleaved rounds, benchmarks/models_cost.py, docs/models_cost.md; 1.17 before the
+    # cached rotations and the per-step output coefficients); 0.60 at 12 kHz; 25x with the
+    # old Newmark step. 1.0, not below: on a tie the registry keeps sr5 first
+    relative_cost=1.0,
     solvers=tuple(SOLVERS),
     fixed_step_solvers=("rk4", "newmark"),
     reference="Dynamic behaviour of rotor roller bearing system with bearing defects "
