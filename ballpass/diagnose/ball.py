@@ -48,9 +48,11 @@ from ..features.shaft import shaft_line_bins
 
 __all__ = [
     "CAGE_SIDEBAND_MARGIN_DB",
+    "cage_note",
     "cage_shortfall_db",
     "cyclic_family_evidence",
     "load_zone_sideband_db",
+    "unmodulated_comb_db",
 ]
 
 #: The +-FTF sidebands of a ball fault's 2xBSF comb stand at most this far below its
@@ -145,6 +147,37 @@ def cage_shortfall_db(level_db, side, on_shaft):
     count = compared.sum(axis=-1)
     total = np.where(compared, excess, 0.0).sum(axis=-1)
     return np.where(count > 0, total / np.maximum(count, 1), 0.0)
+
+
+def unmodulated_comb_db(ev, i: int) -> float:
+    """The ball's evidence in row ``i`` of
+    :class:`~ballpass.diagnose.evidence.EnvelopeEvidence` ``ev`` before the cage rule
+    marked it down, dB: the evidence plus :func:`cage_shortfall_db` of the lines read
+    (in the band and at the scale the ball kept); ``-inf`` where nothing was marked
+    down (a cage-modulated comb, or none)."""
+    from .evidence import family_lines
+
+    evidence = float(ev.evidence_db["ball"][i])
+    if not np.isfinite(evidence):
+        return -np.inf
+    side = np.array([s for _, _, s in family_lines("ball", len(ev.line_names["ball"]) // 3)])
+    short = float(cage_shortfall_db(ev.levels_db["ball"][i], side, ev.on_shaft["ball"][i]))
+    return evidence + short if short > 0 else -np.inf
+
+
+def cage_note(ev, i: int, threshold_db: float) -> list[str]:
+    """:meth:`~ballpass.diagnose.EnvelopeDiagnoser.explain`'s note on row ``i`` where
+    the cage rule decided: the 2xBSF comb would have cleared ``threshold_db`` (dB,
+    :func:`unmodulated_comb_db`) but its carriers stand too far above their +-FTF
+    sidebands. Empty otherwise."""
+    raw = unmodulated_comb_db(ev, i)
+    if raw < threshold_db:
+        return []
+    evidence = float(ev.evidence_db["ball"][i])
+    return [f"ball: the 2xBSF carriers stand {raw - evidence:.1f} dB further above their "
+            f"+-FTF sidebands than a load zone explains ({CAGE_SIDEBAND_MARGIN_DB:g} dB): no "
+            f"cage modulation, so no ball comb; its evidence lowered from {raw:.1f} to "
+            f"{evidence:.1f} dB. What stands at 2xBSF is not told from a race or shaft line"]
 
 
 def cyclic_family_evidence(x, fs: float, bearing, rpm: float, band, *, fault: str = "ball",

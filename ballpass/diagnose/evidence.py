@@ -540,10 +540,11 @@ def family_scores(readings: LineReadings, resolved) -> tuple[np.ndarray, np.ndar
         sidebands = np.nanmean(np.fmax(level[..., side == -1], level[..., side == +1]),
                                axis=-1)
     sidebands = np.where(np.isnan(sidebands), 0.0, sidebands)
-    if support > 0:
-        score = 0.5 * (carriers + sidebands)
     if readings.fault == "ball":
-        score = score - cage_shortfall_db(level, side, readings.on_shaft)
+        score = 0.5 * (carriers + sidebands) - cage_shortfall_db(level, side,
+                                                                 readings.on_shaft)
+    elif support > 0:
+        score = 0.5 * (carriers + sidebands)
     else:
         shortfall = np.maximum(0.0, sidebands - carriers + OUTER_SIDEBAND_MARGIN_DB)
         score = carriers - np.where(resolved[:, None], shortfall, 0.0)
