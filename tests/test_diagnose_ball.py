@@ -148,3 +148,16 @@ def test_cyclic_family_evidence_reads_the_cage_modulated_ball():
     ball = cyclic_family_evidence(x, FS, "6205", RPM, (2000.0, 4000.0))
     inner = cyclic_family_evidence(x, FS, "6205", RPM, (2000.0, 4000.0), fault="inner")
     assert ball > 12.0 and ball - inner > 6.0
+
+
+def test_a_ball_named_despite_a_partly_unmodulated_harmonic_keeps_its_grade():
+    # The sr5 ball fault (6205, 12 kHz, 1200 rpm, 10 dB, seed 0): one harmonic's carrier
+    # stands more than 6 dB above its sidebands, the ball still clears its threshold and
+    # is named. The unmodulated-comb N rule is about a comb rivalling *another* verdict;
+    # planted (the rule applied to the ball's own verdict): graded N, it fails here.
+    scene = bp.Scene(bearing="6205", rpm=1200.0, radial_load_n=500.0,
+                     fault=bp.Fault("ball", width_mm=0.53, depth_mm=0.28), duration_s=2.0,
+                     fs=FS, snr_db=10.0, seed=0, resonance_hz=3000.0)
+    x = np.atleast_2d(bp.simulate(scene).accel)[0]
+    why = EnvelopeDiagnoser(bearing="6205", fs=FS, rpm=1200.0).explain(x[None])[0]
+    assert why.label == "ball" and why.grade != "N"

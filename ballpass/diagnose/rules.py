@@ -631,7 +631,7 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
                 clear = (margins[0] >= GRADE_MARGIN_DB
                          and margins[0] - margins[1] >= GRADE_MARGIN_DB)
                 grade = "Y" if clear else "P"
-            if comb >= thresholds["ball"] and (
+            if label != "ball" and comb >= thresholds["ball"] and (
                     label == "healthy" or comb >= evidence[label] - GRADE_MARGIN_DB):
                 grade = "N"     # an unmodulated 2xBSF comb rivals the verdict's lines
             frames = [
