@@ -52,13 +52,18 @@ def test_load_zone_sidebands_match_the_closed_form():
 def test_cage_shortfall_compares_each_carrier_with_its_own_sidebands():
     side = np.array([0, -1, 1, 0, -1, 1])
     levels = np.array([[20.0, 15.0, np.nan, 20.0, 2.0, 1.0],     # 0 and 20 - 2 - 6 = 12
-                       [20.0, np.nan, np.nan, 0.0, 0.0, 0.0],    # none read: 20 - 0 - 6
+                       [20.0, np.nan, np.nan, 20.0, 0.0, 0.0],   # no sideband read: 14
                        [np.nan, 1.0, 1.0, 20.0, 1.0, 1.0]])      # carrier 1 left out
     on_shaft = np.zeros(levels.shape, bool)
-    np.testing.assert_allclose(cage_shortfall_db(levels, side, on_shaft), [6.0, 7.0, 13.0])
-    # A carrier on a shaft harmonic (read as background) is not compared.
+    np.testing.assert_allclose(cage_shortfall_db(levels, side, on_shaft), [6.0, 14.0, 13.0])
+    # A carrier on a shaft harmonic (read as background) is not compared,
     on_shaft[0, 3] = True
     assert cage_shortfall_db(levels, side, on_shaft)[0] == 0.0
+    # ... nor one whose sidebands are both unreadable (left out, or on a shaft
+    # harmonic: the sr5 6205's 2x2xBSF-FTF at 1200 and 1797 rpm). Planted: a sideband
+    # on a shaft harmonic read as its 0 dB marked those simulated faults down 2 dB.
+    on_shaft[1, 4] = on_shaft[1, 5] = True
+    assert cage_shortfall_db(levels, side, on_shaft)[1] == 0.0
 
 
 @pytest.mark.parametrize("seed", [0, 1])

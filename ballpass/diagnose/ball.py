@@ -99,12 +99,13 @@ def load_zone_sideband_db(epsilon: float, order: int = 1) -> float:
 def cage_shortfall_db(level_db, side, on_shaft):
     """How far a ball comb's carriers stand above their cage sidebands beyond what any
     load zone explains, dB: the mean over harmonics of ``max(0, C_h - S_h - 6 dB)``,
-    ``C_h`` the carrier's level, ``S_h`` its stronger +-FTF sideband's (0 dB where both
-    are left out) and 6 dB :data:`CAGE_SIDEBAND_MARGIN_DB`.
+    ``C_h`` the carrier's level, ``S_h`` its stronger readable +-FTF sideband's and 6 dB
+    :data:`CAGE_SIDEBAND_MARGIN_DB`.
 
     Each carrier is compared with its own sidebands: the load zone modulates every
-    harmonic alike. A carrier left out (NaN: shared with another family) or on a shaft
-    harmonic (read as background) is not compared. The ball's score is ``(C + S) / 2``
+    harmonic alike. A line left out (NaN: shared with another family) or on a shaft
+    harmonic (read as background) cannot be read; a harmonic is compared where its
+    carrier and at least one of its sidebands can. The ball's score is ``(C + S) / 2``
     less this shortfall (:func:`ballpass.diagnose.evidence.family_scores`): a
     cage-modulated comb keeps its score, and a comb at 2xBSF without sidebands (a race
     or shaft line landing there) loses what its carriers stand above them.
@@ -136,14 +137,14 @@ def cage_shortfall_db(level_db, side, on_shaft):
     >>> cage_shortfall_db(levels, side, np.zeros(levels.shape, bool)).tolist()
     [0.0, 12.0]
     """
-    level = np.asarray(level_db, dtype=float)
     side = np.asarray(side)
-    carrier = level[..., side == 0]
-    lower, upper = level[..., side == -1], level[..., side == +1]
+    readable = np.where(np.asarray(on_shaft, dtype=bool), np.nan,
+                        np.asarray(level_db, dtype=float))
+    carrier = readable[..., side == 0]
     with np.errstate(all="ignore"):
-        sideband = np.where(np.isnan(lower) & np.isnan(upper), 0.0, np.fmax(lower, upper))
+        sideband = np.fmax(readable[..., side == -1], readable[..., side == +1])
         excess = np.maximum(0.0, carrier - sideband - CAGE_SIDEBAND_MARGIN_DB)
-    compared = np.isfinite(carrier) & ~np.asarray(on_shaft, dtype=bool)[..., side == 0]
+    compared = np.isfinite(carrier) & np.isfinite(sideband)
     count = compared.sum(axis=-1)
     total = np.where(compared, excess, 0.0).sum(axis=-1)
     return np.where(count > 0, total / np.maximum(count, 1), 0.0)
