@@ -166,13 +166,13 @@ def unmodulated_comb_db(ev, i: int) -> float:
     return evidence + short if short > 0 else -np.inf
 
 
-def cage_note(ev, i: int, threshold_db: float) -> list[str]:
+def cage_note(ev, i: int) -> list[str]:
     """:meth:`~ballpass.diagnose.EnvelopeDiagnoser.explain`'s note on row ``i`` where
-    the cage rule decided: the 2xBSF comb would have cleared ``threshold_db`` (dB,
-    :func:`unmodulated_comb_db`) but its carriers stand too far above their +-FTF
-    sidebands. Empty otherwise."""
+    the cage rule decided (the 2xBSF comb would have rivalled the verdict,
+    :func:`unmodulated_comb_db`, but its carriers stand too far above their +-FTF
+    sidebands). Empty where nothing was marked down."""
     raw = unmodulated_comb_db(ev, i)
-    if raw < threshold_db:
+    if not np.isfinite(raw):
         return []
     evidence = float(ev.evidence_db["ball"][i])
     return [f"ball: the 2xBSF carriers stand {raw - evidence:.1f} dB further above their "

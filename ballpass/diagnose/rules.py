@@ -611,8 +611,12 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
                                  "of another family's lines")
                 if f != label and not silent:
                     notes.extend(_shaft_note(ev, f, i, layout[f]))
+            # An unmodulated 2xBSF comb that rivals the verdict (not the ball's own).
             comb = unmodulated_comb_db(ev, i)
-            notes.extend(cage_note(ev, i, thresholds["ball"]))
+            rival = label != "ball" and comb >= thresholds["ball"] and (
+                label == "healthy" or comb >= evidence[label] - GRADE_MARGIN_DB)
+            if rival:
+                notes.extend(cage_note(ev, i))
             if silent:
                 grade = "Y"
             elif not any(np.isfinite(v) for v in evidence.values()):
@@ -631,9 +635,8 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
                 clear = (margins[0] >= GRADE_MARGIN_DB
                          and margins[0] - margins[1] >= GRADE_MARGIN_DB)
                 grade = "Y" if clear else "P"
-            if label != "ball" and comb >= thresholds["ball"] and (
-                    label == "healthy" or comb >= evidence[label] - GRADE_MARGIN_DB):
-                grade = "N"     # an unmodulated 2xBSF comb rivals the verdict's lines
+            if rival:
+                grade = "N"
             frames = [
                 pd.DataFrame({
                     "fault": fault,
