@@ -410,6 +410,11 @@ def markdown(table: pd.DataFrame, seconds: float, sweep: pd.DataFrame | None = N
         "resolve what one-second segments cannot.",
         "- **Outer-race sidebands do not refute the outer race** unless they come within "
         "6 dB of its carriers (then the line may belong to a ball fault's FTF comb).",
+        "- **A ball comb is cage-modulated.** Each 2xBSF carrier must stand within 6 dB "
+        "of its own +-FTF sidebands (the load zone's first cage harmonic, Stribeck's "
+        "distribution); what it stands above that comes off the ball's evidence, and an "
+        "unmodulated 2xBSF comb that would have cleared the threshold grades the verdict "
+        "N ([diagnosis_ball.md](diagnosis_ball.md)).",
         "- **Speed from the signal.** On records of 2 s or more the shaft-harmonic comb "
         "(median of 10 harmonics) is searched within +-4 % of the stated speed; a "
         "correction is used unless it loses 3 dB of fault evidence (a fault's own "

@@ -10,7 +10,8 @@ of lines whose spacing the bearing's kinematics fix (Randall & Antoni [1]_, sect
   the carriers stand clearly above them;
 * **inner race**: harmonics of BPFI with sidebands at +-1x the shaft speed;
 * **rolling element**: harmonics of the ball-defect frequency 2xBSF with sidebands at
-  +-FTF.
+  +-FTF: the cage carries the defect round the load zone, and carriers standing more
+  than 6 dB above their sidebands are not a ball comb (:mod:`ballpass.diagnose.ball`).
 
 Three traps make a naive family score fail on real machines, and each has a rule here:
 
@@ -86,6 +87,7 @@ from ..features.bands import _check_reach, as_bearing
 from ..features.demodulate import BandDemodulator
 from ..features.kurtogram import FLOOR_DB
 from ..features.shaft import SHAFT_GUARD_BINS, SHAFT_GUARD_RELATIVE, shaft_line_bins
+from .ball import cage_shortfall_db
 from .speed import estimate_shaft_speed
 
 __all__ = [
@@ -511,8 +513,10 @@ def family_scores(readings: LineReadings, resolved) -> tuple[np.ndarray, np.ndar
 
     With ``C`` the mean level of the usable carriers and ``S`` the mean over harmonics
     of the stronger sideband (the one read where the other is left out): ``(C + S) /
-    2`` for the inner race (+-fr) and the ball
-    (+-FTF); ``C - max(0, S - C + OUTER_SIDEBAND_MARGIN_DB)`` for the outer race, whose
+    2`` for the inner race (+-fr); the same for the ball (+-FTF) less what its carriers
+    stand more than 6 dB above their own cage sidebands
+    (:func:`ballpass.diagnose.ball.cage_shortfall_db`: a ball comb is cage-modulated);
+    ``C - max(0, S - C + OUTER_SIDEBAND_MARGIN_DB)`` for the outer race, whose
     +-FTF neighbours only count against it where ``resolved`` (n,) (records of at
     least :data:`FTF_RESOLVED_CAGE_PERIODS`). The fit is the mean over carriers of the
     window level plus the nearest bin's level. ``-inf`` where the family cannot be
@@ -536,7 +540,10 @@ def family_scores(readings: LineReadings, resolved) -> tuple[np.ndarray, np.ndar
         sidebands = np.nanmean(np.fmax(level[..., side == -1], level[..., side == +1]),
                                axis=-1)
     sidebands = np.where(np.isnan(sidebands), 0.0, sidebands)
-    if support > 0:
+    if readings.fault == "ball":
+        score = 0.5 * (carriers + sidebands) - cage_shortfall_db(level, side,
+                                                                 readings.on_shaft)
+    elif support > 0:
         score = 0.5 * (carriers + sidebands)
     else:
         shortfall = np.maximum(0.0, sidebands - carriers + OUTER_SIDEBAND_MARGIN_DB)
@@ -654,7 +661,8 @@ def envelope_evidence(
     the background being the median SES over the line's slip search +-
     ``background_hz``. With ``C`` the mean level of the usable carriers and ``S`` the
     mean over harmonics of the stronger sideband, the evidence at ``s`` is
-    ``(C + S) / 2`` for the inner race (+-fr) and the ball (+-FTF), and
+    ``(C + S) / 2`` for the inner race (+-fr), the same less the mean over harmonics
+    of ``max(0, C_h - S_h - 6 dB)`` for the ball (+-FTF, the cage modulation), and
     ``C - max(0, S - C + 6 dB)`` for the outer race. The scale is fitted on the
     carriers; each family keeps its best band. A family with fewer than two unshared
     carriers cannot be judged (``-inf``).

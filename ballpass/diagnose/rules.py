@@ -34,6 +34,7 @@ from ..features._validation import check_fs, check_nonnegative, check_rpm
 from ..features.bands import as_bearing
 from ..features.separation import check_separate, separated_rows
 from ._names import LABELS
+from .ball import cage_note, unmodulated_comb_db
 from .evidence import (
     FAULT_FAMILIES,
     FTF_RESOLVED_CAGE_PERIODS,
@@ -123,7 +124,11 @@ class Explanation:
         this record), ``"N"`` not diagnosable (no family could be judged, or a second
         family clears its threshold within 3 dB of the named one: the families
         collide and the label is the stronger of the two, not a diagnosis). A record
-        with no signal in any band above the fault lines is "healthy", grade "Y". In
+        with no signal in any band above the fault lines is "healthy", grade "Y". A
+        2xBSF comb that would clear the ball's threshold but lacks its cage (+-FTF)
+        modulation (:func:`ballpass.diagnose.ball.unmodulated_comb_db`) grades N a
+        "healthy" verdict, or a race verdict it reads within 3 dB of (or above): it is
+        no ball fault, and not told from the race's lines either. In
         the spirit of Smith & Randall's
         grades (MSSP 64-65, 2015).
     notes : tuple of str
@@ -606,6 +611,12 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
                                  "of another family's lines")
                 if f != label and not silent:
                     notes.extend(_shaft_note(ev, f, i, layout[f]))
+            # An unmodulated 2xBSF comb that rivals the verdict (not the ball's own).
+            comb = unmodulated_comb_db(ev, i)
+            rival = label != "ball" and comb >= thresholds["ball"] and (
+                label == "healthy" or comb >= evidence[label] - GRADE_MARGIN_DB)
+            if rival:
+                notes.extend(cage_note(ev, i))
             if silent:
                 grade = "Y"
             elif not any(np.isfinite(v) for v in evidence.values()):
@@ -624,6 +635,8 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
                 clear = (margins[0] >= GRADE_MARGIN_DB
                          and margins[0] - margins[1] >= GRADE_MARGIN_DB)
                 grade = "Y" if clear else "P"
+            if rival:
+                grade = "N"
             frames = [
                 pd.DataFrame({
                     "fault": fault,
