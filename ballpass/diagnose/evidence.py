@@ -284,6 +284,11 @@ class EnvelopeEvidence:
         Demodulation band where each family read highest, Hz.
     n_bands : ndarray of int, shape (n_signals,)
         Number of candidate bands with signal searched in each row.
+    n_readings : ndarray of int, shape (n_signals,)
+        Number of family scores the search read in each row (bands with signal x
+        judged families x slip scales, both speeds where the speed check searched a
+        second one): the size of the search whose maximum the evidence is
+        (:func:`ballpass.diagnose.rules.noise_probability`).
     rpm : ndarray, shape (n_signals,)
         Shaft speed used, rev/min.
     rpm_stated : ndarray, shape (n_signals,)
@@ -324,6 +329,7 @@ class EnvelopeEvidence:
     line_names: dict
     band_hz: dict
     n_bands: int
+    n_readings: np.ndarray
     rpm: np.ndarray
     rpm_stated: np.ndarray
     speed_corrected: np.ndarray
@@ -551,14 +557,14 @@ def family_scores(readings: LineReadings, resolved) -> tuple[np.ndarray, np.ndar
 def _family_scores(ses, notch, df, shaft_hz, orders, fault, harmonics, slip, background_hz,
                    shared, resolved):
     """Stages 2 and 3 in one band, at the best-fitting scale of each row: (evidence
-    (n,), level (n, L), found (n, L), scale (n,), on_shaft (n, L))."""
+    (n,), level (n, L), found (n, L), scale (n,), on_shaft (n, L), scales judged (n,))."""
     readings = line_readings(ses, notch, df, shaft_hz, orders, fault, harmonics, slip,
                              background_hz, shared)
     score, fit = family_scores(readings, resolved)
     j = fit.argmax(axis=1)
     i = np.arange(len(ses))
     return (score[i, j], readings.level_db[i, j], readings.found_hz[i, j],
-            readings.scales[j], readings.on_shaft[i, j])
+            readings.scales[j], readings.on_shaft[i, j], np.isfinite(score).sum(axis=1))
 
 
 def _masked_median(values: np.ndarray, valid: np.ndarray) -> np.ndarray:
@@ -749,7 +755,7 @@ def envelope_evidence(
     settings = dict(fs=fs, orders=orders, harmonics=harmonics, slip=slip,
                     background_hz=background_hz, prewhiten=prewhiten, bands=bands,
                     shared=shared)
-    best, n_bands = _best_bands(xv, stated / 60.0, **settings)
+    best, n_bands, n_readings = _best_bands(xv, stated / 60.0, **settings)
     used = stated.copy()
     corrected = np.zeros(len(xv), bool)
     rpm_comb = np.full(len(xv), np.nan)
@@ -760,7 +766,9 @@ def envelope_evidence(
                                   & (np.abs(comb_rpm / stated - 1) > 0.002))
         rpm_comb[proposed] = comb_rpm[proposed]
         if proposed.size:
-            alt, alt_bands = _best_bands(xv[proposed], comb_rpm[proposed] / 60.0, **settings)
+            alt, alt_bands, alt_readings = _best_bands(xv[proposed], comb_rpm[proposed] / 60.0,
+                                                       **settings)
+            n_readings[proposed] += alt_readings
             take = _strongest(best)[proposed] - _strongest(alt) < SPEED_KEEP_DB
             rows = proposed[take]
             for fault, rec in best.items():
@@ -788,6 +796,7 @@ def envelope_evidence(
         line_names=names,
         band_hz={f: best[f]["band"] for f in FAULT_FAMILIES},
         n_bands=n_bands,
+        n_readings=n_readings,
         rpm=used,
         rpm_stated=stated,
         speed_corrected=corrected,
@@ -805,7 +814,7 @@ def _best_bands(xv, shaft_hz, *, fs, orders, harmonics, slip, background_hz, pre
                 bands, shared):
     """Each family's evidence in its best band at the shaft speeds ``shaft_hz`` (Hz, one
     per row): ``({fault: {evidence, level, found, on_shaft, scale, band}}, bands with
-    signal)``; ``shared`` is :func:`shared_lines`'s mask."""
+    signal, family scores read)``; ``shared`` is :func:`shared_lines`'s mask."""
     top = float(np.max(shaft_hz)) * (harmonics * max(orders[c] for c, _, _ in
                                                      FAULT_FAMILIES.values()) + 1.0)
     # The SES is needed up to the highest line's slip search and background, and one
@@ -832,6 +841,7 @@ def _best_bands(xv, shaft_hz, *, fs, orders, harmonics, slip, background_hz, pre
         for f in FAULT_FAMILIES
     }
     searched = np.flatnonzero(has_signal.any(axis=0))
+    n_readings = np.zeros(n, np.int64)
     # Bands are scored together, stacked as extra rows (the line layout is the same in
     # every band), a few at a time so that a batch of many signals stays small.
     per_batch = max(1, ROWS_PER_BATCH // n)
@@ -847,7 +857,9 @@ def _best_bands(xv, shaft_hz, *, fs, orders, harmonics, slip, background_hz, pre
                                     background_hz, shared[fault], np.tile(resolved, len(chunk)))
             rec = best[fault]
             for i, k in enumerate(chunk):
-                ev, level, found, scale, on_shaft = (v[i * n : (i + 1) * n] for v in scored)
+                ev, level, found, scale, on_shaft, judged = (v[i * n : (i + 1) * n]
+                                                             for v in scored)
+                n_readings += np.where(has_signal[:, k], judged, 0)
                 better = has_signal[:, k] & (ev > rec["evidence"])
                 rec["evidence"] = np.where(better, ev, rec["evidence"])
                 rec["level"] = np.where(better[:, None], level, rec["level"])
@@ -855,4 +867,4 @@ def _best_bands(xv, shaft_hz, *, fs, orders, harmonics, slip, background_hz, pre
                 rec["on_shaft"] = np.where(better[:, None], on_shaft, rec["on_shaft"])
                 rec["scale"] = np.where(better, scale, rec["scale"])
                 rec["band"] = np.where(better[:, None], bands[k], rec["band"])
-    return best, has_signal.sum(axis=1)
+    return best, has_signal.sum(axis=1), n_readings
