@@ -5,7 +5,8 @@ The machine (``benchmarks/diagnose_healthy_machines.py``): white noise, shaft ha
 1-10x in the raw signal, a healthy bearing's varying-compliance lines at 1-3x BPFO
 (30 dB above the noise), and a structural resonance whose response the shaft modulates
 with its first five harmonics (a rub or a bent shaft): the squared envelope of the
-resonance band carries a shaft comb. On a 6203 every fault family falls within 2 % of a
+resonance band carries a shaft comb; and a tone in the anti-aliasing roll-off modulated
+at BPFO (bands there carry no evidence). On a 6203 every fault family falls within 2 % of a
 shaft harmonic (BPFO 3.05, 2xBSF 3.99, BPFI 4.95 orders), the case where the machine's
 own lines sit where a fault's should.
 """
@@ -33,7 +34,10 @@ def shaft_modulated_machine(fs, seconds, rpm, bearing, rng):
     sos = butter(2, (3000.0, 3600.0), "bandpass", fs=fs, output="sos")
     band = sosfiltfilt(sos, rng.standard_normal(n))
     gain = 1.0 + sum(0.3 / k * np.cos(2 * np.pi * k * fr * t) for k in range(1, 6))
-    return x + 3.0 * gain * band / band.std()
+    # A tone in the anti-aliasing roll-off (0.46 fs), modulated at BPFO by 50 %.
+    bpfo = bp.Bearing.catalog(bearing).frequencies(fr).bpfo
+    alias = 3.0 * (1.0 + 0.5 * np.cos(2 * np.pi * bpfo * t)) * np.cos(2 * np.pi * 0.46 * fs * t)
+    return x + 3.0 * gain * band / band.std() + alias
 
 
 def outer_fault(fs, seconds, rpm, bearing, depth):
@@ -54,10 +58,8 @@ def test_healthy_machine_stays_healthy_and_a_faint_fault_is_named(fs, seconds, r
     # is at most the default 1e-3 (the thresholds are raised to it where the search is
     # wide). A faint outer-race fault (impacts 8x the noise's standard deviation at
     # their peak, under the machine's own lines) in the same machine: named outer.
-    # Planted: the shaft rule off (``shaft_line_bins`` marking no bin) calls the 6203
-    # machine faulty (its BPFO family reads the shaft comb: 3x fr is 1.7 % from BPFO);
-    # the fault part fails if the sidebands of the outer race count for it as they do
-    # for a ball (OUTER_SIDEBAND_MARGIN_DB at -100).
+    # Planted: bands allowed up to fs / 2 (ALIAS_FREE_FRACTION 0.5) call the healthy
+    # machines outer (the roll-off tone's BPFO modulation); fails.
     rng = np.random.default_rng(int(fs + rpm + seconds))
     healthy = shaft_modulated_machine(fs, seconds, rpm, bearing, rng)
     faulty = healthy + outer_fault(fs, seconds, rpm, bearing, 8.0)

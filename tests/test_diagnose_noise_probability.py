@@ -99,9 +99,9 @@ def test_false_alarm_probability_per_record_holds_on_noise_records():
     # The stated per-record probability checked on 200 fresh one-second white-noise
     # records (12 kHz, 6205 at 1797 rpm) at a false_alarm where the diagnoser's own
     # thresholds follow the law (threshold_db 0: no floor). The fraction called faulty
-    # must lie in the 99.9 % binomial interval of the stated probability (measured:
-    # 0.105 at a stated 0.10). Planted: the law of one reading rather than of the
-    # search (b = 0 and a = 3.0 dB) calls most records faulty.
+    # must lie in the 99.9 % binomial interval of the stated probability, 8-35
+    # (measured: 15). Planted: the search-size term dropped (b = 0: the law of one
+    # reading rather than of the search's maximum) calls 190 of them faulty.
     x = np.random.default_rng(77).standard_normal((200, int(FS)))
     diag = bp.diagnose.EnvelopeDiagnoser(fs=FS, rpm=RPM, threshold_db=0.0, false_alarm=0.1)
     why = diag.explain(x)
