@@ -274,8 +274,9 @@ class EnvelopeEvidence:
     shared : dict of str to ndarray of bool, shape (n_lines,)
         Lines left out because another family's lines explain them (:func:`shared_lines`).
     on_shaft : dict of str to ndarray of bool, shape (n_signals, n_lines)
-        Lines that fell on a shaft harmonic standing out of the SES and read as
-        background (rule 2 of the module notes).
+        Lines that fell on a shaft harmonic (or a harmonic of the supply frequency
+        ``line_hz``, where given) standing out of the SES and read as background (rule
+        2 of the module notes).
     scale : dict of str to ndarray, shape (n_signals,)
         Best-fitting ratio of measured to kinematic frequencies (1 - slip .. 1 + slip/4).
     line_names : dict of str to list of str
@@ -644,6 +645,7 @@ def envelope_evidence(
     slip: float = 0.02,
     background_hz: float = 10.0,
     speed_tolerance: float = 0.04,
+    line_hz=None,
 ) -> EnvelopeEvidence:
     """Evidence of each fault family in the squared envelope spectrum, dB.
 
@@ -699,6 +701,12 @@ def envelope_evidence(
     speed_tolerance : float, optional
         Relative half-width of the speed check, in [0, 0.1]; 0 trusts ``rpm``
         (default 0.04: the CWRU rig's speeds at 0-3 hp span 1730-1797 rpm).
+    line_hz : float or None, optional
+        Supply frequency, Hz (50 or 60), where known: harmonics of it that stand out of
+        the SES are set aside as the shaft harmonics are (rule 2 of the module notes;
+        an electrical machine modulates its structure at twice the supply frequency,
+        and a fault family whose rate falls within the slip search of one of its
+        harmonics would read it). Default None: no supply lines set aside.
 
     Returns
     -------
@@ -735,6 +743,9 @@ def envelope_evidence(
         raise ValueError(f"slip must be in [0, 0.2], got {slip!r}")
     background_hz = check_nonnegative("background_hz", background_hz)
     speed_tolerance = check_nonnegative("speed_tolerance", speed_tolerance)
+    if line_hz is not None and not (isinstance(line_hz, (int, float)) and 0 < line_hz < fs / 2):
+        raise ValueError(f"line_hz must be None or a supply frequency in (0, fs/2 = {fs / 2:g}) "
+                         f"Hz, got {line_hz!r}")
     if speed_tolerance > 0.1:
         raise ValueError(f"speed_tolerance must be in [0, 0.1], got {speed_tolerance!r}")
     stated = np.array(check_rpm(rpm, (len(xv),)), dtype=float)
@@ -754,7 +765,7 @@ def envelope_evidence(
     shared = shared_lines(orders, harmonics, slip, resolution, ball_judged)
     settings = dict(fs=fs, orders=orders, harmonics=harmonics, slip=slip,
                     background_hz=background_hz, prewhiten=prewhiten, bands=bands,
-                    shared=shared)
+                    shared=shared, line_hz=line_hz)
     best, n_bands, n_readings = _best_bands(xv, stated / 60.0, **settings)
     used = stated.copy()
     corrected = np.zeros(len(xv), bool)
@@ -811,7 +822,7 @@ def _strongest(best: dict) -> np.ndarray:
 
 
 def _best_bands(xv, shaft_hz, *, fs, orders, harmonics, slip, background_hz, prewhiten,
-                bands, shared):
+                bands, shared, line_hz=None):
     """Each family's evidence in its best band at the shaft speeds ``shaft_hz`` (Hz, one
     per row): ``({fault: {evidence, level, found, on_shaft, scale, band}}, bands with
     signal, family scores read)``; ``shared`` is :func:`shared_lines`'s mask."""
@@ -852,6 +863,9 @@ def _best_bands(xv, shaft_hz, *, fs, orders, harmonics, slip, background_hz, pre
         ses = np.concatenate([s for _, s in spectra])  # (len(chunk) * n, n_bins)
         speeds = np.tile(shaft_hz, len(chunk))
         notch = shaft_line_bins(spectra[0][0], ses, speeds, background_hz)
+        if line_hz is not None:  # the supply's harmonics, set aside like the shaft's
+            notch |= shaft_line_bins(spectra[0][0], ses, np.full(speeds.shape, float(line_hz)),
+                                     background_hz)
         for fault in FAULT_FAMILIES:
             scored = _family_scores(ses, notch, df, speeds, orders, fault, harmonics, slip,
                                     background_hz, shared[fault], np.tile(resolved, len(chunk)))

@@ -256,6 +256,11 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
         Half-width of the SES background median, Hz (default 10).
     speed_tolerance : float, optional
         Largest relative speed correction, in [0, 0.1] (default 0.04; 0 trusts rpm).
+    line_hz : float or None, optional
+        Supply frequency of the machine, Hz (50 or 60), where known: its harmonics that
+        stand out of the squared envelope spectrum are set aside like the shaft's (an
+        electrical machine modulates its structure at twice the supply frequency). Default
+        None.
     false_alarm : float or None, optional
         False-alarm probability per record on noise, in (0, 0.5] (default
         :data:`DEFAULT_FALSE_ALARM`, 0.1 %): each record's thresholds are at least the
@@ -312,6 +317,7 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
         slip=0.02,
         background_hz=10.0,
         speed_tolerance=0.04,
+        line_hz=None,
         threshold_db=DEFAULT_THRESHOLD_DB,
         false_alarm=DEFAULT_FALSE_ALARM,
         quantile=0.99,
@@ -391,6 +397,7 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
             slip=self.slip,
             background_hz=self.background_hz,
             speed_tolerance=self.speed_tolerance,
+            line_hz=self.line_hz,
         )
         ftf = as_bearing(self.bearing).frequencies(1.0).ftf * ev.rpm / 60.0
         return ev, ev.duration_s * ftf < FTF_RESOLVED_CAGE_PERIODS
