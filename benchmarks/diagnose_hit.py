@@ -106,7 +106,7 @@ used (`Explanation.false_alarm_probability`, at most the default 0.1 %; both fro
 noise law of `ballpass.diagnose.noise_law`, docs/diagnosis_noise.md). The healthy
 recording at 1200 rpm is no accident of the search: its lines are the machine's. The
 one-second segments at 600 rpm last fewer than four cage periods: their thresholds are
-raised to the noise law's 0.1 % (6.5 dB), which takes the 6.2 dB reading of the first
+raised to the noise law's 0.1 % (about 6.5 dB), which takes the 6.2 dB reading of the first
 healthy second at 600 rpm, an accident of the search, off the false alarms.
 
 The healthy recording at 1200 rpm is the false alarm: its outer-race evidence is a
