@@ -389,7 +389,9 @@ def markdown(table: pd.DataFrame, seconds: float, sweep: pd.DataFrame | None = N
         f"({seconds:.0f} s); do not edit by hand.",
         "",
         "`EnvelopeDiagnoser` (default settings; threshold "
-        f"{DEFAULT_THRESHOLD_DB:g} dB from white-noise statistics, no fitting) on every "
+        f"{DEFAULT_THRESHOLD_DB:g} dB from white-noise statistics, raised per record to "
+        "where noise searched as widely reaches 0.1 % (docs/diagnosis_noise.md); no "
+        "fitting) on every "
         "shared record (CWRU, MFPT) and on simulated records: whole records (the verdict) and "
         "one-second segments. Nothing is fitted to recordings, so every result below is "
         "a held-out result. The fixed-band (2-5 kHz) squared-envelope peak picker "
