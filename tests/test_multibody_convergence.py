@@ -1,4 +1,5 @@
-"""Order of the multibody integrator: RK4 against scipy's DOP853 at tight tolerance."""
+"""Order of the multibody integrators: RK4 and the Rosenbrock-W solver against scipy's DOP853
+at tight tolerance."""
 
 from __future__ import annotations
 
@@ -9,6 +10,26 @@ from scipy.integrate import solve_ivp
 
 import ballpass as bp
 from ballpass.simulate.multibody import build, integrate
+
+
+def _settled_reference(scene, h, n):
+    """The scene settled to t = 0 and DOP853's loads at n h (rtol 1e-12; atol 1e-15 m,
+    1e-10 m/s and N: ~1e-11 of the loads)."""
+    system = build(scene)
+    settled = dataclasses.replace(system, y0=integrate(system, h_out=h, n_out=0,
+                                                        stride=1)["y_end"], t0=0.0)
+    nd = settled.n_state - 2 * scene.bearing.n_elements
+    atol = np.concatenate([np.full(nd // 2, 1e-15), np.full(nd // 2 + 18, 1e-10)])
+    ref = solve_ivp(settled.rhs, (0.0, n * h), settled.y0, method="DOP853", rtol=1e-12,
+                    atol=atol)
+    assert ref.status == 0
+    return settled, np.concatenate(settled.contact_loads(n * h, ref.y[:, -1]))
+
+
+def _load_error(settled, h, n, n_sub, solver, loads_ref):
+    y = integrate(settled, h_out=h, n_out=n, stride=n, dt=h / n_sub, solver=solver)["y_end"]
+    loads = np.concatenate(settled.contact_loads(n * h, y))
+    return float(np.max(np.abs(loads - loads_ref)) / np.max(loads_ref))
 
 
 def test_rk4_converges_at_fourth_order_on_a_smooth_scene():
@@ -25,22 +46,12 @@ def test_rk4_converges_at_fourth_order_on_a_smooth_scene():
     # time (the drive angle is time-dependent), a traction state left out of the update.
     scene = bp.Scene(bearing="ER-16K", rpm=2100.0, radial_load_n=110.0, fs=48_000.0,
                      duration_s=0.01)
-    system = build(scene)
     h, n = 4e-6, 50
-    settled = dataclasses.replace(system, y0=integrate(system, h_out=h, n_out=0,
-                                                        stride=1)["y_end"], t0=0.0)
-    nd = settled.n_state - 2 * scene.bearing.n_elements
-    atol = np.concatenate([np.full(nd // 2, 1e-15), np.full(nd // 2 + 18, 1e-10)])
-    ref = solve_ivp(settled.rhs, (0.0, n * h), settled.y0, method="DOP853", rtol=1e-12,
-                    atol=atol)
-    assert ref.status == 0
-    loads_ref = np.concatenate(settled.contact_loads(n * h, ref.y[:, -1]))
+    settled, loads_ref = _settled_reference(scene, h, n)
     dts, errors = [], []
     for n_sub in (2, 4, 8, 16):
-        y = integrate(settled, h_out=h, n_out=n, stride=n, dt=h / n_sub)["y_end"]
-        loads = np.concatenate(settled.contact_loads(n * h, y))
         dts.append(h / n_sub)
-        errors.append(np.max(np.abs(loads - loads_ref)) / np.max(loads_ref))
+        errors.append(_load_error(settled, h, n, n_sub, "rk4", loads_ref))
     order = np.polyfit(np.log(dts), np.log(errors), 1)[0]
     assert abs(order - 4.0) < 0.35, (order, errors)
     assert np.all(np.array(errors[:-1]) / np.array(errors[1:]) > 2.0**3.6), errors
@@ -63,26 +74,6 @@ def test_recording_leaves_the_trajectory_unchanged():
     assert np.array_equal(every["y_end"], once["y_end"])
     assert np.array_equal(every["exc"], once["exc"])
     assert np.array_equal(every["q_inner"][0], once["q_inner"][0])
-
-
-def _settled_reference(scene, h, n):
-    """The scene settled to t = 0 and DOP853's loads at n h (rtol 1e-12; atol 1e-15 m,
-    1e-10 m/s and N: ~1e-11 of the loads)."""
-    system = build(scene)
-    settled = dataclasses.replace(system, y0=integrate(system, h_out=h, n_out=0,
-                                                        stride=1)["y_end"], t0=0.0)
-    nd = settled.n_state - 2 * scene.bearing.n_elements
-    atol = np.concatenate([np.full(nd // 2, 1e-15), np.full(nd // 2 + 18, 1e-10)])
-    ref = solve_ivp(settled.rhs, (0.0, n * h), settled.y0, method="DOP853", rtol=1e-12,
-                    atol=atol)
-    assert ref.status == 0
-    return settled, np.concatenate(settled.contact_loads(n * h, ref.y[:, -1]))
-
-
-def _load_error(settled, h, n, n_sub, solver, loads_ref):
-    y = integrate(settled, h_out=h, n_out=n, stride=n, dt=h / n_sub, solver=solver)["y_end"]
-    loads = np.concatenate(settled.contact_loads(n * h, y))
-    return float(np.max(np.abs(loads - loads_ref)) / np.max(loads_ref))
 
 
 def test_rosenbrock_w_converges_at_third_order_on_a_smooth_scene():
