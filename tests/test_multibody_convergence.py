@@ -32,6 +32,18 @@ def _load_error(settled, h, n, n_sub, solver, loads_ref):
     return float(np.max(np.abs(loads - loads_ref)) / np.max(loads_ref))
 
 
+def _smooth_order(solver):
+    """Fitted order and load errors of ``solver`` at 2 to 0.25 us on the healthy ER-16K
+    (110 N, 35 Hz) settled to t = 0, over 50 grid intervals of 4 us."""
+    scene = bp.Scene(bearing="ER-16K", rpm=2100.0, radial_load_n=110.0, fs=48_000.0,
+                     duration_s=0.01)
+    h, n = 4e-6, 50
+    settled, loads_ref = _settled_reference(scene, h, n)
+    n_subs = np.array([2, 4, 8, 16])
+    errors = np.array([_load_error(settled, h, n, k, solver, loads_ref) for k in n_subs])
+    return np.polyfit(np.log(h / n_subs), np.log(errors), 1)[0], errors
+
+
 def test_rk4_converges_at_fourth_order_on_a_smooth_scene():
     # Seed 000's healthy ER-16K (110 N, 35 Hz, traction on), settled to t = 0, then 200 us
     # (50 grid intervals of 4 us): no contact separates, no ball meets its pocket, so the
@@ -44,17 +56,9 @@ def test_rk4_converges_at_fourth_order_on_a_smooth_scene():
     # the four steps must be 4 within 0.35 and every halving must gain at least 2^3.6.
     # Catches a wrong RK4 weight or stage (order 1-3), the stages evaluated at the wrong
     # time (the drive angle is time-dependent), a traction state left out of the update.
-    scene = bp.Scene(bearing="ER-16K", rpm=2100.0, radial_load_n=110.0, fs=48_000.0,
-                     duration_s=0.01)
-    h, n = 4e-6, 50
-    settled, loads_ref = _settled_reference(scene, h, n)
-    dts, errors = [], []
-    for n_sub in (2, 4, 8, 16):
-        dts.append(h / n_sub)
-        errors.append(_load_error(settled, h, n, n_sub, "rk4", loads_ref))
-    order = np.polyfit(np.log(dts), np.log(errors), 1)[0]
+    order, errors = _smooth_order("rk4")
     assert abs(order - 4.0) < 0.35, (order, errors)
-    assert np.all(np.array(errors[:-1]) / np.array(errors[1:]) > 2.0**3.6), errors
+    assert np.all(errors[:-1] / errors[1:] > 2.0**3.6), errors
     assert errors[-1] > 100 * 1e-11
 
 
@@ -85,17 +89,9 @@ def test_rosenbrock_w_converges_at_third_order_on_a_smooth_scene():
     # at least 2^2.6. Catches a wrong coefficient (order 1-2: a planted sign error in the
     # h J sum g_ij k_j coupling of _w_solve gives order 1.9), a stage at the wrong time, a
     # block solved with the wrong matrix.
-    scene = bp.Scene(bearing="ER-16K", rpm=2100.0, radial_load_n=110.0, fs=48_000.0,
-                     duration_s=0.01)
-    h, n = 4e-6, 50
-    settled, loads_ref = _settled_reference(scene, h, n)
-    dts, errors = [], []
-    for n_sub in (2, 4, 8, 16):
-        dts.append(h / n_sub)
-        errors.append(_load_error(settled, h, n, n_sub, "rosw", loads_ref))
-    order = np.polyfit(np.log(dts), np.log(errors), 1)[0]
+    order, errors = _smooth_order("rosw")
     assert abs(order - 3.0) < 0.3, (order, errors)
-    assert np.all(np.array(errors[:-1]) / np.array(errors[1:]) > 2.0**2.6), errors
+    assert np.all(errors[:-1] / errors[1:] > 2.0**2.6), errors
     assert errors[-1] > 100 * 1e-11
 
 
