@@ -30,6 +30,7 @@ FEATURE_SETS = {
     "evidence": "the diagnoser's evidence: each family's line levels in dB over their "
                 "background in the band its evidence picks, and the SES on an order axis in "
                 "dB over its median; nothing in absolute units",
+    "combined": "the `evidence` features and the `dimensionless` ones together",
 }
 
 #: The learned pipeline the docs recommend for simulation-to-real, (classifier, feature
