@@ -61,31 +61,6 @@ MACHINE_FILE = "_machine.json"
 #: the impulse model uses the seed's own stream for the slip
 _STREAM = 7
 
-#: what drives a twin's learned path (:func:`twin`'s ``excitation``): the models that
-#: make its fault rows, half of the rows each for two
-EXCITATIONS = {"contact": ("sr4",), "impulse": ("impulse",), "mixed": ("impulse", "sr4")}
-#: each model as the grid file says it
-_MODEL_WHY = {
-    "impulse": "the bearing's ideal impacts (McFadden & Smith 1984: kinematics, slip, load "
-               "zone): one sudden step per defect passage",
-    "sr4": "the bearing's contact dynamics (Sawalhi & Randall 2008 pedestal model, without "
-           "the resonator the learned path replaces): a gradual entry into the defect, an "
-           "exit impact of finite duration, the shaft's rattle on the contacts after it, "
-           "the varying compliance",
-}
-
-
-def _model_lines(excitation: str) -> tuple[str, str]:
-    """The [dataset] and [grid] lines of a twin's models (a grid axis for two)."""
-    models = EXCITATIONS[excitation]
-    why = "\n".join(f"# {m}: {_MODEL_WHY[m]}" for m in models)
-    if len(models) == 1:
-        return f'{why}\nmodel = "{models[0]}"', ""
-    listed = ", ".join(f'"{m}"' for m in models)
-    return "", (f"# how a defect strikes is not known before it exists: half of the rows "
-                f"each\n{why}\nmodel = [{listed}]")
-
-
 #: default ranges of a twin's grid, each with its source (see :func:`twin`)
 TWIN_DEFAULTS = {
     "duration_s": 1.0,
@@ -244,11 +219,6 @@ def check_machine(grid) -> Machine:
         than the shortest recording, or the manifest lists a fault.
     """
     machine = load_machine(grid.machine["manifest"])
-    models = sorted({run.model for run in grid.runs})
-    if set(models) - {"impulse", "sr4"}:
-        raise ValueError(f"model = {models}: a twin's path is driven by the impulse model's "
-                         "impacts or by sr4's housing acceleration (its own resonator is the "
-                         "learned path); set model = \"sr4\" or \"impulse\"")
     where = f"the twin's recordings ({grid.machine['manifest']})"
     if grid.dataset["fs"] != machine.fs:
         raise ValueError(f"dataset.fs = {grid.dataset['fs']:g} Hz, but {where} are sampled "
@@ -315,6 +285,8 @@ def twin_signal(run, scene) -> tuple[np.ndarray, dict, dict]:
     """
     import scipy.signal
 
+    from ..simulate.impulse import _impacts
+
     machine = load_machine(run.machine)
     n = scene.n_samples
     rng = np.random.default_rng(np.random.SeedSequence(scene.seed, spawn_key=(_STREAM,)))
@@ -327,46 +299,20 @@ def twin_signal(run, scene) -> tuple[np.ndarray, dict, dict]:
                "background": rec.name, "background_start_s": start / rec.fs}
     if not scene.faults:
         accel = background.copy()
-        info = {"model": run.model, "solver": "ar-path"}
         # a real segment: its speed is the recording's, its load, slip and clearance
         # unknown (not the grid point's, which made nothing of it)
         columns.update(group=rec.name, rpm=rec.rpm, rpm_start=rec.rpm, rpm_end=rec.rpm,
                        radial_load_n=math.nan, slip=math.nan, clearance_um=math.nan)
     else:
-        drive, info = _drive(run.model, scene)
-        fault = scipy.signal.lfilter([1.0], rec.a, drive)
+        times, steps, _ = _impacts(scene)
+        fault = scipy.signal.lfilter([1.0], rec.a, _pulse_train(times, steps[0], n, scene.fs))
         fault -= fault.mean()
         size = _rms(fault)
         if size > 0:   # a defect that never strikes (out of the load zone) stays silent
             fault *= _rms(background) * 10.0 ** (run.columns["level_db"] / 20.0) / size
         accel = background + fault
         columns["group"] = f"run {run.run_id}"
-    return accel[None, :], info, columns
-
-
-def _drive(model: str, scene) -> tuple[np.ndarray, dict]:
-    """What drives the learned path in a fault row: the first difference of the
-    housing acceleration the bearing gives the sensor, so that a sudden step (an ideal
-    impact) is one pulse of its size. Shape (n_samples,), and the row's model and solver.
-
-    ``impulse``: the impact steps of :func:`ballpass.simulate.impulse._impacts`, each
-    split between the two samples around its time (already pulses). ``sr4``: the
-    Sawalhi-Randall pedestal acceleration (:mod:`ballpass.simulate.sr5` without its
-    resonator), whose contact dynamics give each passage its gradual entry, its exit
-    impact of finite duration and the shaft's rattle on the contacts after it, and the
-    varying compliance between impacts."""
-    if model == "impulse":
-        from ..simulate.impulse import _impacts
-
-        times, steps, _ = _impacts(scene)
-        return (_pulse_train(times, steps[0], scene.n_samples, scene.fs),
-                {"model": "impulse", "solver": "ar-path"})
-    from ..simulate import simulate
-
-    res = simulate(scene, model=model, allow_unrepresented=True)
-    housing = np.asarray(res.accel, dtype=float)
-    return (np.diff(housing, prepend=housing[0]),
-            {"model": model, "solver": f"{res.info['solver']}+ar-path"})
+    return accel[None, :], {"model": "impulse", "solver": "ar-path"}, columns
 
 
 # ----------------------------------------------------------------------------- grid
@@ -395,8 +341,7 @@ def _toml_path(manifest: Path, out: Path) -> str:
 
 
 def twin(manifest, rpm, out, *, duration_s: float = TWIN_DEFAULTS["duration_s"],
-         draws: int = TWIN_DEFAULTS["draws"], seed: int = 0,
-         excitation: str = "contact") -> Path:
+         draws: int = TWIN_DEFAULTS["draws"], seed: int = 0) -> Path:
     """Write a ready grid of a twin of the machine whose healthy recordings ``manifest``
     lists.
 
@@ -423,12 +368,6 @@ def twin(manifest, rpm, out, *, duration_s: float = TWIN_DEFAULTS["duration_s"],
         Rows per class and speed, >= 1. Default 40.
     seed : int, optional
         The grid's root seed, >= 0.
-    excitation : {"contact", "impulse"}, optional
-        What drives the learned path: ``"contact"`` (default), the housing acceleration
-        of the Sawalhi & Randall pedestal model (``sr4``), whose contact dynamics give
-        each defect passage a gradual entry, an exit impact of finite duration and the
-        shaft's rattle; ``"impulse"``, the ideal impacts of the ``impulse`` model (one
-        sudden step per passage).
 
     Returns
     -------
@@ -458,8 +397,6 @@ def twin(manifest, rpm, out, *, duration_s: float = TWIN_DEFAULTS["duration_s"],
     from .._validation import check_number
     from ..signalio import atomic_write
 
-    if excitation not in EXCITATIONS:
-        raise ValueError(f"excitation must be one of {sorted(EXCITATIONS)}, got {excitation!r}")
     speeds = _check_rpm(rpm)
     check_number("duration_s", duration_s, 0.0, lo_open=True, unit="s")
     if isinstance(draws, bool) or not isinstance(draws, (int, np.integer)) or draws < 1:
@@ -476,16 +413,12 @@ def twin(manifest, rpm, out, *, duration_s: float = TWIN_DEFAULTS["duration_s"],
     if duration_s > shortest:
         raise ValueError(f"duration_s = {duration_s:g} s is longer than the shortest "
                          f"recording ({shortest:g} s)")
-    models = len(EXCITATIONS[excitation])
-    per_model = -(-draws // models)
-    dataset_lines, grid_lines = _model_lines(excitation)
     text = _GRID_TEMPLATE.format(
         names=", ".join(r.name for _, r in found), bearing=rec.bearing, fs=rec.fs,
         manifest=json.dumps(_toml_path(manifest, out.resolve())),
-        duration_s=duration_s, draws=per_model, seed=seed,
-        dataset_lines=dataset_lines, grid_lines=grid_lines,
+        duration_s=duration_s, draws=draws, seed=seed,
         rpm=", ".join(f"{v:g}" for v in speeds), d=TWIN_DEFAULTS, resonance_hz=rec.fs / 4,
-        n_runs=4 * per_model * models * len(speeds), models=models)
+        n_runs=4 * draws * len(speeds))
     atomic_write(out, lambda tmp: tmp.write_text(text))
     return out
 
@@ -497,15 +430,15 @@ _GRID_TEMPLATE = """\
 # rows are the recordings' own segments. Written by `ballpass twin`; then
 #   ballpass generate twin.toml --out twin-ds --jobs 2
 #   ballpass benchmark twin-ds --real labelled.csv --splits sim2real --out twin-report
-# Rows: 4 classes (healthy, outer, inner, ball) x {draws} draws x {models} model(s) x speeds
-# = {n_runs}.
+# Rows: 4 classes (healthy, outer, inner, ball) x {draws} draws x speeds = {n_runs}.
 
 [dataset]
 duration_s = {duration_s:g}  # s per row (a segment of one recording as background)
 fs = {fs:g}            # Hz, the recordings' rate
-draws = {draws}             # rows per class, speed and model, each with its own drawn values
+draws = {draws}             # rows per class and speed, each with its own drawn values
 seed = {seed}
-{dataset_lines}
+model = "impulse"      # the bearing's impacts (kinematics, slip, load zone), no resonator:
+needs = ["envelope"]   # the learned path replaces it
 
 [machine]
 manifest = {manifest}
@@ -514,7 +447,6 @@ manifest = {manifest}
 bearing = ["{bearing}"]
 fault = ["healthy", "outer", "inner", "ball"]
 rpm = [{rpm}]
-{grid_lines}
 # the impulse model's own resonator is not used (the learned path replaces it; the rows'
 # resonance_hz is NaN); a scene still needs one inside the band: fs / 4
 resonance_hz = [{resonance_hz:g}]
