@@ -69,6 +69,7 @@ TWIN_DEFAULTS = {
     "fault_depth_mm": 0.3,
     "fault_angle_deg": (-60.0, 60.0),
     "level_db": (-10.0, 15.0),
+    "impact_spread": (0.0, 1.0),
     "radial_load_n": (150.0, 1500.0),
     "slip": (0.005, 0.02),
 }
@@ -258,6 +259,16 @@ def _pulse_train(times: np.ndarray, steps: np.ndarray, n: int, fs: float) -> np.
     return out[:n]
 
 
+def _impact_sizes(rng: np.random.Generator, n: int, spread) -> np.ndarray:
+    """Relative sizes of ``n`` impacts: log-normal, the standard deviation of their
+    logarithm ``spread`` (no axis, NaN or 0: all 1), their mean 1 (the median
+    exp(-spread^2 / 2)), independent from impact to impact (the random amplitudes of
+    Antoni & Randall's cyclostationary model of a bearing fault)."""
+    if spread is None or not spread > 0:   # also NaN
+        return np.ones(n)
+    return np.exp(spread * rng.standard_normal(n) - 0.5 * spread**2)
+
+
 def _rms(x: np.ndarray) -> float:
     return float(np.sqrt(np.mean((x - x.mean()) ** 2)))
 
@@ -305,7 +316,8 @@ def twin_signal(run, scene) -> tuple[np.ndarray, dict, dict]:
                        radial_load_n=math.nan, slip=math.nan, clearance_um=math.nan)
     else:
         times, steps, _ = _impacts(scene)
-        fault = scipy.signal.lfilter([1.0], rec.a, _pulse_train(times, steps[0], n, scene.fs))
+        steps = steps[0] * _impact_sizes(rng, times.size, run.columns.get("impact_spread"))
+        fault = scipy.signal.lfilter([1.0], rec.a, _pulse_train(times, steps, n, scene.fs))
         fault -= fault.mean()
         size = _rms(fault)
         if size > 0:   # a defect that never strikes (out of the load zone) stays silent
@@ -465,6 +477,13 @@ fault_angle_deg = {{ uniform = [{d[fault_angle_deg][0]:g}, {d[fault_angle_deg][1
 # two steps of the ISO 10816-1 evaluation zones (each a factor 2.5, 8 dB), from a new
 # machine's zone A into zone C/D
 level_db = {{ uniform = [{d[level_db][0]:g}, {d[level_db][1]:g}] }}
+# how much the impacts' sizes differ from one passage to the next: the standard deviation
+# of their logarithm (independent log-normal sizes, mean kept), the random amplitudes of
+# Antoni & Randall's model of a localized fault (J. Vib. Acoust. 2003), who leave their
+# spread open. From 0, McFadden & Smith's identical impacts (J. Sound Vib. 1984), to 1,
+# sizes a factor e apart at one standard deviation: a ball striking a rough, widening
+# spall at a new point each time. A judgement, not a published range
+impact_spread = {{ uniform = [{d[impact_spread][0]:g}, {d[impact_spread][1]:g}] }}
 # radial load from light to normal service, P/C = 0.01-0.1 of a 6205-size bearing's
 # basic dynamic rating (SKF catalogue: about 0.01 C to roll without skidding)
 radial_load_n = {{ log_uniform = [{d[radial_load_n][0]:g}, {d[radial_load_n][1]:g}] }}
