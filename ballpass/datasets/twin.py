@@ -19,7 +19,10 @@ fitted once per recording and process (cached), written to the dataset folder
 defect crossings of McFadden & Smith 1984 with random slip, the Stribeck load zone and
 the sensor's transmission factor; :mod:`ballpass.simulate.impulse`), before its own
 resonator: each impact is a unit-sample pulse of its housing-acceleration step, split
-linearly between the two samples around its time. The pulse train drives ``1 / A(z)``;
+linearly between the two samples around its time, and its size multiplied by a
+log-normal factor of its own (mean 1, log standard deviation ``impact_spread``, drawn
+per row: the random amplitudes of Antoni & Randall 2003; a ball does not strike a real
+spall the same way twice). The pulse train drives ``1 / A(z)``;
 the result is scaled so that its RMS over the row is ``level_db`` above the RMS of the
 background, and a segment of a real healthy recording is added: one of the recordings
 whose speed is nearest the row's, and the segment's start, drawn from the row's seed.
@@ -30,12 +33,14 @@ Their ``group`` is the recording's name, so no split puts segments of one record
 both sides; a fault row's group is its run.
 
 Every row keeps the columns of a simulated row (its scene, the fault's size and angle,
-the slip, the load) and adds ``level_db``, ``machine`` (the manifest), ``background``
-(the recording) and ``background_start_s``; ``resonance_hz``, ``resonance_damping``,
-``snr_db`` and ``noise_rms`` are NaN (the learned path and the real background replace
-them).
+the slip, the load) and adds ``level_db``, ``impact_spread``, ``machine`` (the
+manifest), ``background`` (the recording) and ``background_start_s``; ``resonance_hz``,
+``resonance_damping``, ``snr_db`` and ``noise_rms`` are NaN (the learned path and the
+real background replace them).
 
-References: P. D. McFadden, J. D. Smith, J. Sound Vib. 96 (1984) 69-82; N. Sawalhi,
+References: P. D. McFadden, J. D. Smith, J. Sound Vib. 96 (1984) 69-82; J. Antoni,
+R. B. Randall, "A stochastic model for simulation and diagnostics of rolling element
+bearings with localized faults", J. Vib. Acoust. 125 (2003) 282-289; N. Sawalhi,
 R. B. Randall, "Spectral kurtosis enhancement using autoregressive models", ACAM 2005;
 J. Makhoul, Proc. IEEE 63 (1975) 561-580.
 """
@@ -362,7 +367,8 @@ def twin(manifest, rpm, out, *, duration_s: float = TWIN_DEFAULTS["duration_s"],
     sampling rate, and a ``[machine]`` table naming the manifest; ``generate`` then
     learns the machine's path from the recordings (see the module docstring). Drawn per
     row, each range with its source in the file: fault width, outer-race fault angle,
-    radial load, slip, and ``level_db``, the fault's RMS over the background's.
+    radial load, slip, ``level_db``, the fault's RMS over the background's, and
+    ``impact_spread``, the log standard deviation of the impacts' sizes.
 
     Parameters
     ----------
