@@ -166,7 +166,9 @@ def markdown(table: pd.DataFrame) -> str:
     """The table as a Markdown pipe table (numbers to 3 digits, times to whole s)."""
     def cell(name, v):
         if isinstance(v, float):
-            return f"{v:.0f}" if name.endswith("_s") else f"{v:.3f}"
+            if name.endswith(("_s", "_s_max")):
+                return f"{v:.0f}"
+            return f"{v:.1f}" if name.startswith("kurtosis") else f"{v:.3f}"
         return str(v)
     rows = ["| " + " | ".join(table.columns) + " |", "|" + "---|" * len(table.columns)]
     rows += ["| " + " | ".join(cell(k, v) for k, v in row.items()) + " |"
@@ -228,7 +230,12 @@ def main() -> None:
     parser.add_argument("--speeds", type=int, nargs="+", default=list(SPEEDS))
     parser.add_argument("--seeds", type=int, nargs="+", default=[0, 1, 2],
                         help="grid seeds of the twins (ballpass twin --seed)")
+    parser.add_argument("--page-only", action="store_true",
+                        help="rebuild the page from the tables of an earlier run")
     args = parser.parse_args()
+    if args.page_only:
+        page(args.out)
+        return
     results, predictions, kurt = [], [], []
     with tempfile.TemporaryDirectory() as tmp:
         for speed in args.speeds:
@@ -248,14 +255,22 @@ def main() -> None:
     table.round(3).to_csv(results_dir / "twin_hit.csv", index=False)
     kurt_table.round(1).to_csv(results_dir / "twin_hit_kurtosis.csv", index=False)
     figure(pd.concat(predictions), results_dir / "twin_hit.png")
-    write_page(args.out / "twin_hit.md", [
+    page(args.out)
+
+
+def page(out: Path) -> None:
+    """Write the page from the tables in ``out/results`` (``--page-only`` rebuilds it
+    alone)."""
+    table = pd.read_csv(out / "results" / "twin_hit.csv")
+    kurt_table = pd.read_csv(out / "results" / "twin_hit_kurtosis.csv")
+    write_page(out / "twin_hit.md", [
         "# A twin of the HIT-SM rig from one healthy recording", "", INTRO, "",
         markdown(summary(table)), "",
         "Impulsiveness: kurtosis of the twins' one-second fault rows (all three inputs) "
         "and of the rig's fault seconds, 10th percentile, median, 90th percentile.", "",
-        markdown(kurt_table.round(1)), "", "![confusion](results/twin_hit.png)"])
-    print(table.round(3).to_string(index=False))
-    print(kurt_table.round(1).to_string(index=False))
+        markdown(kurt_table), "", "![confusion](results/twin_hit.png)"])
+    print(summary(table).round(3).to_string(index=False))
+    print(kurt_table.to_string(index=False))
 
 
 if __name__ == "__main__":
