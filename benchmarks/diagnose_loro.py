@@ -389,7 +389,9 @@ def markdown(table: pd.DataFrame, seconds: float, sweep: pd.DataFrame | None = N
         f"({seconds:.0f} s); do not edit by hand.",
         "",
         "`EnvelopeDiagnoser` (default settings; threshold "
-        f"{DEFAULT_THRESHOLD_DB:g} dB from white-noise statistics, no fitting) on every "
+        f"{DEFAULT_THRESHOLD_DB:g} dB from white-noise statistics, raised per record to "
+        "where noise searched as widely reaches 0.1 % (docs/diagnosis_noise.md); no "
+        "fitting) on every "
         "shared record (CWRU, MFPT) and on simulated records: whole records (the verdict) and "
         "one-second segments. Nothing is fitted to recordings, so every result below is "
         "a held-out result. The fixed-band (2-5 kHz) squared-envelope peak picker "
@@ -410,6 +412,11 @@ def markdown(table: pd.DataFrame, seconds: float, sweep: pd.DataFrame | None = N
         "resolve what one-second segments cannot.",
         "- **Outer-race sidebands do not refute the outer race** unless they come within "
         "6 dB of its carriers (then the line may belong to a ball fault's FTF comb).",
+        "- **A ball comb is cage-modulated.** Each 2xBSF carrier must stand within 6 dB "
+        "of its own +-FTF sidebands (the load zone's first cage harmonic, Stribeck's "
+        "distribution); what it stands above that comes off the ball's evidence, and an "
+        "unmodulated 2xBSF comb that would have cleared the threshold grades the verdict "
+        "N ([diagnosis_ball.md](diagnosis_ball.md)).",
         "- **Speed from the signal.** On records of 2 s or more the shaft-harmonic comb "
         "(median of 10 harmonics) is searched within +-4 % of the stated speed; a "
         "correction is used unless it loses 3 dB of fault evidence (a fault's own "

@@ -8,33 +8,42 @@ healthy at the two other speeds), one-second segments. Nothing is tuned on them:
 twin's ranges are its defaults (:data:`ballpass.datasets.twin.TWIN_DEFAULTS`). The rig
 has no ball faults: three-class scores (a "ball" verdict counts as wrong).
 
+Before and after, side by side in one run: each twin twice, from the same draws, with
+identical impacts (``impact_spread = [0]``, the twin before the axis existed) and with
+the default spread of the impacts' sizes; the impulsiveness (kurtosis) of the twin's
+fault rows beside the rig's fault seconds.
+
 Run::
 
-    PYTHONPATH=. python benchmarks/twin_hit.py --data ../shared/data/hit   # ~12 min, 2 cores
+    PYTHONPATH=. python benchmarks/twin_hit.py --data ../shared/data/hit   # ~15 min, 2 cores
 
-Writes ``twin_hit.md``, ``twin_hit.csv`` (one row per input speed and model: recall per
-class, three-class balanced accuracy, its range over the training seeds) and
-``twin_hit.png`` (confusion matrices of the recommended pipeline) to ``docs/results``
-(the page to ``docs``).
+Writes ``twin_hit.md``, ``twin_hit.csv`` (one row per twin, input speed and model:
+recall per class, three-class balanced accuracy, its range over the training seeds),
+``twin_hit_kurtosis.csv`` and ``twin_hit.png`` (confusion matrices of the recommended
+pipeline) to ``docs/results`` (the page to ``docs``).
 """
 
 from __future__ import annotations
 
 import argparse
+import re
 import subprocess
 import sys
 import tempfile
 import time
 from pathlib import Path
 
-import numpy as np
 import pandas as pd
+import scipy.stats
 from _paths import DOCS, results_in
+from _report import write_page
 
 SPEEDS = (600, 900, 1200)
 LABELS = {"Normal": "healthy", "IR": "inner", "OR": "outer"}
 MODELS = "envelope,recommended"
 CLASSES = ("healthy", "outer", "inner", "ball")
+#: the twins compared: name -> the impact_spread line of the grid (None: as written)
+TWINS = {"identical impacts": "impact_spread = [0]", "spread impacts": None}
 
 
 def manifests(data: Path, speed: int, work: Path) -> tuple[Path, Path]:
@@ -57,10 +66,20 @@ def ballpass(*args) -> None:
     subprocess.run([sys.executable, "-m", "ballpass", *map(str, args)], check=True)
 
 
-def one_speed(data: Path, speed: int, work: Path, jobs: int) -> tuple[pd.DataFrame, pd.DataFrame]:
-    healthy, test = manifests(data, speed, work)
-    grid, ds, report = work / f"twin_{speed}.toml", work / f"ds_{speed}", work / f"rep_{speed}"
-    ballpass("twin", healthy, "--rpm", *SPEEDS, "--out", grid)
+def kurtosis(ds: Path) -> pd.DataFrame:
+    """Kurtosis of every fault row of a twin dataset, with its label."""
+    from ballpass.datasets import load
+
+    X, meta = load(ds)
+    faults = (meta["label"] != "healthy").to_numpy()
+    return pd.DataFrame({"label": meta["label"][faults].to_numpy(),
+                         "kurtosis": scipy.stats.kurtosis(X[faults], axis=1, fisher=False)})
+
+
+def one_twin(grid: Path, test: Path, work: Path, jobs: int):
+    """Generate one twin and benchmark it on the test recordings: (results, predictions,
+    kurtosis of its fault rows)."""
+    ds, report = work / "ds", work / "rep"
     t0 = time.perf_counter()
     ballpass("generate", grid, "--out", ds, "--jobs", jobs, "--quiet")
     t1 = time.perf_counter()
@@ -71,48 +90,85 @@ def one_speed(data: Path, speed: int, work: Path, jobs: int) -> tuple[pd.DataFra
     seeds = pd.read_csv(report / "sim2real_seeds.csv")
     spread = seeds.groupby("model")["balanced_accuracy_3class"].agg(["min", "max"])
     results = results.join(spread, on="model")
-    results.insert(0, "input", f"Normal_{speed}")
     results["generate_s"], results["benchmark_s"] = t1 - t0, t2 - t1
-    predictions = pd.read_csv(report / "predictions.csv")
-    predictions.insert(0, "input", f"Normal_{speed}")
-    return results, predictions
+    return results, pd.read_csv(report / "predictions.csv"), kurtosis(ds)
+
+
+def one_speed(data: Path, speed: int, seed: int, work: Path, jobs: int):
+    """Both twins of one input speed from the grid seed ``seed``: (results, predictions,
+    kurtosis), each with the columns ``twin``, ``input`` and ``twin_seed``."""
+    healthy, test = manifests(data, speed, work)
+    written = work / f"twin_{speed}_{seed}.toml"
+    ballpass("twin", healthy, "--rpm", *SPEEDS, "--out", written, "--seed", seed)
+    out = []
+    for k, (name, line) in enumerate(TWINS.items()):
+        grid = written.with_name(f"twin_{speed}_{seed}_{k}.toml")
+        text = written.read_text()
+        if line is not None:
+            text = re.sub(r"^impact_spread = .*$", line, text, count=1, flags=re.M)
+        grid.write_text(text)
+        (work / f"{speed}_{seed}_{k}").mkdir()
+        parts = one_twin(grid, test, work / f"{speed}_{seed}_{k}", jobs)
+        for part in parts:
+            part.insert(0, "twin_seed", seed)
+            part.insert(0, "input", f"Normal_{speed}")
+            part.insert(0, "twin", name)
+        out.append(parts)
+    return [pd.concat(p) for p in zip(*out, strict=True)]
+
+
+def real_kurtosis(test: Path) -> pd.DataFrame:
+    """Kurtosis of the rig's one-second fault segments (those of a test manifest)."""
+    from ballpass.datasets import load_manifest
+
+    X, meta = load_manifest(test, segment_s=1.0)[:2]
+    faults = (meta["label"] != "healthy").to_numpy()
+    return pd.DataFrame({"label": meta["label"][faults].to_numpy(),
+                         "kurtosis": scipy.stats.kurtosis(X[faults], axis=1, fisher=False)})
 
 
 def figure(predictions: pd.DataFrame, path: Path) -> None:
+    """Confusion matrices of the recommended pipeline: a row per twin, a column per input."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     rec = predictions[predictions["model"] == "recommended"]   # its first training seed
-    inputs = list(dict.fromkeys(rec["input"]))
-    fig, axes = plt.subplots(1, len(inputs), figsize=(4 * len(inputs), 3.6))
+    twins, inputs = list(dict.fromkeys(rec["twin"])), list(dict.fromkeys(rec["input"]))
+    fig, axes = plt.subplots(len(twins), len(inputs), figsize=(4 * len(inputs),
+                                                               3.3 * len(twins)),
+                             squeeze=False)
     truth = ["healthy", "outer", "inner"]
-    for ax, name in zip(np.atleast_1d(axes), inputs, strict=True):
-        part = rec[rec["input"] == name]
-        counts = pd.crosstab(part["y_true"], part["y_pred"]).reindex(
-            index=truth, columns=list(CLASSES), fill_value=0)
-        share = counts.div(counts.sum(axis=1), axis=0).to_numpy()
-        ax.imshow(share, vmin=0, vmax=1, cmap="Blues")
-        for i in range(share.shape[0]):
-            for j in range(share.shape[1]):
-                ax.text(j, i, f"{counts.iat[i, j]}", ha="center", va="center",
-                        color="white" if share[i, j] > 0.5 else "black")
-        ax.set_xticks(range(len(CLASSES)), CLASSES)
-        ax.set_yticks(range(len(truth)), truth)
-        ax.set_xlabel("predicted")
-        ax.set_title(f"twin of {name}")
-    np.atleast_1d(axes)[0].set_ylabel("true (HIT-SM segments)")
-    fig.suptitle("HIT-SM rig, recommended pipeline trained on the twin only")
+    for row, twin_name in zip(axes, twins, strict=True):
+        for ax, name in zip(row, inputs, strict=True):
+            part = rec[(rec["twin"] == twin_name) & (rec["input"] == name)]
+            counts = pd.crosstab(part["y_true"], part["y_pred"]).reindex(
+                index=truth, columns=list(CLASSES), fill_value=0)
+            share = counts.div(counts.sum(axis=1), axis=0).to_numpy()
+            ax.imshow(share, vmin=0, vmax=1, cmap="Blues")
+            for i in range(share.shape[0]):
+                for j in range(share.shape[1]):
+                    ax.text(j, i, f"{counts.iat[i, j]}", ha="center", va="center",
+                            color="white" if share[i, j] > 0.5 else "black")
+            ax.set_xticks(range(len(CLASSES)), CLASSES)
+            ax.set_yticks(range(len(truth)), truth)
+            ax.set_xlabel("predicted")
+            ax.set_title(f"{twin_name}, twin of {name}", fontsize=10)
+        row[0].set_ylabel("true (HIT-SM segments)")
+    fig.suptitle("HIT-SM rig, recommended pipeline trained on the twin only "
+                 "(segments of all twin seeds)")
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    fig.savefig(path, dpi=110)
 
 
 def markdown(table: pd.DataFrame) -> str:
     """The table as a Markdown pipe table (numbers to 3 digits, times to whole s)."""
     def cell(name, v):
         if isinstance(v, float):
-            return f"{v:.0f}" if name.endswith("_s") else f"{v:.3f}"
+            if name.endswith(("_s", "_s_max")):
+                return f"{v:.0f}"
+            return f"{v:.1f}" if name.startswith("kurtosis") else f"{v:.3f}"
         return str(v)
     rows = ["| " + " | ".join(table.columns) + " |", "|" + "---|" * len(table.columns)]
     rows += ["| " + " | ".join(cell(k, v) for k, v in row.items()) + " |"
@@ -120,8 +176,49 @@ def markdown(table: pd.DataFrame) -> str:
     return "\n".join(rows)
 
 
-COLUMNS = ["input", "model", "n_test", "recall_healthy", "recall_outer", "recall_inner",
-           "balanced_accuracy_3class", "min", "max", "generate_s", "benchmark_s"]
+def kurtosis_table(twins: pd.DataFrame, real: pd.DataFrame) -> pd.DataFrame:
+    """Median and 10-90 % range of the fault rows' kurtosis, per source and class."""
+    both = pd.concat([twins.assign(source="twin: " + twins["twin"]),
+                      real.assign(source="HIT-SM fault seconds")])
+    q = both.groupby(["source", "label"], sort=False)["kurtosis"].quantile(
+        [0.1, 0.5, 0.9]).unstack()
+    return q.set_axis(["kurtosis_p10", "kurtosis_median", "kurtosis_p90"], axis=1).reset_index()
+
+
+COLUMNS = ["twin", "input", "model", "twin_seed", "n_test", "recall_healthy",
+           "recall_outer", "recall_inner", "balanced_accuracy_3class", "min", "max",
+           "generate_s", "benchmark_s"]
+RECALLS = ["recall_healthy", "recall_outer", "recall_inner"]
+
+
+def summary(table: pd.DataFrame) -> pd.DataFrame:
+    """Per twin, input and model: recalls and balanced accuracy averaged over the twin
+    seeds, the balanced accuracy's range over them, and the longest wall times."""
+    g = table.groupby(["twin", "input", "model"], sort=False)
+    out = g[RECALLS + ["balanced_accuracy_3class"]].mean()
+    out["balanced_twin_seed_min"] = g["balanced_accuracy_3class"].min()
+    out["balanced_twin_seed_max"] = g["balanced_accuracy_3class"].max()
+    spread = table["balanced_3class_seed_max"] - table["balanced_3class_seed_min"]
+    out["training_seed_spread_max"] = spread.groupby(
+        [table["twin"], table["input"], table["model"]], sort=False).max()
+    out["generate_s_max"], out["benchmark_s_max"] = g["generate_s"].max(), g["benchmark_s"].max()
+    return out.reset_index()
+
+
+INTRO = (
+    "Input: one healthy recording (5.12 s at one speed). Test: every other recording of the "
+    "rig, one-second segments (inner and outer faults of 2/5/8 degree arcs at 600/900/1200 "
+    "rpm, healthy at the two other speeds). Goal: three-class balanced accuracy >= 0.9, every "
+    "class recall >= 0.8. Two twins of each input, side by side in one run from the same "
+    "draws: `identical impacts` (every impact of a row the size its load gives, the twin "
+    "before `impact_spread`) and `spread impacts` (the default: log-normal sizes, "
+    "`impact_spread` drawn over 0-1). Each twin is drawn from three grid seeds (`ballpass "
+    "twin --seed`): recalls and balanced accuracy are their means, "
+    "`balanced_twin_seed_min`/`_max` the balanced accuracy's range over them, "
+    "`training_seed_spread_max` the largest range over five training seeds of one twin. "
+    "`generate_s_max`, `benchmark_s_max`: longest wall time of `ballpass generate --jobs 2` "
+    "and `ballpass benchmark --real` (both models) on a 2-core machine shared with other "
+    "work. Produced by `benchmarks/twin_hit.py`; every run in `results/twin_hit.csv`.")
 
 
 def main() -> None:
@@ -131,30 +228,49 @@ def main() -> None:
                         help="folder of the page (its table and figure go in OUT/results)")
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--speeds", type=int, nargs="+", default=list(SPEEDS))
+    parser.add_argument("--seeds", type=int, nargs="+", default=[0, 1, 2],
+                        help="grid seeds of the twins (ballpass twin --seed)")
+    parser.add_argument("--page-only", action="store_true",
+                        help="rebuild the page from the tables of an earlier run")
     args = parser.parse_args()
-    results, predictions = [], []
+    if args.page_only:
+        page(args.out)
+        return
+    results, predictions, kurt = [], [], []
     with tempfile.TemporaryDirectory() as tmp:
         for speed in args.speeds:
-            r, p = one_speed(args.data, speed, Path(tmp), args.jobs)
-            results.append(r)
-            predictions.append(p)
+            for seed in args.seeds:
+                r, p, k = one_speed(args.data, speed, seed, Path(tmp), args.jobs)
+                results.append(r)
+                predictions.append(p)
+                kurt.append(k)
+        real = real_kurtosis(Path(tmp) / f"test_{args.speeds[0]}.csv")
     table = pd.concat(results)[COLUMNS].rename(
         columns={"min": "balanced_3class_seed_min", "max": "balanced_3class_seed_max"})
+    table = table.sort_values(["input", "model", "twin"], key=lambda c: c.map(
+        {f"Normal_{v}": i for i, v in enumerate(SPEEDS)}) if c.name == "input" else c,
+        kind="stable")
+    kurt_table = kurtosis_table(pd.concat(kurt), real)
     results_dir = results_in(args.out)
     table.round(3).to_csv(results_dir / "twin_hit.csv", index=False)
+    kurt_table.round(1).to_csv(results_dir / "twin_hit_kurtosis.csv", index=False)
     figure(pd.concat(predictions), results_dir / "twin_hit.png")
-    lines = ["# A twin of the HIT-SM rig from one healthy recording", "",
-             "Input: one healthy recording (5.12 s at one speed). Test: every other recording "
-             "of the rig, one-second segments (inner and outer faults of 2/5/8 degree arcs at "
-             "600/900/1200 rpm, healthy at the two other speeds). Goal: three-class balanced "
-             "accuracy >= 0.9, every class recall >= 0.8. `balanced_3class_seed_min`/`_max`: "
-             "range of the balanced accuracy over five training seeds. `generate_s`, "
-             "`benchmark_s`: wall time of `ballpass generate --jobs 2` and "
-             "`ballpass benchmark --real` (both models) on a 2-core machine shared with "
-             "other work. Produced by `benchmarks/twin_hit.py`.", "",
-             markdown(table), "", "![confusion](results/twin_hit.png)", ""]
-    (args.out / "twin_hit.md").write_text("\n".join(lines))
-    print(table.round(3).to_string(index=False))
+    page(args.out)
+
+
+def page(out: Path) -> None:
+    """Write the page from the tables in ``out/results`` (``--page-only`` rebuilds it
+    alone)."""
+    table = pd.read_csv(out / "results" / "twin_hit.csv")
+    kurt_table = pd.read_csv(out / "results" / "twin_hit_kurtosis.csv")
+    write_page(out / "twin_hit.md", [
+        "# A twin of the HIT-SM rig from one healthy recording", "", INTRO, "",
+        markdown(summary(table)), "",
+        "Impulsiveness: kurtosis of the twins' one-second fault rows (all three inputs) "
+        "and of the rig's fault seconds, 10th percentile, median, 90th percentile.", "",
+        markdown(kurt_table), "", "![confusion](results/twin_hit.png)"])
+    print(summary(table).round(3).to_string(index=False))
+    print(kurt_table.to_string(index=False))
 
 
 if __name__ == "__main__":

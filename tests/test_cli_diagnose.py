@@ -146,3 +146,17 @@ def test_baseline_thresholds_keep_a_machines_own_line_healthy(tmp_path, capsys):
                          meta={"bearing": "6203", "rpm": RPM})
     assert main(["diagnose", str(new), "-q", "--baseline", str(other)]) != 0
     assert "--baseline holds no healthy recording of bearing 6205" in capsys.readouterr().err
+
+
+def test_line_hz_and_the_stated_false_alarm_probability(tmp_path, capsys):
+    """``--line-hz`` reaches the diagnoser (a bad value is refused naming it), and the
+    table carries each verdict's false-alarm probability (at most the default 1e-3)."""
+    path = faulty_and_healthy(tmp_path, "bpfo")
+    out = tmp_path / "v.csv"
+    assert main(["diagnose", str(path), "--line-hz", "50", "--out", str(out), "--quiet"]) == 0
+    table = pd.read_csv(out)
+    assert table.prediction.tolist() == ["outer", "healthy"]
+    assert (table.false_alarm_probability <= 1e-3).all()
+    capsys.readouterr()
+    assert main(["diagnose", str(path), "--line-hz", "-50", "--quiet"]) != 0
+    assert "line_hz must be" in capsys.readouterr().err

@@ -35,8 +35,9 @@ def _explain(x, evidence, offsets):
     """Explanation with each family's threshold at its own evidence minus ``offsets``
     (dB): the family's margin over its threshold becomes exactly that offset."""
     thresholds = {f: evidence[f] - offsets[f] for f in offsets}
-    why = bp.diagnose.EnvelopeDiagnoser(fs=FS, rpm=RPM, threshold_db=thresholds).explain(
-        x[None])[0]
+    # false_alarm=None: the thresholds are these, not raised to the noise floor
+    why = bp.diagnose.EnvelopeDiagnoser(fs=FS, rpm=RPM, threshold_db=thresholds,
+                                        false_alarm=None).explain(x[None])[0]
     # the case is what the explanation itself reports: each family's margin is its
     # offset (a family the diagnoser did not judge, -inf, is below any threshold)
     for f, offset in offsets.items():

@@ -123,3 +123,29 @@ def test_the_evidence_pipeline_learns_faults_from_simulations():
     with sklearn.config_context(enable_metadata_routing=True):
         pipe.fit(X, y, rpm=rpm)
         assert (pipe.predict(Xt, rpm=rpmt) == yt).mean() >= 11 / 12
+
+
+def test_the_combined_features_are_the_evidence_then_the_dimensionless_ones():
+    # Closed-form outer-race impacts at two speeds: the `combined` set is the `evidence`
+    # set followed by the `dimensionless` set, column for column (the same transformers,
+    # so exactly equal), the impacts' family reads highest in it, and no column moves
+    # with the amplifier gain (1e-6 dB and 1e-9 relative: float64 rounding through the
+    # FFTs; kurtosis and crest factor are ratios of moments). Planted: `combined` without
+    # the fault bands is 21 columns short and fails.
+    from ballpass.diagnose import make_features
+
+    rpms = np.array([1730.0, 1797.0])
+    X = np.stack([impacts(ORDERS_6205["outer"], r, seed=i) for i, r in enumerate(rpms)])
+
+    def features(name, x):
+        with sklearn.config_context(enable_metadata_routing=True):
+            return make_features(name, fs=FS).fit_transform(x, rpm=rpms)
+
+    combined = features("combined", X)
+    np.testing.assert_array_equal(
+        combined, np.hstack([features("evidence", X), features("dimensionless", X)]))
+    assert combined.shape == (2, 78 + 27)
+    names = evidence_feature_names()
+    outer, inner = names.index("outer_evidence_db"), names.index("inner_evidence_db")
+    assert (combined[:, outer] > combined[:, inner] + 6).all()
+    np.testing.assert_allclose(features("combined", 1e3 * X), combined, rtol=1e-9, atol=1e-6)

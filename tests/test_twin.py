@@ -167,6 +167,73 @@ def test_fault_rows_sit_at_their_level_over_the_background(machine, dataset):
     # ground truth as for a simulated row
     assert meta.loc[faults, "fault_width_mm"].between(0.2, 3.0).all()
     assert meta.loc[faults, "slip"].between(0.005, 0.02).all()
+    assert meta.loc[faults, "impact_spread"].between(0.0, 1.0).all()
+    assert meta.loc[meta["label"] == "healthy", "impact_spread"].isna().all()
+
+
+def test_impact_sizes_are_log_normal_with_mean_one():
+    """The sizes of a row's impacts: log-normal, the standard deviation of their log the
+    row's impact_spread, their mean 1 (so the spread changes the impacts' shape, and
+    level_db alone their level). Closed forms: E[m] = 1 and, for independent sizes over
+    impacts that do not overlap, the fourth-moment ratio E[m^4] / E[m^2]^2 =
+    exp(4 sigma^2), the factor by which the spread multiplies the kurtosis of a sparse
+    impact train (e at sigma = 0.5). With n = 10^6 draws at sigma = 0.5 the sample mean
+    is within 5e-4 (its standard error), the log's standard deviation within 4e-4 and
+    the moment ratio within about 2 % (4 standard errors of a fourth moment of a
+    log-normal at this sigma); tolerances 3 to 5 standard errors. Planted: dropping the
+    -sigma^2/2 (mean exp(sigma^2 / 2) = 1.13) fails; a spread of 0 or NaN gives
+    identical impacts, bit for bit."""
+    from ballpass.datasets.twin import _impact_sizes
+
+    rng = np.random.default_rng(5)
+    m = _impact_sizes(rng, 1_000_000, 0.5)
+    assert m.mean() == pytest.approx(1.0, abs=2.5e-3)
+    assert np.log(m).std() == pytest.approx(0.5, abs=2e-3)
+    assert np.mean(m**4) / np.mean(m**2) ** 2 == pytest.approx(math.exp(1.0), rel=0.08)
+    for spread in (0.0, math.nan, None):
+        np.testing.assert_array_equal(_impact_sizes(rng, 7, spread), np.ones(7))
+
+
+def test_the_spread_axis_leaves_the_other_draws(dataset):
+    """Drawing impact_spread, or fixing it at 0 (identical impacts, the twin before the
+    axis existed), gives the same scenes and levels run by run: the spread is drawn after
+    every other axis. Planted: the axis drawn before level_db (its place in the order of
+    the fault axes) changes every later draw and fails."""
+    grid = read_grid(dataset[0])
+    raw = grid.as_dict()
+    raw["grid"]["impact_spread"] = [0.0]
+    fixed = read_grid(raw)
+    assert [r.scene for r in grid.runs] == [r.scene for r in fixed.runs]
+    assert ([r.columns.get("level_db") for r in grid.runs]
+            == [r.columns.get("level_db") for r in fixed.runs])
+
+
+def test_the_spread_makes_a_row_more_impulsive(machine, tmp_path):
+    """Two twins of the same scenes, one with identical impacts (impact_spread 0), one
+    with sizes spread by 1: the second's fault rows are more impulsive (kurtosis of the
+    fault signal, background removed; median over rows). Expected factor up to e^4 for
+    impacts that never overlap and many impacts per row; with ~13 impacts per 0.25 s
+    row, the load zone's own modulation and overlapping rings, a factor above 2 of the
+    medians is asked, far below that. Planted: impacts' sizes drawn but not applied
+    fails (ratio 1)."""
+    import scipy.stats
+
+    folder, recordings = machine
+    medians = {}
+    for spread in (0.0, 1.0):
+        grid = read_grid(twin(folder / "healthy.csv", rpm=[900], out=folder / "g.toml",
+                              duration_s=0.25, draws=12, seed=1)).as_dict()
+        grid["grid"].update(fault=["outer"], impact_spread=[spread], level_db=[0.0])
+        generate(grid, tmp_path / f"s{spread}", progress=False)
+        X, meta = load(tmp_path / f"s{spread}")
+        kurt = []
+        for i in meta.index:
+            rec = recordings[meta.at[i, "background"]]
+            start = round(meta.at[i, "background_start_s"] * FS)
+            fault = X[i].astype(float) - rec[start:start + X.shape[1]]
+            kurt.append(scipy.stats.kurtosis(fault, fisher=False))
+        medians[spread] = np.median(kurt)
+    assert medians[1.0] > 2.0 * medians[0.0]   # 4.4 at this seed
 
 
 def test_the_learned_path_is_stored(dataset):
@@ -232,9 +299,13 @@ def test_generate_refuses_a_twin_at_another_rate(dataset, tmp_path):
 
 
 def test_level_db_needs_a_machine():
-    with pytest.raises(ValueError, match="level_db .* needs a .machine. table"):
+    for axis in ("level_db", "impact_spread"):
+        with pytest.raises(ValueError, match=f"{axis} .* needs a .machine. table"):
+            read_grid({"grid": {"bearing": ["6205"], "fault": ["outer"], "rpm": [900],
+                                axis: [0.0]}})
+    with pytest.raises(ValueError, match="impact_spread .* outside the allowed range"):
         read_grid({"grid": {"bearing": ["6205"], "fault": ["outer"], "rpm": [900],
-                            "level_db": [0.0]}})
+                            "impact_spread": {"uniform": [-1.0, 1.0]}}})
 
 
 def test_twin_command(machine, tmp_path, capsys):

@@ -56,6 +56,15 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
         "it; 99th percentile + 1 dB, never below 6 dB)",
     )
     p.add_argument(
+        "--line-hz",
+        type=float,
+        default=None,
+        metavar="HZ",
+        help="supply frequency of the machine (50 or 60), where known: harmonics of it "
+        "standing out of the squared envelope spectrum are set aside like the shaft's, so "
+        "an electrical line at a fault rate is not read as the fault",
+    )
+    p.add_argument(
         "--out",
         "-o",
         default=None,
@@ -75,13 +84,14 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
 
 
 def verdict_rows(signals, band=None, progress: bool = True, segmented: bool = False,
-                 thresholds=None):
+                 thresholds=None, line_hz=None):
     """``(explanation, row)`` per signal: the diagnoser's :class:`Explanation` and a
     table row (source, truth when known, the bearing whose lines were read, verdict,
     grade, evidence and threshold per family in dB, the verdict's band, the speeds
     stated and used, notes). ``segmented``: the signals are ``--segment`` cuts (a
     signal too short is then the option's fault, not the record's). ``thresholds``:
-    a :class:`BaselineThresholds` (``--baseline``), or None for the default."""
+    a :class:`BaselineThresholds` (``--baseline``), or None for the default. ``line_hz``:
+    the supply frequency (``--line-hz``), or None."""
     import sys
 
     import numpy as np
@@ -114,7 +124,7 @@ def verdict_rows(signals, band=None, progress: bool = True, segmented: bool = Fa
                     leave=False, file=sys.stderr):
         own = {} if thresholds is None else {"threshold_db": thresholds(sig)}
         diag = EnvelopeDiagnoser(bearing=sig.bearing, fs=sig.fs, rpm=float(sig.rpm), band=band,
-                                 **own)
+                                 line_hz=line_hz, **own)
         why = diag.explain(np.asarray(sig.x, dtype=np.float64)[None])[0]
         lo, hi = why.band_hz.get(why.label, (np.nan, np.nan))
         row = {"source": sig.name, **sig.columns, "bearing": str(sig.bearing),
@@ -123,7 +133,8 @@ def verdict_rows(signals, band=None, progress: bool = True, segmented: bool = Fa
             row[f"{family}_db"] = value
             row[f"{family}_threshold_db"] = why.threshold_db[family]
         row |= {"band_lo_hz": lo, "band_hi_hz": hi, "rpm_stated": why.rpm_stated,
-                "rpm_used": why.rpm, "notes": " / ".join(why.notes)}
+                "rpm_used": why.rpm, "false_alarm_probability": why.false_alarm_probability,
+                "notes": " / ".join(why.notes)}
         out.append((why, row))
     return out
 
@@ -149,7 +160,7 @@ def run(args) -> int:
         thresholds = BaselineThresholds(healthy, band)
         thresholds.check(records)
     results = verdict_rows(signals, band, progress=show_progress(args), segmented=segmented,
-                           thresholds=thresholds)
+                           thresholds=thresholds, line_hz=args.line_hz)
     for why, row in results:
         truth = row.get("label")
         known = f" (label: {truth})" if isinstance(truth, str) and truth else ""
@@ -157,7 +168,8 @@ def run(args) -> int:
     rows = [row | {"scope": "segment" if segmented else "record"} for _, row in results]
     if segmented:
         rows += record_verdicts(records, results, args.segment, band,
-                                progress=show_progress(args), thresholds=thresholds)
+                                progress=show_progress(args), thresholds=thresholds,
+                                line_hz=args.line_hz)
     if out is not None:
         frame = pd.DataFrame(rows)
         write_table(frame, Path(out))
@@ -170,7 +182,7 @@ def run(args) -> int:
 
 
 def record_verdicts(records, segment_results, seconds: float, band,
-                    progress: bool = True, thresholds=None) -> list[dict]:
+                    progress: bool = True, thresholds=None, line_hz=None) -> list[dict]:
     """Each whole record diagnosed too, printed with the tally of its segments' verdicts
     (``segment_results`` in record order, as :func:`segment_signals` cuts them into
     ``seconds``): a 10 s record resolves lines that its one-second segments cannot
@@ -181,7 +193,7 @@ def record_verdicts(records, segment_results, seconds: float, band,
 
     rows = []
     verdicts = iter(row["prediction"] for _, row in segment_results)
-    whole = verdict_rows(records, band, progress, thresholds=thresholds)
+    whole = verdict_rows(records, band, progress, thresholds=thresholds, line_hz=line_hz)
     for rec, (why, row) in zip(records, whole, strict=True):
         n = len(rec.x) // check_segment(seconds, rec.fs, "--segment")
         mine = [next(verdicts) for _ in range(n)]

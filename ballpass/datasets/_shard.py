@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .grid import Run, scene_from_dict
+from .grid import TWIN_AXES, Run, scene_from_dict
 from .store import (
     FEATURES_DIR,
     UNITS,
@@ -152,8 +152,8 @@ def regenerate(row) -> np.ndarray:
         machine = row.get("machine")   # a twin's row: its manifest and level
         run = Run(run_id=int(row["run_id"]), repeat=int(row["repeat"]), model=row["model"],
                   scene=scene, machine=machine if isinstance(machine, str) else None,
-                  columns={"level_db": float(row["level_db"])} if isinstance(machine, str)
-                  else {})
+                  columns={k: float(row[k]) for k in TWIN_AXES if k in row}
+                  if isinstance(machine, str) else {})
         length = round(float(row["duration_s"]) * built.fs)
         segment = int(row["segment"])
     except (TypeError, ValueError) as exc:

@@ -85,12 +85,13 @@ REALISM_AXES = (
 #: damping ratio and gain of an extra mode whose axis leaves them out
 MODE_DEFAULTS = {"damping": 0.05, "gain": 1.0}
 #: [grid] axes; runs follow this order, with the fault axes (size, angle, engagement)
-#: varying fastest
+#: varying fastest; drawn axes are drawn in this order, so an axis added last
+#: (``impact_spread``) leaves the other draws of an older grid as they were
 AXES = (
     "bearing", "fault", "fault_width_mm", "fault_depth_mm", "fault_angle_deg",
     "fault_engagement", "level_db", "rpm", "radial_load_n", "clearance_um", "slip", "snr_db",
     "noise_rms",
-    "resonance_hz", "resonance_damping", *REALISM_AXES, "model", "sensor",
+    "resonance_hz", "resonance_damping", *REALISM_AXES, "model", "sensor", "impact_spread",
 )
 REQUIRED_AXES = ("bearing", "fault", "rpm")
 _FAULT_AXES = {"fault_width_mm": "width_mm", "fault_depth_mm": "depth_mm",
@@ -98,8 +99,9 @@ _FAULT_AXES = {"fault_width_mm": "width_mm", "fault_depth_mm": "depth_mm",
 #: fault axes of ball faults only: race-fault points do not multiply over them
 _BALL_AXES = ("fault_engagement",)
 #: axes of a twin's fault rows (a grid with a [machine] table, :mod:`.twin`): the fault's
-#: RMS over the real background's, dB; not a Scene field, a column of its own
-TWIN_AXES = ("level_db",)
+#: RMS over the real background's, dB, and the spread of its impacts' sizes (standard
+#: deviation of their logarithm); not Scene fields, columns of their own
+TWIN_AXES = ("level_db", "impact_spread")
 #: axes that healthy points do not multiply over
 _FAULT_ONLY = (*_FAULT_AXES, *TWIN_AXES)
 _SCENE_AXES = ("radial_load_n", "clearance_um", "slip", "snr_db", "noise_rms", "resonance_hz",
@@ -341,7 +343,7 @@ class Run:
         Dataset columns of the run beyond the scene's own: the values of its realism
         axes (:data:`REALISM_AXES`) and, in a grid with drawn axes, ``draw`` (which draw
         of its grid point) and ``draw_seed`` (see :func:`draw_seed`); in a twin's grid,
-        ``level_db`` (NaN for a healthy run).
+        ``level_db`` and ``impact_spread`` (NaN for a healthy run).
     machine : str, optional
         A twin's run (:mod:`ballpass.datasets.twin`): absolute path of the manifest of
         the machine's healthy recordings, whose learned path and background make its
@@ -489,7 +491,8 @@ class Grid:
                     columns = {"draw": d, "draw_seed": seed}
                 columns.update({k: values[k] for k in realism})
                 if self.machine is not None:
-                    columns["level_db"] = values.get("level_db", math.nan)
+                    columns.update({k: values.get(k, math.nan) for k in TWIN_AXES
+                                    if k in self.axes})
                 machine = None if self.machine is None else self.machine["manifest"]
                 for r in range(repeats):
                     run_id = draw_id * repeats + r
@@ -646,7 +649,9 @@ def read_grid(source) -> Grid:
     rows are simulated faults through the machine's learned transmission path over
     segments of its healthy recordings, and healthy rows are those segments. Its
     ``level_db`` axis (required there, refused elsewhere) is the fault's RMS over the
-    background's, dB; healthy points do not multiply over it; one sensor.
+    background's, dB, and its ``impact_spread`` axis (optional there, refused
+    elsewhere) the standard deviation of the logarithm of its impacts' sizes; healthy
+    points multiply over neither; one sensor.
 
     **Drawn axes.** Every numeric axis may instead be a distribution (see
     :mod:`ballpass.datasets.distributions`): ``{uniform = [lo, hi]}``,
@@ -745,9 +750,10 @@ def _machine_table(raw: dict, source, axes: dict) -> dict | None:
     if "machine" not in raw:
         given = [k for k in TWIN_AXES if k in axes]
         if given:
-            raise ValueError(f"grid.{given[0]} is the fault's level over a real machine's "
-                             "background: it needs a [machine] table naming the healthy "
-                             "recordings (ballpass twin writes one)")
+            what = {"level_db": "the fault's level over a real machine's background",
+                    "impact_spread": "the spread of a twin's impact sizes"}[given[0]]
+            raise ValueError(f"grid.{given[0]} is {what}: it needs a [machine] table "
+                             "naming the healthy recordings (ballpass twin writes one)")
         return None
     table = raw["machine"]
     unknown = set(table) - {"manifest"}

@@ -19,7 +19,10 @@ fitted once per recording and process (cached), written to the dataset folder
 defect crossings of McFadden & Smith 1984 with random slip, the Stribeck load zone and
 the sensor's transmission factor; :mod:`ballpass.simulate.impulse`), before its own
 resonator: each impact is a unit-sample pulse of its housing-acceleration step, split
-linearly between the two samples around its time. The pulse train drives ``1 / A(z)``;
+linearly between the two samples around its time, and its size multiplied by a
+log-normal factor of its own (mean 1, log standard deviation ``impact_spread``, drawn
+per row: the random amplitudes of Antoni & Randall 2003; a ball does not strike a real
+spall the same way twice). The pulse train drives ``1 / A(z)``;
 the result is scaled so that its RMS over the row is ``level_db`` above the RMS of the
 background, and a segment of a real healthy recording is added: one of the recordings
 whose speed is nearest the row's, and the segment's start, drawn from the row's seed.
@@ -30,12 +33,14 @@ Their ``group`` is the recording's name, so no split puts segments of one record
 both sides; a fault row's group is its run.
 
 Every row keeps the columns of a simulated row (its scene, the fault's size and angle,
-the slip, the load) and adds ``level_db``, ``machine`` (the manifest), ``background``
-(the recording) and ``background_start_s``; ``resonance_hz``, ``resonance_damping``,
-``snr_db`` and ``noise_rms`` are NaN (the learned path and the real background replace
-them).
+the slip, the load) and adds ``level_db``, ``impact_spread``, ``machine`` (the
+manifest), ``background`` (the recording) and ``background_start_s``; ``resonance_hz``,
+``resonance_damping``, ``snr_db`` and ``noise_rms`` are NaN (the learned path and the
+real background replace them).
 
-References: P. D. McFadden, J. D. Smith, J. Sound Vib. 96 (1984) 69-82; N. Sawalhi,
+References: P. D. McFadden, J. D. Smith, J. Sound Vib. 96 (1984) 69-82; J. Antoni,
+R. B. Randall, "A stochastic model for simulation and diagnostics of rolling element
+bearings with localized faults", J. Vib. Acoust. 125 (2003) 282-289; N. Sawalhi,
 R. B. Randall, "Spectral kurtosis enhancement using autoregressive models", ACAM 2005;
 J. Makhoul, Proc. IEEE 63 (1975) 561-580.
 """
@@ -69,6 +74,7 @@ TWIN_DEFAULTS = {
     "fault_depth_mm": 0.3,
     "fault_angle_deg": (-60.0, 60.0),
     "level_db": (-10.0, 15.0),
+    "impact_spread": (0.0, 1.0),
     "radial_load_n": (150.0, 1500.0),
     "slip": (0.005, 0.02),
 }
@@ -258,6 +264,16 @@ def _pulse_train(times: np.ndarray, steps: np.ndarray, n: int, fs: float) -> np.
     return out[:n]
 
 
+def _impact_sizes(rng: np.random.Generator, n: int, spread) -> np.ndarray:
+    """Relative sizes of ``n`` impacts: log-normal, the standard deviation of their
+    logarithm ``spread`` (no axis, NaN or 0: all 1), their mean 1 (the median
+    exp(-spread^2 / 2)), independent from impact to impact (the random amplitudes of
+    Antoni & Randall's cyclostationary model of a bearing fault)."""
+    if spread is None or not spread > 0:   # also NaN
+        return np.ones(n)
+    return np.exp(spread * rng.standard_normal(n) - 0.5 * spread**2)
+
+
 def _rms(x: np.ndarray) -> float:
     return float(np.sqrt(np.mean((x - x.mean()) ** 2)))
 
@@ -305,7 +321,8 @@ def twin_signal(run, scene) -> tuple[np.ndarray, dict, dict]:
                        radial_load_n=math.nan, slip=math.nan, clearance_um=math.nan)
     else:
         times, steps, _ = _impacts(scene)
-        fault = scipy.signal.lfilter([1.0], rec.a, _pulse_train(times, steps[0], n, scene.fs))
+        steps = steps[0] * _impact_sizes(rng, times.size, run.columns.get("impact_spread"))
+        fault = scipy.signal.lfilter([1.0], rec.a, _pulse_train(times, steps, n, scene.fs))
         fault -= fault.mean()
         size = _rms(fault)
         if size > 0:   # a defect that never strikes (out of the load zone) stays silent
@@ -350,7 +367,8 @@ def twin(manifest, rpm, out, *, duration_s: float = TWIN_DEFAULTS["duration_s"],
     sampling rate, and a ``[machine]`` table naming the manifest; ``generate`` then
     learns the machine's path from the recordings (see the module docstring). Drawn per
     row, each range with its source in the file: fault width, outer-race fault angle,
-    radial load, slip, and ``level_db``, the fault's RMS over the background's.
+    radial load, slip, ``level_db``, the fault's RMS over the background's, and
+    ``impact_spread``, the log standard deviation of the impacts' sizes.
 
     Parameters
     ----------
@@ -465,6 +483,13 @@ fault_angle_deg = {{ uniform = [{d[fault_angle_deg][0]:g}, {d[fault_angle_deg][1
 # two steps of the ISO 10816-1 evaluation zones (each a factor 2.5, 8 dB), from a new
 # machine's zone A into zone C/D
 level_db = {{ uniform = [{d[level_db][0]:g}, {d[level_db][1]:g}] }}
+# how much the impacts' sizes differ from one passage to the next: the standard deviation
+# of their logarithm (independent log-normal sizes, mean kept), the random amplitudes of
+# Antoni & Randall's model of a localized fault (J. Vib. Acoust. 2003), who leave their
+# spread open. From 0, McFadden & Smith's identical impacts (J. Sound Vib. 1984), to 1,
+# sizes a factor e apart at one standard deviation: a ball striking a rough, widening
+# spall at a new point each time. A judgement, not a published range
+impact_spread = {{ uniform = [{d[impact_spread][0]:g}, {d[impact_spread][1]:g}] }}
 # radial load from light to normal service, P/C = 0.01-0.1 of a 6205-size bearing's
 # basic dynamic rating (SKF catalogue: about 0.01 C to roll without skidding)
 radial_load_n = {{ log_uniform = [{d[radial_load_n][0]:g}, {d[radial_load_n][1]:g}] }}

@@ -5,6 +5,8 @@ Physics-based (no training)
 EnvelopeDiagnoser     scikit-learn classifier from the squared-envelope-spectrum evidence
 envelope_evidence     evidence of each fault family (BPFO, BPFI +- fr, 2xBSF +- FTF), dB
 Explanation           which lines carried a decision, and how far above the background
+noise_probability     how often noise, searched as widely as a record, reads its evidence
+noise_threshold       the evidence noise reaches with a given probability per record
 plot_explanation      the squared envelope spectrum behind a decision, its lines marked
 baseline_thresholds   each family's threshold from healthy recordings of the machine
 EvidenceTransformer   the diagnoser's evidence as features for learned models (no absolute units)
@@ -38,6 +40,8 @@ _NAMES = {
     "EnvelopeEvidence": "evidence",
     "Explanation": "rules",
     "envelope_evidence": "evidence",
+    "noise_probability": "noise_law",
+    "noise_threshold": "noise_law",
     "CLASSIFIERS": "_names",
     "FEATURE_SETS": "_names",
     "make_classifier": "pipelines",

@@ -30,15 +30,16 @@ FEATURE_SETS = {
     "evidence": "the diagnoser's evidence: each family's line levels in dB over their "
                 "background in the band its evidence picks, and the SES on an order axis in "
                 "dB over its median; nothing in absolute units",
+    "combined": "the `evidence` features and the `dimensionless` ones together",
 }
 
 #: The learned pipeline the docs recommend for simulation-to-real, (classifier, feature
-#: set): of the five classifiers on the `dimensionless` and `evidence` features, trained
-#: on the shipped sim2real_cwru grid (and its 6203 twin), the one with the highest median
-#: four-class balanced accuracy on the shared CWRU records of both ends over three
-#: training sets (a rule fixed before the scores were seen; docs/sim2real.md), never on
-#: a test set. The random forest on the same features is within 0.01.
-RECOMMENDED = ("gradient_boosting", "dimensionless")
+#: set): of the five classifiers on the `dimensionless`, `evidence` and `combined`
+#: features, trained on the shipped sim2real_cwru grid (and its 6203 twin at the fan
+#: end), the one with the highest median four-class balanced accuracy on the shared
+#: CWRU 0 hp records, the drive and fan ends judged as separate rigs, over three training
+#: sets (docs/sim2real.md); never chosen on a test set.
+RECOMMENDED = ("random_forest", "combined")
 
 #: Model name -> description: the physics-based diagnoser and the learned pipelines.
 MODELS = {

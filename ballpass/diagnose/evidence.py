@@ -10,7 +10,8 @@ of lines whose spacing the bearing's kinematics fix (Randall & Antoni [1]_, sect
   the carriers stand clearly above them;
 * **inner race**: harmonics of BPFI with sidebands at +-1x the shaft speed;
 * **rolling element**: harmonics of the ball-defect frequency 2xBSF with sidebands at
-  +-FTF.
+  +-FTF: the cage carries the defect round the load zone, and carriers standing more
+  than 6 dB above their sidebands are not a ball comb (:mod:`ballpass.diagnose.ball`).
 
 Three traps make a naive family score fail on real machines, and each has a rule here:
 
@@ -86,6 +87,7 @@ from ..features.bands import _check_reach, as_bearing
 from ..features.demodulate import BandDemodulator
 from ..features.kurtogram import FLOOR_DB
 from ..features.shaft import SHAFT_GUARD_BINS, SHAFT_GUARD_RELATIVE, shaft_line_bins
+from .ball import cage_shortfall_db
 from .speed import estimate_shaft_speed
 
 __all__ = [
@@ -274,8 +276,9 @@ class EnvelopeEvidence:
     shared : dict of str to ndarray of bool, shape (n_lines,)
         Lines left out because another family's lines explain them (:func:`shared_lines`).
     on_shaft : dict of str to ndarray of bool, shape (n_signals, n_lines)
-        Lines that fell on a shaft harmonic standing out of the SES and read as
-        background (rule 2 of the module notes).
+        Lines that fell on a shaft harmonic (or a harmonic of the supply frequency
+        ``line_hz``, where given) standing out of the SES and read as background (rule
+        2 of the module notes).
     scale : dict of str to ndarray, shape (n_signals,)
         Best-fitting ratio of measured to kinematic frequencies (1 - slip .. 1 + slip/4).
     line_names : dict of str to list of str
@@ -284,6 +287,11 @@ class EnvelopeEvidence:
         Demodulation band where each family read highest, Hz.
     n_bands : ndarray of int, shape (n_signals,)
         Number of candidate bands with signal searched in each row.
+    n_readings : ndarray of int, shape (n_signals,)
+        Number of family scores the search read in each row (bands with signal x
+        judged families x slip scales, both speeds where the speed check searched a
+        second one): the size of the search whose maximum the evidence is
+        (:func:`ballpass.diagnose.rules.noise_probability`).
     rpm : ndarray, shape (n_signals,)
         Shaft speed used, rev/min.
     rpm_stated : ndarray, shape (n_signals,)
@@ -324,6 +332,7 @@ class EnvelopeEvidence:
     line_names: dict
     band_hz: dict
     n_bands: int
+    n_readings: np.ndarray
     rpm: np.ndarray
     rpm_stated: np.ndarray
     speed_corrected: np.ndarray
@@ -511,8 +520,10 @@ def family_scores(readings: LineReadings, resolved) -> tuple[np.ndarray, np.ndar
 
     With ``C`` the mean level of the usable carriers and ``S`` the mean over harmonics
     of the stronger sideband (the one read where the other is left out): ``(C + S) /
-    2`` for the inner race (+-fr) and the ball
-    (+-FTF); ``C - max(0, S - C + OUTER_SIDEBAND_MARGIN_DB)`` for the outer race, whose
+    2`` for the inner race (+-fr); the same for the ball (+-FTF) less what its carriers
+    stand more than 6 dB above their own cage sidebands
+    (:func:`ballpass.diagnose.ball.cage_shortfall_db`: a ball comb is cage-modulated);
+    ``C - max(0, S - C + OUTER_SIDEBAND_MARGIN_DB)`` for the outer race, whose
     +-FTF neighbours only count against it where ``resolved`` (n,) (records of at
     least :data:`FTF_RESOLVED_CAGE_PERIODS`). The fit is the mean over carriers of the
     window level plus the nearest bin's level. ``-inf`` where the family cannot be
@@ -536,7 +547,10 @@ def family_scores(readings: LineReadings, resolved) -> tuple[np.ndarray, np.ndar
         sidebands = np.nanmean(np.fmax(level[..., side == -1], level[..., side == +1]),
                                axis=-1)
     sidebands = np.where(np.isnan(sidebands), 0.0, sidebands)
-    if support > 0:
+    if readings.fault == "ball":
+        score = 0.5 * (carriers + sidebands) - cage_shortfall_db(level, side,
+                                                                 readings.on_shaft)
+    elif support > 0:
         score = 0.5 * (carriers + sidebands)
     else:
         shortfall = np.maximum(0.0, sidebands - carriers + OUTER_SIDEBAND_MARGIN_DB)
@@ -551,14 +565,14 @@ def family_scores(readings: LineReadings, resolved) -> tuple[np.ndarray, np.ndar
 def _family_scores(ses, notch, df, shaft_hz, orders, fault, harmonics, slip, background_hz,
                    shared, resolved):
     """Stages 2 and 3 in one band, at the best-fitting scale of each row: (evidence
-    (n,), level (n, L), found (n, L), scale (n,), on_shaft (n, L))."""
+    (n,), level (n, L), found (n, L), scale (n,), on_shaft (n, L), scales judged (n,))."""
     readings = line_readings(ses, notch, df, shaft_hz, orders, fault, harmonics, slip,
                              background_hz, shared)
     score, fit = family_scores(readings, resolved)
     j = fit.argmax(axis=1)
     i = np.arange(len(ses))
     return (score[i, j], readings.level_db[i, j], readings.found_hz[i, j],
-            readings.scales[j], readings.on_shaft[i, j])
+            readings.scales[j], readings.on_shaft[i, j], np.isfinite(score).sum(axis=1))
 
 
 def _masked_median(values: np.ndarray, valid: np.ndarray) -> np.ndarray:
@@ -638,6 +652,7 @@ def envelope_evidence(
     slip: float = 0.02,
     background_hz: float = 10.0,
     speed_tolerance: float = 0.04,
+    line_hz=None,
 ) -> EnvelopeEvidence:
     """Evidence of each fault family in the squared envelope spectrum, dB.
 
@@ -654,7 +669,8 @@ def envelope_evidence(
     the background being the median SES over the line's slip search +-
     ``background_hz``. With ``C`` the mean level of the usable carriers and ``S`` the
     mean over harmonics of the stronger sideband, the evidence at ``s`` is
-    ``(C + S) / 2`` for the inner race (+-fr) and the ball (+-FTF), and
+    ``(C + S) / 2`` for the inner race (+-fr), the same less the mean over harmonics
+    of ``max(0, C_h - S_h - 6 dB)`` for the ball (+-FTF, the cage modulation), and
     ``C - max(0, S - C + 6 dB)`` for the outer race. The scale is fitted on the
     carriers; each family keeps its best band. A family with fewer than two unshared
     carriers cannot be judged (``-inf``).
@@ -693,6 +709,12 @@ def envelope_evidence(
     speed_tolerance : float, optional
         Relative half-width of the speed check, in [0, 0.1]; 0 trusts ``rpm``
         (default 0.04: the CWRU rig's speeds at 0-3 hp span 1730-1797 rpm).
+    line_hz : float or None, optional
+        Supply frequency, Hz (50 or 60), where known: harmonics of it that stand out of
+        the SES are set aside as the shaft harmonics are (rule 2 of the module notes;
+        an electrical machine modulates its structure at twice the supply frequency,
+        and a fault family whose rate falls within the slip search of one of its
+        harmonics would read it). Default None: no supply lines set aside.
 
     Returns
     -------
@@ -729,6 +751,9 @@ def envelope_evidence(
         raise ValueError(f"slip must be in [0, 0.2], got {slip!r}")
     background_hz = check_nonnegative("background_hz", background_hz)
     speed_tolerance = check_nonnegative("speed_tolerance", speed_tolerance)
+    if line_hz is not None and not (isinstance(line_hz, (int, float)) and 0 < line_hz < fs / 2):
+        raise ValueError(f"line_hz must be None or a supply frequency in (0, fs/2 = {fs / 2:g}) "
+                         f"Hz, got {line_hz!r}")
     if speed_tolerance > 0.1:
         raise ValueError(f"speed_tolerance must be in [0, 0.1], got {speed_tolerance!r}")
     stated = np.array(check_rpm(rpm, (len(xv),)), dtype=float)
@@ -748,8 +773,8 @@ def envelope_evidence(
     shared = shared_lines(orders, harmonics, slip, resolution, ball_judged)
     settings = dict(fs=fs, orders=orders, harmonics=harmonics, slip=slip,
                     background_hz=background_hz, prewhiten=prewhiten, bands=bands,
-                    shared=shared)
-    best, n_bands = _best_bands(xv, stated / 60.0, **settings)
+                    shared=shared, line_hz=line_hz)
+    best, n_bands, n_readings = _best_bands(xv, stated / 60.0, **settings)
     used = stated.copy()
     corrected = np.zeros(len(xv), bool)
     rpm_comb = np.full(len(xv), np.nan)
@@ -760,7 +785,9 @@ def envelope_evidence(
                                   & (np.abs(comb_rpm / stated - 1) > 0.002))
         rpm_comb[proposed] = comb_rpm[proposed]
         if proposed.size:
-            alt, alt_bands = _best_bands(xv[proposed], comb_rpm[proposed] / 60.0, **settings)
+            alt, alt_bands, alt_readings = _best_bands(xv[proposed], comb_rpm[proposed] / 60.0,
+                                                       **settings)
+            n_readings[proposed] += alt_readings
             take = _strongest(best)[proposed] - _strongest(alt) < SPEED_KEEP_DB
             rows = proposed[take]
             for fault, rec in best.items():
@@ -788,6 +815,7 @@ def envelope_evidence(
         line_names=names,
         band_hz={f: best[f]["band"] for f in FAULT_FAMILIES},
         n_bands=n_bands,
+        n_readings=n_readings,
         rpm=used,
         rpm_stated=stated,
         speed_corrected=corrected,
@@ -802,10 +830,10 @@ def _strongest(best: dict) -> np.ndarray:
 
 
 def _best_bands(xv, shaft_hz, *, fs, orders, harmonics, slip, background_hz, prewhiten,
-                bands, shared):
+                bands, shared, line_hz=None):
     """Each family's evidence in its best band at the shaft speeds ``shaft_hz`` (Hz, one
     per row): ``({fault: {evidence, level, found, on_shaft, scale, band}}, bands with
-    signal)``; ``shared`` is :func:`shared_lines`'s mask."""
+    signal, family scores read)``; ``shared`` is :func:`shared_lines`'s mask."""
     top = float(np.max(shaft_hz)) * (harmonics * max(orders[c] for c, _, _ in
                                                      FAULT_FAMILIES.values()) + 1.0)
     # The SES is needed up to the highest line's slip search and background, and one
@@ -832,6 +860,7 @@ def _best_bands(xv, shaft_hz, *, fs, orders, harmonics, slip, background_hz, pre
         for f in FAULT_FAMILIES
     }
     searched = np.flatnonzero(has_signal.any(axis=0))
+    n_readings = np.zeros(n, np.int64)
     # Bands are scored together, stacked as extra rows (the line layout is the same in
     # every band), a few at a time so that a batch of many signals stays small.
     per_batch = max(1, ROWS_PER_BATCH // n)
@@ -842,12 +871,17 @@ def _best_bands(xv, shaft_hz, *, fs, orders, harmonics, slip, background_hz, pre
         ses = np.concatenate([s for _, s in spectra])  # (len(chunk) * n, n_bins)
         speeds = np.tile(shaft_hz, len(chunk))
         notch = shaft_line_bins(spectra[0][0], ses, speeds, background_hz)
+        if line_hz is not None:  # the supply's harmonics, set aside like the shaft's
+            notch |= shaft_line_bins(spectra[0][0], ses, np.full(speeds.shape, float(line_hz)),
+                                     background_hz)
         for fault in FAULT_FAMILIES:
             scored = _family_scores(ses, notch, df, speeds, orders, fault, harmonics, slip,
                                     background_hz, shared[fault], np.tile(resolved, len(chunk)))
             rec = best[fault]
             for i, k in enumerate(chunk):
-                ev, level, found, scale, on_shaft = (v[i * n : (i + 1) * n] for v in scored)
+                ev, level, found, scale, on_shaft, judged = (v[i * n : (i + 1) * n]
+                                                             for v in scored)
+                n_readings += np.where(has_signal[:, k], judged, 0)
                 better = has_signal[:, k] & (ev > rec["evidence"])
                 rec["evidence"] = np.where(better, ev, rec["evidence"])
                 rec["level"] = np.where(better[:, None], level, rec["level"])
@@ -855,4 +889,4 @@ def _best_bands(xv, shaft_hz, *, fs, orders, harmonics, slip, background_hz, pre
                 rec["on_shaft"] = np.where(better[:, None], on_shaft, rec["on_shaft"])
                 rec["scale"] = np.where(better, scale, rec["scale"])
                 rec["band"] = np.where(better[:, None], bands[k], rec["band"])
-    return best, has_signal.sum(axis=1)
+    return best, has_signal.sum(axis=1), n_readings

@@ -47,13 +47,14 @@ __all__ = ["CLASSIFIERS", "FEATURE_SETS", "make_classifier", "make_features", "m
 #: Indicators without a unit: they do not change with sensor sensitivity or gain.
 _DIMENSIONLESS = tuple(n for n in INDICATORS if n not in ("rms", "peak", "peak_to_peak"))
 
-#: Feature set name -> (indicators, or None for none; fault bands?)
+#: Feature set name -> (indicators, or None for none; fault bands?; diagnoser evidence?)
 _CONTENT = {
-    "dimensionless": (_DIMENSIONLESS, True),
-    "all": (INDICATORS, True),
-    "bands": (None, True),
-    "indicators": (INDICATORS, False),
-    "evidence": (None, False),  # the EvidenceTransformer alone
+    "dimensionless": (_DIMENSIONLESS, True, False),
+    "all": (INDICATORS, True, False),
+    "bands": (None, True, False),
+    "indicators": (INDICATORS, False, False),
+    "evidence": (None, False, True),  # the EvidenceTransformer alone
+    "combined": (_DIMENSIONLESS, True, True),  # "dimensionless" and "evidence"
 }
 
 
@@ -130,7 +131,9 @@ def make_features(
           evidence and line levels in dB over their local background, in the band its
           own evidence picks, and the squared envelope spectrum on an order axis in dB
           over its median. No value has a unit of the machine; ``band`` and
-          ``separate`` do not apply.
+          ``separate`` do not apply;
+        * ``"combined"``: the ``"evidence"`` features followed by the
+          ``"dimensionless"`` ones (``band`` and ``separate`` apply to the latter).
     bearing : str or Bearing, optional
         For the fault bands (default ``"6205"``).
     fs : float, optional
@@ -161,9 +164,9 @@ def make_features(
     """
     if features not in FEATURE_SETS:
         raise ValueError(f"features must be one of {sorted(FEATURE_SETS)}, got {features!r}")
-    indicators, bands = _CONTENT[features]
+    indicators, bands, evidence = _CONTENT[features]
     parts = []
-    if features == "evidence":
+    if evidence:
         ev = EvidenceTransformer(bearing, fs=fs, rpm=rpm, harmonics=harmonics)
         with sklearn.config_context(enable_metadata_routing=True):
             ev.set_transform_request(rpm=True)

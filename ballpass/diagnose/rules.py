@@ -34,6 +34,7 @@ from ..features._validation import check_fs, check_nonnegative, check_rpm
 from ..features.bands import as_bearing
 from ..features.separation import check_separate, separated_rows
 from ._names import LABELS
+from .ball import cage_note, unmodulated_comb_db
 from .evidence import (
     FAULT_FAMILIES,
     FTF_RESOLVED_CAGE_PERIODS,
@@ -43,6 +44,7 @@ from .evidence import (
     family_lines,
     shaft_resolving_length,
 )
+from .noise_law import noise_probability, noise_threshold
 
 __all__ = [
     "LABELS",
@@ -50,8 +52,8 @@ __all__ = [
     "EnvelopeEvidence",
     "Explanation",
     "envelope_evidence",
+    "DEFAULT_FALSE_ALARM",
     "DEFAULT_THRESHOLD_DB",
-    "NOISE_EVIDENCE_GUMBEL",
     "EnvelopeDiagnoser",
     "noise_probability",
 ]
@@ -72,40 +74,12 @@ GRADE_MARGIN_DB = 3.0
 DEFAULT_THRESHOLD_DB = 6.0
 
 
-#: Gumbel law (location, scale), dB, of a noise record's strongest family evidence:
-#: fitted on 100 white and pink noise records, 12-51.2 kHz, 1-10 s, 6205 and 6203 at
-#: 600-1800 rpm (``benchmarks/diagnose_noise.py``, docs/diagnosis_noise.md). The
-#: strongest evidence is a maximum over many readings (bands, slip scales, families), the
-#: case of the Gumbel law; the fitted law barely depends on the rate or the length (means
-#: 3.4-3.9 dB over all of them). Noise reaches the default threshold with probability
-#: about 7e-5 per record.
-NOISE_EVIDENCE_GUMBEL = (3.51, 0.262)
-
-
-def noise_probability(evidence_db: float) -> float:
-    """Probability that a record of noise alone reads a family evidence of at least
-    ``evidence_db`` (dB), from :data:`NOISE_EVIDENCE_GUMBEL`.
-
-    Per record, not per reading: the law is that of a record's strongest evidence, the
-    maximum over every reading the search makes (bands x slip scales x families, each
-    family's harmonics averaged), so the multiple comparisons are in it. At a threshold
-    it is the per-record false-alarm probability on noise
-    (:attr:`Explanation.false_alarm_probability`).
-
-    A statement about the search, not about the machine: a healthy machine's own lines
-    (shaft, supply, a varying-compliance line imprinted on a band) are not noise, and a
-    low probability does not rule them out.
-
-    Examples
-    --------
-    >>> from ballpass.diagnose.rules import noise_probability
-    >>> f"{noise_probability(6.0):.0e}", noise_probability(float("-inf"))
-    ('7e-05', 1.0)
-    """
-    if not math.isfinite(evidence_db):
-        return 1.0 if evidence_db < 0 else 0.0
-    loc, scale = NOISE_EVIDENCE_GUMBEL
-    return float(-math.expm1(-math.exp(-(evidence_db - loc) / scale)))
+#: Default false-alarm probability per record on noise: a family's threshold is at least
+#: the evidence noise alone reaches with this probability over the record's own search
+#: (:func:`~ballpass.diagnose.noise_law.noise_threshold`), so that it holds whatever the
+#: rate, length and speed. An order below the 1 % per record a monitoring system can
+#: afford, since a real machine's background is not Gaussian noise.
+DEFAULT_FALSE_ALARM = 1e-3
 
 
 @dataclass(frozen=True)
@@ -123,7 +97,11 @@ class Explanation:
         this record), ``"N"`` not diagnosable (no family could be judged, or a second
         family clears its threshold within 3 dB of the named one: the families
         collide and the label is the stronger of the two, not a diagnosis). A record
-        with no signal in any band above the fault lines is "healthy", grade "Y". In
+        with no signal in any band above the fault lines is "healthy", grade "Y". A
+        2xBSF comb that would clear the ball's threshold but lacks its cage (+-FTF)
+        modulation (:func:`ballpass.diagnose.ball.unmodulated_comb_db`) grades N a
+        "healthy" verdict, or a race verdict it reads within 3 dB of (or above): it is
+        no ball fault, and not told from the race's lines either. In
         the spirit of Smith & Randall's
         grades (MSSP 64-65, 2015).
     notes : tuple of str
@@ -140,15 +118,18 @@ class Explanation:
     rpm_stated : float
         Shaft speed given, rev/min.
     noise_probability : float
-        Probability that a record of noise alone reads this record's strongest family
-        evidence or more (:func:`noise_probability`): a p-value per record, the whole
-        search (bands x slip scales x families x harmonics, and the speed check) counted
+        Probability that a record of noise alone, searched as widely as this one, reads
+        its strongest family evidence or more
+        (:func:`~ballpass.diagnose.noise_law.noise_probability`): a p-value per record,
+        the whole search (bands x families x slip scales, and the speed check) counted
         once, since the law is that of a record's strongest reading.
     false_alarm_probability : float
-        Probability that a record of noise alone is called faulty at the thresholds
-        used, per record: :func:`noise_probability` at the lowest family threshold
-        (7e-5 at the default 6 dB). A statement about the search, not the machine: a
-        healthy machine's own lines are not noise.
+        Probability that a record of noise alone, searched as widely, is called faulty
+        at the thresholds used: at most ``false_alarm`` (the thresholds are raised to
+        reach it), lower where ``threshold_db`` is the higher. A statement about the
+        search, not the machine: a healthy machine's own lines are not noise.
+    n_readings : int
+        Readings the search made on this record (``EnvelopeEvidence.n_readings``).
     lines : pandas.DataFrame
         One row per line of every family: ``fault``, ``line`` (e.g. ``"1xBPFI+fr"``),
         ``harmonic``, ``role`` (``"carrier"``, ``"sideband"``, or ``"refuting
@@ -190,6 +171,7 @@ class Explanation:
     lines: object
     noise_probability: float = float("nan")
     false_alarm_probability: float = float("nan")
+    n_readings: int = 0
 
     def __str__(self) -> str:
         head = (
@@ -205,7 +187,8 @@ class Explanation:
                          f"{self.noise_probability:.2g}")
         if math.isfinite(self.false_alarm_probability):
             parts.append(f"  false-alarm probability per record of noise at these "
-                         f"thresholds: {self.false_alarm_probability:.2g}")
+                         f"thresholds: {self.false_alarm_probability:.2g} ("
+                         f"{self.n_readings} readings searched)")
         if self.label != "healthy":
             lo, hi = self.band_hz[self.label]
             decisive = self.lines[self.lines["decisive"] & ~self.lines["shared"]]
@@ -278,6 +261,18 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
         Half-width of the SES background median, Hz (default 10).
     speed_tolerance : float, optional
         Largest relative speed correction, in [0, 0.1] (default 0.04; 0 trusts rpm).
+    line_hz : float or None, optional
+        Supply frequency of the machine, Hz (50 or 60), where known: its harmonics that
+        stand out of the squared envelope spectrum are set aside like the shaft's (an
+        electrical machine modulates its structure at twice the supply frequency). Default
+        None.
+    false_alarm : float or None, optional
+        False-alarm probability per record on noise, in (0, 0.5] (default
+        :data:`DEFAULT_FALSE_ALARM`, 0.1 %): each record's thresholds are at least the
+        evidence noise alone reaches with this probability over that record's search
+        (:func:`~ballpass.diagnose.noise_law.noise_threshold`: the more readings
+        searched, the higher), so the probability holds whatever the rate, length and
+        speed; ``explain()`` states each record's. ``None``: ``threshold_db`` alone.
     threshold_db : float or dict of str to float, optional
         Evidence a family needs to be named, dB (default :data:`DEFAULT_THRESHOLD_DB`);
         a dict gives each family its own (keys ``"outer"``, ``"inner"``, ``"ball"``; a
@@ -327,7 +322,9 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
         slip=0.02,
         background_hz=10.0,
         speed_tolerance=0.04,
+        line_hz=None,
         threshold_db=DEFAULT_THRESHOLD_DB,
+        false_alarm=DEFAULT_FALSE_ALARM,
         quantile=0.99,
         margin_db=1.0,
         softness_db=2.0,
@@ -387,6 +384,7 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
                     f"{speed.max() * 0.5 * fs / top:.0f} rev/min, or use fewer harmonics")
         check_separate(self.separate, self.other_shafts)
         self._floors()  # a bad threshold_db fails before any work
+        self._false_alarm()
         return X, speed, fs
 
     # ------------------------------------------------------------ evidence
@@ -404,6 +402,7 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
             slip=self.slip,
             background_hz=self.background_hz,
             speed_tolerance=self.speed_tolerance,
+            line_hz=self.line_hz,
         )
         ftf = as_bearing(self.bearing).frequencies(1.0).ftf * ev.rpm / 60.0
         return ev, ev.duration_s * ftf < FTF_RESOLVED_CAGE_PERIODS
@@ -422,14 +421,35 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
                                            given.get(f, DEFAULT_THRESHOLD_DB)))
                 for f in FAULT_FAMILIES}
 
+    def _false_alarm(self):
+        """``false_alarm`` validated (None or a probability in (0, 0.5])."""
+        p = self.false_alarm
+        if p is None:
+            return None
+        if isinstance(p, bool) or not isinstance(p, numbers.Real) or not 0.0 < p <= 0.5:
+            raise ValueError(f"false_alarm must be None or in (0, 0.5] (false-alarm "
+                             f"probability per record on noise), got {p!r}")
+        return float(p)
+
+    def _noise_floor(self, ev: EnvelopeEvidence, too_short) -> np.ndarray:
+        """Per row, the evidence noise alone reaches with probability ``false_alarm``
+        over that row's search, dB (``-inf`` with ``false_alarm=None``)."""
+        p = self._false_alarm()
+        if p is None:
+            return np.full(len(ev.n_readings), -np.inf)
+        return noise_threshold(p, ev.n_readings, ev.duration_s, ~np.asarray(too_short))
+
     def _thresholds(self) -> dict:
         fitted = getattr(self, "thresholds_", None)
         return dict(fitted) if fitted is not None else self._floors()
 
-    def _decision(self, evidence_db: dict) -> np.ndarray:
+    def _decision(self, evidence_db: dict, noise_floor=None) -> np.ndarray:
         """Class margins, dB (``classes_`` order), from each family's evidence
-        (``EnvelopeEvidence.evidence_db``)."""
+        (``EnvelopeEvidence.evidence_db``) against its threshold, raised per row to
+        ``noise_floor`` (:meth:`_noise_floor`) where given."""
         thresholds = self._thresholds()
+        if noise_floor is not None:
+            thresholds = {f: np.maximum(t, noise_floor) for f, t in thresholds.items()}
         margin = {f: np.maximum(evidence_db[f] - thresholds[f], -1e3) for f in FAULT_FAMILIES}
         margin["healthy"] = -np.max(np.stack([margin[f] for f in FAULT_FAMILIES]), axis=0)
         return np.column_stack([margin[c] for c in self.classes_])
@@ -508,7 +528,8 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
         -------
         ndarray, shape (n_signals, 4)
         """
-        return self._decision(self._evidence(X, rpm)[0].evidence_db)
+        ev, too_short = self._evidence(X, rpm)
+        return self._decision(ev.evidence_db, self._noise_floor(ev, too_short))
 
     def predict_proba(self, X, rpm=None):
         """Softmax of :meth:`decision_function` / ``softness_db``, columns as ``classes_``.
@@ -572,11 +593,13 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
         import pandas as pd
 
         ev, too_short = self._evidence(X, rpm)
-        labels = self.classes_[self._decision(ev.evidence_db).argmax(axis=1)]
-        thresholds = self._thresholds()
+        floor = self._noise_floor(ev, too_short)
+        labels = self.classes_[self._decision(ev.evidence_db, floor).argmax(axis=1)]
+        given = self._thresholds()
         layout = {f: family_lines(f, self.harmonics) for f in FAULT_FAMILIES}
         out = []
         for i, label in enumerate(labels):
+            thresholds = {f: max(t, float(floor[i])) for f, t in given.items()}
             evidence = {f: float(ev.evidence_db[f][i]) for f in FAULT_FAMILIES}
             margins = sorted((evidence[f] - thresholds[f] for f in FAULT_FAMILIES),
                              reverse=True)
@@ -606,6 +629,12 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
                                  "of another family's lines")
                 if f != label and not silent:
                     notes.extend(_shaft_note(ev, f, i, layout[f]))
+            # An unmodulated 2xBSF comb that rivals the verdict (not the ball's own).
+            comb = unmodulated_comb_db(ev, i)
+            rival = label != "ball" and comb >= thresholds["ball"] and (
+                label == "healthy" or comb >= evidence[label] - GRADE_MARGIN_DB)
+            if rival:
+                notes.extend(cage_note(ev, i))
             if silent:
                 grade = "Y"
             elif not any(np.isfinite(v) for v in evidence.values()):
@@ -624,6 +653,8 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
                 clear = (margins[0] >= GRADE_MARGIN_DB
                          and margins[0] - margins[1] >= GRADE_MARGIN_DB)
                 grade = "Y" if clear else "P"
+            if rival:
+                grade = "N"
             frames = [
                 pd.DataFrame({
                     "fault": fault,
@@ -650,7 +681,11 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
                 rpm=float(ev.rpm[i]),
                 rpm_stated=float(ev.rpm_stated[i]),
                 lines=pd.concat(frames, ignore_index=True),
-                noise_probability=noise_probability(max(evidence.values())),
-                false_alarm_probability=noise_probability(min(thresholds.values())),
+                noise_probability=noise_probability(max(evidence.values()), ev.n_readings[i],
+                                                    ev.duration_s, not too_short[i]),
+                false_alarm_probability=noise_probability(min(thresholds.values()),
+                                                          ev.n_readings[i], ev.duration_s,
+                                                          not too_short[i]),
+                n_readings=int(ev.n_readings[i]),
             ))
         return out

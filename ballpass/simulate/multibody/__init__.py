@@ -79,6 +79,17 @@ contact forces (the centrifugal load of a 35 Hz ER-16K by 2 % at 4.2 us, 0.5 % a
 1.8 us); benchmarks/multibody_speed.py shows the work-precision, and that the
 overdamped root is what costs the third step: with Kramer's time halved (that root
 halved, the oscillation unchanged) two steps per interval are as accurate as three.
+``solver="rosw"`` takes the Rosenbrock-W method ROS34PW2 (Rang & Angermann 2005; order
+3 for any approximate Jacobian, L-stable) with W = I - gamma h J, J holding only the
+2 x 2 stiffness and damping blocks of each ball's centre against its races and of the
+outer race against its housing (Kramer's damping is tau times the stiffness, so each
+block is one 2 x 2 solve per stage); everything else is stepped explicitly. It stays
+accurate past RK4's limit on the overdamped root (one step per 5.2 us interval,
+lambda_max dt = 4.2, keeps the loads within 2e-5 of DOP853 over 200 us where RK4 is
+off by 0.46), and gets the centrifugal balance right at a third of RK4's evaluations,
+but at equal cost its short-horizon loads and sensor signal are less accurate than
+RK4's (order 3 against 4, and the explicit traction-slip oscillation): RK4 stays the
+default (benchmarks/multibody_speed.py, work-precision).
 The run starts from the quasi-static equilibrium with the centrifugal load and rolling
 kinematics and settles for ``settle_s`` before t = 0, so the cage finds its pockets and
 its slip before the record begins.
@@ -121,12 +132,17 @@ __all__ = ["MULTIBODY", "MultibodyParameters", "MultibodySystem", "build", "inte
 SOLVERS = {
     "rk4": "classical Runge-Kutta, fixed step (default: omega_max dt = 1.0 and "
            "lambda_max dt = 1.8 from the linearised contact and traction dynamics)",
+    "rosw": "Rosenbrock-W ROS34PW2 (Rang & Angermann 2005), fixed step, each ball's "
+            "contact stiffness and damping implicit (omega_max dt = 1.5)",
 }
 
 #: default step limits: omega_max dt (the traction-slip oscillation, RK4 stable to 2.83)
 #: and lambda_max dt (the overdamped contact's fast root, RK4 stable to 2.79); see the
 #: module docstring and benchmarks/multibody_speed.py
 OMEGA_DT, LAMBDA_DT = 1.0, 1.8
+#: default step limit of the Rosenbrock-W solver: omega_max dt (its explicit part,
+#: everything but the balls' contact blocks, is stable to 1.5 on the imaginary axis)
+ROSW_OMEGA_DT = 1.5
 
 #: Hertz pressure at the centre of the most loaded contact up to which the model takes
 #: a scene, Pa: ISO 76's basic static load rating of radial ball bearings (4200 MPa,
@@ -350,8 +366,12 @@ class MultibodySystem:
         """2 (6 + 3 Z) + 2 Z (coordinates, rates, traction forces)."""
         return self.y0.shape[0]
 
-    def default_dt(self) -> float:
-        """Default RK4 step, s: omega_max dt = OMEGA_DT and lambda_max dt = LAMBDA_DT."""
+    def default_dt(self, solver: str = "rk4") -> float:
+        """Default step of ``solver``, s: for RK4 omega_max dt = OMEGA_DT and
+        lambda_max dt = LAMBDA_DT; for ROS34PW2, whose contact blocks are implicit,
+        omega_max dt = ROSW_OMEGA_DT only."""
+        if solver == "rosw":
+            return ROSW_OMEGA_DT / self.omega_max
         return min(OMEGA_DT / self.omega_max, LAMBDA_DT / self.lambda_max)
 
     def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
@@ -750,9 +770,10 @@ def _resonator(exc: np.ndarray, h: float, f_hz: float, zeta: float) -> np.ndarra
 
 
 def integrate(system: MultibodySystem, *, h_out: float, n_out: int, stride: int,
-              dt: float | None = None):
-    """Integrate a bound system over [t0, n_out h_out] with RK4 (no decimation, AC
-    coupling or noise: the integration step of the multibody model's ``simulate``).
+              dt: float | None = None, solver: str = "rk4"):
+    """Integrate a bound system over [t0, n_out h_out] with a fixed step (no
+    decimation, AC coupling or noise: the integration step of the multibody model's
+    ``simulate``).
 
     Parameters
     ----------
@@ -765,8 +786,10 @@ def integrate(system: MultibodySystem, *, h_out: float, n_out: int, stride: int,
     stride : int
         Record forces and angles at every ``stride``-th grid point.
     dt : float, optional
-        RK4 step, s, rounded down to a divisor of ``h_out``; default
-        :meth:`MultibodySystem.default_dt`.
+        Step, s, rounded down to a divisor of ``h_out``; default
+        :meth:`MultibodySystem.default_dt` of the solver.
+    solver : str, optional
+        One of :data:`SOLVERS`: ``"rk4"`` (default) or ``"rosw"``.
 
     Returns
     -------
@@ -786,8 +809,10 @@ def integrate(system: MultibodySystem, *, h_out: float, n_out: int, stride: int,
     >>> raw["q_inner"].shape, raw["exc"].shape
     ((100, 9), (400, 1))
     """
+    if solver not in SOLVERS:
+        raise ValueError(f"solver must be one of {sorted(SOLVERS)}, got {solver!r}")
     z = int(system.p[K.P_Z])
-    dt_req = system.default_dt() if dt is None else float(dt)
+    dt_req = system.default_dt(solver) if dt is None else float(dt)
     n_sub = max(1, math.ceil(h_out / dt_req - 1e-9))
     step = h_out / n_sub
     # the settling steps end exactly at t = 0 whatever the step, so that runs at
@@ -817,14 +842,15 @@ def integrate(system: MultibodySystem, *, h_out: float, n_out: int, stride: int,
                             np.full(2 * z, 1e3 * (1.0 + scene_load(system)))))
     bound = 1e6 * scale
     t_wall = time.perf_counter()
-    status, n_steps, t_fail, n_cross = K.integrate_rk4(
-        y, system.p, system.faults, system.sensors, t0, step_pre, step, n_pre, n_sub, n_out + 1,
-        stride, exc, rec_qi, rec_qo, rec_ang, rec_disp, rec_cage, cross_t, cross_f, cross_e,
-        cross_edge, bound)
+    method = K.METHOD_RK4 if solver == "rk4" else K.METHOD_ROSW
+    status, n_steps, t_fail, n_cross = K.integrate_fixed(
+        method, y, system.p, system.faults, system.sensors, t0, step_pre, step, n_pre, n_sub,
+        n_out + 1, stride, exc, rec_qi, rec_qo, rec_ang, rec_disp, rec_cage, cross_t, cross_f,
+        cross_e, cross_edge, bound)
     wall = time.perf_counter() - t_wall
     if status != K.STATUS_OK or not np.all(np.isfinite(y)):
         raise SimulationUnstableError(
-            f"multibody simulation with rk4 (dt = {step:.3g} s) failed at t = {t_fail:.6g} s: "
+            f"multibody simulation with {solver} (dt = {step:.3g} s) failed at t = {t_fail:.6g} s: "
             f"the state became non-finite or unbounded. Try a smaller dt. Scene: "
             f"{system.scene!r}")
     t_x = cross_t[:n_cross]
@@ -834,7 +860,7 @@ def integrate(system: MultibodySystem, *, h_out: float, n_out: int, stride: int,
     crossings = FaultCrossings(time_s=t_x[order][keep], fault=cross_f[:n_cross][order][keep],
                                element=cross_e[:n_cross][order][keep],
                                edge=edges[cross_edge[:n_cross][order][keep]])
-    info = {"solver": "rk4", "dt_s": step, "n_steps": int(n_steps), "n_rejected": 0,
+    info = {"solver": solver, "dt_s": step, "n_steps": int(n_steps), "n_rejected": 0,
             "internal_fs": 1.0 / h_out, "settle_s": -t0, "integration_time_s": wall,
             "n_events": int(len(crossings)),
             "omega_dt": step * system.omega_max, "lambda_dt": step * system.lambda_max}
@@ -856,7 +882,7 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
     n_samples = scene.n_samples
     h_out = 1.0 / (scene.fs * oversample)
     raw = integrate(system, h_out=h_out, n_out=n_samples * oversample, stride=oversample,
-                    dt=dt)
+                    dt=dt, solver=solver)
     info = raw["info"]
     housing = _resonator(raw["exc"], h_out, scene.resonance_hz, scene.resonance_damping)
     accel = add_noise(scene, to_output_rate(housing, n_samples, oversample))
@@ -899,14 +925,15 @@ MULTIBODY = Model(
                 "profiles",
     represents=frozenset({"ball_dynamics", "contact_dynamics", "contact_forces", "envelope",
                           "varying_speed"}),
-    # benchmarks/models_cost.py (docs/models_cost.md): 57x, 68x and 82x sr5 per
-    # simulated second (medians of wall time; 76x, 68x and 87x of CPU time) on the 6205
-    # reference scene at 48 kHz, side by side, in three runs of five rounds on the loaded
-    # shared machine (81-106x in three earlier runs; 225x before the trig-free contact
-    # tests and the step from the linearised spectrum, docs/results/multibody_speed.md)
+    # benchmarks/models_cost.py (docs/models_cost.md): 80x sr5 per simulated second
+    # (median of 15 interleaved rounds, IQR 78-86x; CPU time 78x) on the 6205 reference
+    # scene at 48 kHz, 60x at 12 kHz, on the loaded shared machine (57-93x in earlier
+    # runs; 225x before the trig-free contact tests and the step from the linearised
+    # spectrum). The Rosenbrock-W solver is not the default: 63x against RK4's 72x side
+    # by side (docs/results/multibody_speed.md), less accurate on faulted scenes
     relative_cost=80.0,
     solvers=tuple(SOLVERS),
-    fixed_step_solvers=("rk4",),
+    fixed_step_solvers=tuple(SOLVERS),
     reference="M. Nakhaeinejad, M. D. Bryant, 'Dynamic modeling of rolling element bearings "
               "with surface contact defects using bond graphs', J. Tribology 133 (2011) "
               "011102, read with E = 210 GPa, K in N/mm^1.5, eq. 12's breakpoint 1.5 and "

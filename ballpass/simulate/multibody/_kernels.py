@@ -376,19 +376,122 @@ def energy(t, y, p):
     return e
 
 
+#: fixed-step methods of :func:`integrate_fixed`
+METHOD_RK4, METHOD_ROSW = 0, 1
+
+# ROS34PW2 (Rang & Angermann 2005, BIT 45: 761): a four-stage Rosenbrock-W method of
+# order 3 for any approximation W of the Jacobian, L-stable, stiffly accurate
+# (Hairer-Wanner form: W k_i = h f(y + sum a_ij k_j) + h J sum g_ij k_j, W = I - gamma h J)
+RW_GAMMA = 0.435866521508459
+RW_A = np.array([[0.0, 0.0, 0.0],
+                 [0.87173304301691801, 0.0, 0.0],
+                 [0.84457060015369423, -0.11299064236397981, 0.0],
+                 [0.0, 0.0, 1.0]])
+RW_G = np.array([[0.0, 0.0, 0.0],
+                 [-0.87173304301691801, 0.0, 0.0],
+                 [-0.90338057013044082, 0.054180672388095326, 0.0],
+                 [0.24212380706095346, -1.2232505839045147, 0.54526025533510214]])
+RW_B = np.array([0.24212380706095346, -1.2232505839045147, 1.5452602553351023,
+                 0.435866521508459])
+RW_C = RW_A.sum(axis=1)  # stage times
+
+
 @njit(cache=True, error_model="numpy")
-def integrate_rk4(y, p, faults, sensors, t0, dt_pre, dt, n_pre, n_sub, n_grid, stride,
-                  exc_out, rec_qi, rec_qo, rec_ang, rec_disp, rec_cage,
-                  cross_t, cross_f, cross_e, cross_edge, bound):
-    """Classical RK4 from t0 (< 0: ``n_pre`` settling steps of ``dt_pre`` to t = 0),
-    then ``n_sub`` steps per internal grid interval for ``n_grid - 1`` intervals.
+def ball_stiffness(y, p, qi, qo, kb):
+    """Linearised stiffness of every ball against its races and of the outer race
+    against its housing and the balls, N/m, each as the symmetric 2 x 2 matrix
+    sum_c k_c n_c n_c^T (``kb[j] = (kxx, kxy, kyy)``, row Z the outer race), with
+    k_c = dQ/d(delta) = 1.5 K^(2/3) Q^(1/3) of each contact at the loads ``qi``, ``qo``
+    (N; the damping share of Q is kept, which a W-method allows: any matrix is a
+    consistent approximation of the Jacobian). Kramer's damping of the same contacts
+    and of the housing is tau times it."""
+    z = int(p[P_Z])
+    c_i = 1.5 * p[P_KI] ** (2.0 / 3.0)
+    c_o = 1.5 * p[P_KO] ** (2.0 / 3.0)
+    kb[z, 0] = p[P_KH]
+    kb[z, 1] = 0.0
+    kb[z, 2] = p[P_KH]
+    for j in range(z):
+        b = 6 + 3 * j
+        kxx = 0.0
+        kxy = 0.0
+        kyy = 0.0
+        for race in range(2):
+            q = qi[j] if race == 0 else qo[j]
+            if q <= 0.0:
+                continue
+            dx = y[b] - y[3 * race]
+            dy = y[b + 1] - y[3 * race + 1]
+            k = (c_i if race == 0 else c_o) * q ** (1.0 / 3.0) / (dx * dx + dy * dy)
+            kxx += k * dx * dx
+            kxy += k * dx * dy
+            kyy += k * dy * dy
+            if race == 1:
+                kb[z, 0] += k * dx * dx
+                kb[z, 1] += k * dx * dy
+                kb[z, 2] += k * dy * dy
+        kb[j, 0] = kxx
+        kb[j, 1] = kxy
+        kb[j, 2] = kyy
+
+
+@njit(cache=True, error_model="numpy")
+def _w_solve(k, r, g, kb, p, h):
+    """k = W^-1 (r + h J g) for a ROS34PW2 stage, J the contact blocks
+    d(dx/dt, dv/dt)/d(x, v) = [[0, I], [-K/m, -tau K/m]] of every ball's centre and of
+    the outer race (K from :func:`ball_stiffness`; zero elsewhere: the other states,
+    and the couplings between the bodies, are stepped explicitly). Each body is a
+    2 x 2 solve: with W = I - gamma h J, k_v solves
+    (I + (gamma h tau + gamma^2 h^2) K/m) k_v = r_v - gamma h K/m r_x and
+    k_x = r_x + gamma h k_v."""
+    n = k.shape[0]
+    z = int(p[P_Z])
+    nd = 6 + 3 * z
+    for i in range(n):
+        k[i] = r[i]
+    tau = p[P_TAU]
+    gh = RW_GAMMA * h
+    a = gh * tau + gh * gh
+    for j in range(z + 1):
+        b = 6 + 3 * j if j < z else 3
+        inv_m = 1.0 / (p[P_MB] if j < z else p[P_MO])
+        kxx, kxy, kyy = kb[j, 0] * inv_m, kb[j, 1] * inv_m, kb[j, 2] * inv_m
+        # r + h J g on the body's centre
+        gvx, gvy = g[nd + b], g[nd + b + 1]
+        rx = r[b] + h * gvx
+        ry = r[b + 1] + h * gvy
+        ux = g[b] + tau * gvx
+        uy = g[b + 1] + tau * gvy
+        sx = r[nd + b] - h * (kxx * ux + kxy * uy) - gh * (kxx * rx + kxy * ry)
+        sy = r[nd + b + 1] - h * (kxy * ux + kyy * uy) - gh * (kxy * rx + kyy * ry)
+        m11 = 1.0 + a * kxx
+        m12 = a * kxy
+        m22 = 1.0 + a * kyy
+        det = m11 * m22 - m12 * m12
+        kvx = (m22 * sx - m12 * sy) / det
+        kvy = (m11 * sy - m12 * sx) / det
+        k[nd + b] = kvx
+        k[nd + b + 1] = kvy
+        k[b] = rx + gh * kvx
+        k[b + 1] = ry + gh * kvy
+
+
+@njit(cache=True, error_model="numpy")
+def integrate_fixed(method, y, p, faults, sensors, t0, dt_pre, dt, n_pre, n_sub, n_grid,
+                    stride, exc_out, rec_qi, rec_qo, rec_ang, rec_disp, rec_cage,
+                    cross_t, cross_f, cross_e, cross_edge, bound):
+    """Fixed-step integration from t0 (< 0: ``n_pre`` settling steps of ``dt_pre`` to
+    t = 0), then ``n_sub`` steps per internal grid interval for ``n_grid - 1``
+    intervals, by classical RK4 (``method`` METHOD_RK4) or by the Rosenbrock-W method
+    ROS34PW2 with each ball's contact block implicit (METHOD_ROSW, :func:`_w_solve`).
 
     Records per grid interval the mean housing acceleration at each sensor
-    (``exc_out``, Simpson's rule of the RK4 stages), at every ``stride``-th grid point
-    the contact loads, ball orbit angles about the housing centre, ring displacements
-    and the cage angle, and every change of a contact's fault flags (time, fault,
-    element, edge 0 = entry / 1 = exit). Returns (status, n_steps, t_fail,
-    n_crossings); ``y`` holds the final state."""
+    (``exc_out``: the method's own quadrature of its stages, Simpson's rule for RK4,
+    the weights b_i for ROS34PW2), at every ``stride``-th grid point the contact loads,
+    ball orbit angles about the housing centre, ring displacements and the cage angle,
+    and every change of a contact's fault flags (time, fault, element, edge 0 = entry /
+    1 = exit). Returns (status, n_steps, t_fail, n_crossings); ``y`` holds the final
+    state."""
     n = y.shape[0]
     z = int(p[P_Z])
     ns = sensors.shape[0]
@@ -397,6 +500,8 @@ def integrate_rk4(y, p, faults, sensors, t0, dt_pre, dt, n_pre, n_sub, n_grid, s
     k3 = np.empty(n)
     k4 = np.empty(n)
     tmp = np.empty(n)
+    gsum = np.empty(n)
+    kb = np.zeros((z + 1, 3))
     qi = np.zeros(z)
     qo = np.zeros(z)
     flags = np.zeros((z, 2), dtype=np.int64)
@@ -429,7 +534,8 @@ def integrate_rk4(y, p, faults, sensors, t0, dt_pre, dt, n_pre, n_sub, n_grid, s
                     return STATUS_NONFINITE, n_steps, t, n_cross
             if g_i % stride == 0 and rec_i < rec_qi.shape[0]:
                 # the step's first stage, whose loads are the ones recorded
-                rhs(t, y, k1, p, faults, sensors, qi, qo, flags, e1, True)
+                if not have_k1:
+                    rhs(t, y, k1, p, faults, sensors, qi, qo, flags, e1, True)
                 have_k1 = True
                 for j in range(z):
                     b = 6 + 3 * j
@@ -449,36 +555,22 @@ def integrate_rk4(y, p, faults, sensors, t0, dt_pre, dt, n_pre, n_sub, n_grid, s
             rhs(t, y, k1, p, faults, sensors, qi, qo, flags, e1, True)
         have_k1 = False
         if n_faults > 0:
-            for j in range(z):
-                for c in range(2):
-                    if flags[j, c] != prev[j, c]:
-                        for f in range(n_faults):
-                            bit = 1 << f
-                            now = flags[j, c] & bit
-                            if now != (prev[j, c] & bit) and n_cross < cap:
-                                cross_t[n_cross] = t
-                                cross_f[n_cross] = f
-                                if int(faults[f, F_KIND]) == KIND_BALL:
-                                    cross_e[n_cross] = c
-                                else:
-                                    cross_e[n_cross] = j
-                                cross_edge[n_cross] = 0 if now else 1
-                                n_cross += 1
-                        prev[j, c] = flags[j, c]
-        for k in range(n):
-            tmp[k] = y[k] + 0.5 * h * k1[k]
-        rhs(t + 0.5 * h, tmp, k2, p, faults, sensors, qi, qo, flags, e2, True)
-        for k in range(n):
-            tmp[k] = y[k] + 0.5 * h * k2[k]
-        rhs(t + 0.5 * h, tmp, k3, p, faults, sensors, qi, qo, flags, e3, True)
-        for k in range(n):
-            tmp[k] = y[k] + h * k3[k]
-        rhs(t + h, tmp, k4, p, faults, sensors, qi, qo, flags, e4, True)
-        for k in range(n):
-            y[k] += h / 6.0 * (k1[k] + 2.0 * k2[k] + 2.0 * k3[k] + k4[k])
-        if step >= n_pre:
-            for s in range(ns):
-                acc[s] += dt / 6.0 * (e1[s] + 2.0 * e2[s] + 2.0 * e3[s] + e4[s])
+            n_cross = _log_crossings(faults, flags, prev, t, cross_t, cross_f, cross_e,
+                                     cross_edge, n_cross, cap)
+        if method == METHOD_RK4:
+            _rk4_stages(t, y, h, k1, k2, k3, k4, tmp, p, faults, sensors, qi, qo, flags,
+                        e1, e2, e3, e4)
+            if step >= n_pre:
+                for s in range(ns):
+                    acc[s] += dt / 6.0 * (e1[s] + 2.0 * e2[s] + 2.0 * e3[s] + e4[s])
+        else:
+            ball_stiffness(y, p, qi, qo, kb)
+            _rosw_stages(t, y, h, k1, k2, k3, k4, tmp, gsum, kb, p, faults, sensors, qi, qo,
+                         flags, e2, e3, e4)
+            if step >= n_pre:
+                for s in range(ns):
+                    acc[s] += dt * (RW_B[0] * e1[s] + RW_B[1] * e2[s] + RW_B[2] * e3[s]
+                                    + RW_B[3] * e4[s])
         n_steps += 1
         if step + 1 == n_pre:
             t = 0.0
@@ -487,3 +579,84 @@ def integrate_rk4(y, p, faults, sensors, t0, dt_pre, dt, n_pre, n_sub, n_grid, s
         else:
             t = t0 + (step + 1) * dt_pre
     return STATUS_OK, n_steps, t, n_cross
+
+
+@njit(cache=True, error_model="numpy")
+def _log_crossings(faults, flags, prev, t, cross_t, cross_f, cross_e, cross_edge, n_cross,
+                   cap):
+    """Append every change of a contact's fault flags since ``prev`` (then updated);
+    returns the new count."""
+    z = flags.shape[0]
+    for j in range(z):
+        for c in range(2):
+            if flags[j, c] != prev[j, c]:
+                for f in range(faults.shape[0]):
+                    bit = 1 << f
+                    now = flags[j, c] & bit
+                    if now != (prev[j, c] & bit) and n_cross < cap:
+                        cross_t[n_cross] = t
+                        cross_f[n_cross] = f
+                        if int(faults[f, F_KIND]) == KIND_BALL:
+                            cross_e[n_cross] = c
+                        else:
+                            cross_e[n_cross] = j
+                        cross_edge[n_cross] = 0 if now else 1
+                        n_cross += 1
+                prev[j, c] = flags[j, c]
+    return n_cross
+
+
+@njit(cache=True, error_model="numpy")
+def _rk4_stages(t, y, h, k1, k2, k3, k4, tmp, p, faults, sensors, qi, qo, flags, e1, e2,
+                e3, e4):
+    """One classical RK4 step of y (in place), k1 = f(t, y) given."""
+    n = y.shape[0]
+    for k in range(n):
+        tmp[k] = y[k] + 0.5 * h * k1[k]
+    rhs(t + 0.5 * h, tmp, k2, p, faults, sensors, qi, qo, flags, e2, True)
+    for k in range(n):
+        tmp[k] = y[k] + 0.5 * h * k2[k]
+    rhs(t + 0.5 * h, tmp, k3, p, faults, sensors, qi, qo, flags, e3, True)
+    for k in range(n):
+        tmp[k] = y[k] + h * k3[k]
+    rhs(t + h, tmp, k4, p, faults, sensors, qi, qo, flags, e4, True)
+    for k in range(n):
+        y[k] += h / 6.0 * (k1[k] + 2.0 * k2[k] + 2.0 * k3[k] + k4[k])
+
+
+@njit(cache=True, error_model="numpy")
+def _rosw_stages(t, y, h, f1, k2, k3, k4, tmp, gsum, kb, p, faults, sensors, qi, qo, flags,
+                 e2, e3, e4):
+    """One ROS34PW2 step of y (in place) with the per-ball contact blocks ``kb``
+    (:func:`ball_stiffness`), f1 = f(t, y) given (overwritten by the first stage
+    k_1; k2..k4 hold the later stages' increments)."""
+    n = y.shape[0]
+    a = RW_A
+    g = RW_G
+    for k in range(n):
+        tmp[k] = h * f1[k]
+        gsum[k] = 0.0
+    _w_solve(f1, tmp, gsum, kb, p, h)  # k_1 (no earlier stage: g = 0)
+    for k in range(n):
+        tmp[k] = y[k] + a[1, 0] * f1[k]
+        gsum[k] = g[1, 0] * f1[k]
+    rhs(t + RW_C[1] * h, tmp, k2, p, faults, sensors, qi, qo, flags, e2, True)
+    for k in range(n):
+        tmp[k] = h * k2[k]
+    _w_solve(k2, tmp, gsum, kb, p, h)
+    for k in range(n):
+        tmp[k] = y[k] + a[2, 0] * f1[k] + a[2, 1] * k2[k]
+        gsum[k] = g[2, 0] * f1[k] + g[2, 1] * k2[k]
+    rhs(t + RW_C[2] * h, tmp, k3, p, faults, sensors, qi, qo, flags, e3, True)
+    for k in range(n):
+        tmp[k] = h * k3[k]
+    _w_solve(k3, tmp, gsum, kb, p, h)
+    for k in range(n):
+        tmp[k] = y[k] + k3[k]  # a[3] = (0, 0, 1)
+        gsum[k] = g[3, 0] * f1[k] + g[3, 1] * k2[k] + g[3, 2] * k3[k]
+    rhs(t + h, tmp, k4, p, faults, sensors, qi, qo, flags, e4, True)
+    for k in range(n):
+        tmp[k] = h * k4[k]
+    _w_solve(k4, tmp, gsum, kb, p, h)
+    for k in range(n):
+        y[k] += RW_B[0] * f1[k] + RW_B[1] * k2[k] + RW_B[2] * k3[k] + RW_B[3] * k4[k]

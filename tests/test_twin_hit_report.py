@@ -1,0 +1,47 @@
+"""The HIT-SM twin study's tables (benchmarks/twin_hit.py): how runs over twin seeds are
+summarized, and the grid line that makes the identical-impact twin."""
+
+import re
+
+import pandas as pd
+import pytest
+from _bench import load_benchmark
+
+bench = load_benchmark("twin_hit", "twin_hit_bench")
+
+
+def _runs():
+    rows = []
+    for seed, (bal, h) in enumerate([(0.8, 1.0), (0.9, 0.7), (1.0, 1.0)]):
+        rows.append({"twin": "spread impacts", "input": "Normal_600", "model": "recommended",
+                     "twin_seed": seed, "n_test": 100, "recall_healthy": h,
+                     "recall_outer": 0.9, "recall_inner": 0.9,
+                     "balanced_accuracy_3class": bal, "balanced_3class_seed_min": bal - seed / 100,
+                     "balanced_3class_seed_max": bal, "generate_s": 10.0 + seed,
+                     "benchmark_s": 90.0 - seed})
+    return pd.DataFrame(rows)
+
+
+def test_summary_averages_over_twin_seeds():
+    """Three twin seeds of one input and model: mean recall and balanced accuracy, the
+    balanced accuracy's range over the seeds, the largest training-seed range (0.02 at
+    seed 2), the longest wall times. Exact arithmetic on a hand-made table (float
+    rounding only). Planted: a median instead of the mean (healthy 1.0, not 0.9) fails."""
+    out = bench.summary(_runs())
+    assert len(out) == 1
+    row = out.iloc[0]
+    assert row["recall_healthy"] == pytest.approx(0.9)
+    assert row["balanced_accuracy_3class"] == pytest.approx(0.9)
+    assert (row["balanced_twin_seed_min"], row["balanced_twin_seed_max"]) == (0.8, 1.0)
+    assert row["training_seed_spread_max"] == pytest.approx(0.02)
+    assert (row["generate_s_max"], row["benchmark_s_max"]) == (12.0, 90.0)
+
+
+def test_the_identical_impact_twin_fixes_the_spread_at_zero():
+    """The line that turns a written twin into the before-twin matches the grid the
+    twin writes (one impact_spread line)."""
+    from ballpass.datasets.twin import _GRID_TEMPLATE
+
+    lines = [ln for ln in _GRID_TEMPLATE.splitlines() if re.match(r"^impact_spread = ", ln)]
+    assert len(lines) == 1
+    assert bench.TWINS["identical impacts"] == "impact_spread = [0]"
