@@ -447,11 +447,12 @@ IMPULSE = Model(
                 "scene's resonance; no contact dynamics",
     represents=frozenset({"envelope", "varying_speed"}),
     # measured by benchmarks/models_cost.py (docs/models_cost.md), 15 interleaved rounds
-    # of 3 back-to-back calls on a busy shared machine: wall-time ratio 0.024 (IQR
-    # 0.022-0.031), which the busy machine flatters (sr5's longer calls wait more for a
-    # core), CPU-time ratio 0.048 at 48 kHz; 0.035-0.039 of sr5's thread time side by side
-    # on a quieter machine (0.045 before the impacts went to numba): about 0.3 ms per call
-    # of fixed cost (binding the kinematics, the crossings, four result arrays)
+    # of 3 back-to-back calls: 0.044 of sr5's time at 48 kHz (CPU time alike) and 0.024 at
+    # 12 kHz on a quiet machine; on a busy one the wall-time ratio reads 0.024, which
+    # flatters it (sr5's longer calls wait more for a core), and the CPU-time ratio 0.048;
+    # 0.035-0.039 of sr5's thread time in an A/B against the former version (0.045): about
+    # 0.3 ms per call of fixed cost (binding the kinematics, the crossings, four result
+    # arrays)
     relative_cost=0.04,
     solvers=("analytic",),
     fixed_step_solvers=(),

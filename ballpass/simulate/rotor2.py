@@ -758,10 +758,11 @@ ROTOR2 = Model(
     represents=frozenset({"rotor_dynamics", "contact_dynamics", "contact_forces",
                           "varying_speed"}),
     # wall time per simulated second against sr5, side by side, on the 6205 reference
-    # scene at 48 kHz with the rk4 default: 0.99 (IQR 0.98-1.01, CPU time 0.97; 15
-    # interleaved rounds, benchmarks/models_cost.py, docs/models_cost.md; 1.17 before the
-    # cached rotations and the per-step output coefficients); 0.60 at 12 kHz; 25x with the
-    # old Newmark step. 1.0, not below: on a tie the registry keeps sr5 first
+    # scene at 48 kHz with the rk4 default: 0.85 (IQR 0.83-0.86, CPU time 0.85; 15
+    # interleaved rounds on a quiet machine, benchmarks/models_cost.py,
+    # docs/models_cost.md; 0.99 on a loaded one; 1.17 before the cached rotations, the
+    # per-step output coefficients and the binding computed once); 0.60 at 12 kHz; 25x
+    # with the old Newmark step. 1.0, not below: on a tie the registry keeps sr5 first
     relative_cost=1.0,
     solvers=tuple(SOLVERS),
     fixed_step_solvers=("rk4", "newmark"),
