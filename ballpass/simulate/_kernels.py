@@ -141,6 +141,34 @@ def kinematics_scratch(z):
     return np.zeros((N_KIN, max(z, KC_INSIDE + 1)))
 
 
+@njit(cache=True, error_model="numpy", inline="always")
+def cached_cos_sin(angle, cache):
+    """cos and sin of ``angle`` (rad), from those of the previous call.
+
+    ``cache`` holds that call's angle, cosine and sine and the number of calls left
+    before an exact refresh (0: nothing cached yet); they are rotated through the small
+    angle between the calls (Taylor series to 8th order: exact to 1e-21 below 0.01 rad),
+    with trigonometric calls only for a larger jump or every ``CACHE_REFRESH`` calls.
+    ``cache`` is updated.
+    """
+    d = angle - cache[0]
+    if cache[3] > 0.0 and abs(d) < 0.01:
+        d2 = d * d
+        cd = 1.0 - d2 * (0.5 - d2 * (1.0 / 24.0 - d2 / 720.0))
+        sd = d * (1.0 - d2 * (1.0 / 6.0 - d2 * (1.0 / 120.0 - d2 / 5040.0)))
+        c = cache[1] * cd - cache[2] * sd
+        sn = cache[2] * cd + cache[1] * sd
+        cache[3] -= 1.0
+    else:
+        c = math.cos(angle)
+        sn = math.sin(angle)
+        cache[3] = CACHE_REFRESH
+    cache[0] = angle
+    cache[1] = c
+    cache[2] = sn
+    return c, sn
+
+
 @njit(cache=True, error_model="numpy")
 def element_angles(t, p, walk, kin):
     """Angular positions of the rolling elements at time t (rad) into ``kin[K_PSI]``.
@@ -155,21 +183,7 @@ def element_angles(t, p, walk, kin):
     """
     step = TWO_PI / p[P_Z]
     cage, rate = cage_angle(t, p, walk)
-    d = cage - kin[K_CACHE, 0]
-    if kin[K_CACHE, 3] > 0.0 and abs(d) < 0.01:
-        d2 = d * d
-        cd = 1.0 - d2 * (0.5 - d2 * (1.0 / 24.0 - d2 / 720.0))
-        sd = d * (1.0 - d2 * (1.0 / 6.0 - d2 * (1.0 / 120.0 - d2 / 5040.0)))
-        c = kin[K_CACHE, 1] * cd - kin[K_CACHE, 2] * sd
-        sn = kin[K_CACHE, 2] * cd + kin[K_CACHE, 1] * sd
-        kin[K_CACHE, 3] -= 1.0
-    else:
-        c = math.cos(cage)
-        sn = math.sin(cage)
-        kin[K_CACHE, 3] = CACHE_REFRESH
-    kin[K_CACHE, 0] = cage
-    kin[K_CACHE, 1] = c
-    kin[K_CACHE, 2] = sn
+    c, sn = cached_cos_sin(cage, kin[K_CACHE])
     kin[K_CACHE, KC_RATE] = rate
     cs = p[P_COS_STEP]
     ss = p[P_SIN_STEP]
@@ -764,7 +778,41 @@ def _bracket(p, walk, faults, i, j, level, a_side, lo, hi, f_lo, f_hi):
 
 
 @njit(cache=True, error_model="numpy")
-def find_crossings(p, walk, faults, t_scan, levels_per_fault, before, after, index):
+def _secant(p, walk, faults, i, j, level, lo, hi, f_lo, f_hi):
+    """The time (s) path j of fault i crosses ``level`` in [lo, hi], to 1e-13 s:
+    false-position steps with the Illinois halving (Dahlquist & Bjorck). Between slip
+    knots at constant speed the offset is linear in time, and one step lands on the
+    crossing to rounding; a knot or a speed ramp inside [lo, hi] takes a few more."""
+    m = lo
+    side = 0  # which end the last step replaced: -1 lo, +1 hi
+    for _ in range(60):
+        m = hi - f_hi * (hi - lo) / (f_hi - f_lo)
+        if not (lo <= m <= hi):
+            m = 0.5 * (lo + hi)
+        f_m = fault_offset(m, p, walk, faults, i, j) - level
+        slope = (f_hi - f_lo) / (hi - lo)
+        if abs(f_m) <= SECANT_TOL_S * abs(slope) or hi - lo <= SECANT_TOL_S:
+            break
+        if (f_m >= 0.0) == (f_lo >= 0.0):
+            lo, f_lo = m, f_m
+            if side == -1:  # the same end twice: halve the other's weight
+                f_hi *= 0.5
+            side = -1
+        else:
+            hi, f_hi = m, f_m
+            if side == 1:
+                f_lo *= 0.5
+            side = 1
+    return m
+
+
+#: time accuracy of :func:`_secant`, s
+SECANT_TOL_S = 1e-13
+
+
+@njit(cache=True, error_model="numpy")
+def find_crossings(p, walk, faults, t_scan, levels_per_fault, before, after, index,
+                   exact=True):
     """Times at which an element crosses a fault edge (or a ramp end), unsorted.
 
     Parameters
@@ -780,10 +828,16 @@ def find_crossings(p, walk, faults, t_scan, levels_per_fault, before, after, ind
         +half (duplicates allowed for sharp edges; NaN to skip).
     before, after : ndarray (capacity,)
         Written with bracketing times (s): ``before < crossing <= after``, adjacent
-        floating-point numbers (see :func:`_bracket`).
+        floating-point numbers (see :func:`_bracket`); with ``exact=False`` both hold
+        the crossing to :data:`SECANT_TOL_S` (:func:`_secant`, a few offsets per
+        crossing instead of the twenty or so of the bracket to adjacent numbers).
     index : ndarray of int64 (capacity, 3)
         Written with the fault, the element (the face for a ball defect) and the
         level of each crossing.
+    exact : bool, optional
+        True (default): brackets to adjacent floating-point numbers, where the
+        integrators split their steps; False: the crossing times to 1e-13 s, enough to
+        place an impact (the impulse model).
 
     Returns
     -------
@@ -816,9 +870,14 @@ def find_crossings(p, walk, faults, t_scan, levels_per_fault, before, after, ind
                             continue
                         if n == before.shape[0]:
                             return -1
-                        before[n], after[n] = _bracket(
-                            p, walk, faults, i, j, level, a_side, t_scan[k - 1], t_scan[k],
-                            o_prev - level, o_next - level)
+                        if exact:
+                            before[n], after[n] = _bracket(
+                                p, walk, faults, i, j, level, a_side, t_scan[k - 1],
+                                t_scan[k], o_prev - level, o_next - level)
+                        else:
+                            before[n] = after[n] = _secant(
+                                p, walk, faults, i, j, level, t_scan[k - 1], t_scan[k],
+                                o_prev - level, o_next - level)
                         index[n, 0] = i
                         index[n, 1] = j
                         index[n, 2] = lv

@@ -401,26 +401,37 @@ def _minv_times(minv, f, out):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _quintic_out(t0, h, x0, v0, a0, x1, v1, a1, tk, k, with_xv, out_x, out_v, out_a):
+def _quintic_acc(h, x0, v0, a0, x1, v1, a1, c):
+    """Coefficients of the second derivative of a step's quintic Hermite interpolant:
+    a(s) = c[0] + c[1] s + c[2] s^2 + c[3] s^3 at s = (t - t0) / h, written into c
+    (4, n), from the step's end states (x, v, a) and its length h. Once per step, so
+    that each output time in it costs three multiply-adds per component."""
+    for i in range(x0.shape[0]):
+        dp = (x0[i] - x1[i]) / (h * h)
+        m0, m1 = v0[i] / h, v1[i] / h
+        c[0, i] = a0[i]
+        c[1, i] = -60.0 * dp - 36.0 * m0 - 24.0 * m1 - 9.0 * a0[i] + 3.0 * a1[i]
+        c[2, i] = 180.0 * dp + 96.0 * m0 + 84.0 * m1 + 18.0 * a0[i] - 12.0 * a1[i]
+        c[3, i] = -120.0 * dp - 60.0 * (m0 + m1) - 10.0 * (a0[i] - a1[i])
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _quintic_out(t0, h, x0, v0, a0, x1, v1, a1, c, tk, k, with_xv, out_x, out_v, out_a):
     """Record at tk in [t0, t0 + h] the quintic Hermite interpolant of a step's end
     states (x, v, a): its second derivative (the acceleration, accurate to O(h^4), the
-    order of the method) and, if ``with_xv``, its value and first derivative."""
+    order of the method) from the coefficients ``c`` of :func:`_quintic_acc` and, if
+    ``with_xv``, its value and first derivative."""
     s = (tk - t0) / h
-    s2 = s * s
-    s3 = s2 * s
-    h2 = h * h
-    # weights of x0 - x1, h v0, h v1, h^2 a0, h^2 a1 in h^2 a
-    a_0, a_1 = -60.0 * s + 180.0 * s2 - 120.0 * s3, -36.0 * s + 96.0 * s2 - 60.0 * s3
-    a_2, a_3 = -24.0 * s + 84.0 * s2 - 60.0 * s3, 1.0 - 9.0 * s + 18.0 * s2 - 10.0 * s3
-    a_4 = 3.0 * s - 12.0 * s2 + 10.0 * s3
     for i in range(x0.shape[0]):
-        out_a[k, i] = (a_0 * (x0[i] - x1[i]) + h * (a_1 * v0[i] + a_2 * v1[i])
-                       + h2 * (a_3 * a0[i] + a_4 * a1[i])) / h2
+        out_a[k, i] = c[0, i] + s * (c[1, i] + s * (c[2, i] + s * c[3, i]))
     if not with_xv:
         return
+    s2 = s * s
+    s3 = s2 * s
     s4 = s3 * s
     s5 = s4 * s
-    # ... in x (plus x1) and in h v
+    h2 = h * h
+    # weights of x0 - x1 (plus x1), h v0, h v1, h^2 a0, h^2 a1 in x and in h v
     x_0, x_1 = 1.0 - 10.0 * s3 + 15.0 * s4 - 6.0 * s5, s - 6.0 * s3 + 8.0 * s4 - 3.0 * s5
     x_2, x_3 = -4.0 * s3 + 7.0 * s4 - 3.0 * s5, 0.5 * (s2 - 3.0 * s3 + 3.0 * s4 - s5)
     x_4 = 0.5 * (s3 - 2.0 * s4 + s5)
@@ -498,6 +509,8 @@ def _rk4_second_order(p, minv, x0, v0, h_out, n_out, breaks, seg_dt, bound, x_sc
     a2 = np.zeros(n)
     a3 = np.zeros(n)
     a4 = np.zeros(n)
+    coef = np.zeros((4, n))
+    xv_left = xv_every  # outputs to the next with x and v (k = 0 is written first)
     t_end = (n_out - 1) * h_out
     n_steps = 0
     k = 0  # next output index
@@ -550,9 +563,16 @@ def _rk4_second_order(p, minv, x0, v0, h_out, n_out, breaks, seg_dt, bound, x_sc
                         and math.isfinite(a1[i])):
                     return STATUS_NONFINITE, n_steps, t1
             n_steps += 1
+            if k < n_out and k * h_out <= t1 + GRID_TOL * h_out:
+                _quintic_acc(t1 - t0, x, v, a, x1, v1, a1, coef)
             while k < n_out and k * h_out <= t1 + GRID_TOL * h_out:
-                _quintic_out(t0, t1 - t0, x, v, a, x1, v1, a1, min(k * h_out, t1), k,
-                             k % xv_every == 0, out_x, out_v, out_a)
+                # x and v at every xv_every-th output (counted down: an integer division
+                # per output costs as much as the interpolation)
+                xv_left -= 1
+                _quintic_out(t0, t1 - t0, x, v, a, x1, v1, a1, coef, min(k * h_out, t1), k,
+                             xv_left == 0, out_x, out_v, out_a)
+                if xv_left == 0:
+                    xv_left = xv_every
                 k += 1
             for i in range(n):
                 x[i] = x1[i]

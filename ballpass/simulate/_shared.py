@@ -79,6 +79,18 @@ def check_solver_args(model: str, solver: str, solvers: tuple[str, ...], fixed_s
                          "fixed step: give dt instead (or solver='dopri5')")
 
 
+@lru_cache(maxsize=256)
+def stiffness_and_load_zone(bearing, load_n: float, stiffness: float | None = None,
+                            cage_angle_deg: float = 0.0):
+    """K (``stiffness``, or the bearing's two Hertz contacts in series, N/m^n) and the
+    Stribeck equilibrium under ``load_n`` (N) with an element at ``cage_angle_deg``
+    (:meth:`ballpass.Bearing.load_distribution`): computed once per bearing, load,
+    stiffness and cage angle in a process, as a dataset holds a few of each and many runs
+    (read-only results)."""
+    kh = stiffness or bearing.hertz_stiffness()
+    return kh, bearing.load_distribution(load_n, stiffness=kh, cage_angle_deg=cage_angle_deg)
+
+
 @lru_cache(maxsize=8)
 def _antialias_taps(down: int) -> np.ndarray:
     """The low-pass FIR of ``scipy.signal.resample_poly(x, 1, down)``: 20 down + 1 taps,

@@ -110,9 +110,11 @@ def _core_omega(bm: BearingModel) -> float:
     return float(bm.scale[nd] / bm.scale[0])
 
 
-def _events(bm: BearingModel, t_end: float):
+def _events(bm: BearingModel, t_end: float, exact: bool = True):
     """Fault-edge crossings in [0, t_end], by time: brackets (s), fault, element and
-    level indices."""
+    level indices. ``exact=False`` gives each crossing's time to 1e-13 s in both
+    brackets instead of adjacent floating-point numbers around it
+    (:func:`._kernels.find_crossings`)."""
     n_faults = bm.levels.shape[0]
     # Scan so that every offset moves by at most 0.5 rad per interval: each offset is
     # monotone in time and the levels lie within 1 rad of the fault centre (a race
@@ -136,7 +138,7 @@ def _events(bm: BearingModel, t_end: float):
     before, after = np.empty(capacity), np.empty(capacity)
     index = np.empty((capacity, 3), dtype=np.int64)
     n = _K.find_crossings(p, walk, local, np.linspace(0.0, t_end, n_scan), bm.levels,
-                          before, after, index) if n_faults else 0
+                          before, after, index, exact) if n_faults else 0
     if n < 0:
         raise RuntimeError(f"more fault crossings than the kinematic bound {capacity}")
     order = np.argsort(before[:n], kind="stable")

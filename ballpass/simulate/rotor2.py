@@ -88,8 +88,10 @@ defect (docs/rotor2_step.md).
 Cost: every RK4 step evaluates the force twice at its midpoint and twice at its end;
 the kinematics of those times (roller angles, the defect depth under each roller, the
 unbalance angle) are computed once per time and cached in ``p``
-(:func:`_kinematics`), and the explicit integrators skip the force's tangents, which
-only Newmark's Newton iterations read.
+(:func:`_kinematics`), their sines and cosines by a small rotation from the previous
+time, and the explicit integrators skip the force's tangents, which only Newmark's
+Newton iterations read. The steps are most of a call; the outputs at the internal grid
+and the anti-alias decimation about a fifth at 48 kHz (docs/rotor2_step.md).
 """
 
 from __future__ import annotations
@@ -113,6 +115,7 @@ from ._shared import (
     add_noise,
     check_finite,
     check_solver_args,
+    stiffness_and_load_zone,
     to_output_rate,
 )
 from .result import FaultCrossings, GroundTruth, SimulationResult
@@ -297,10 +300,13 @@ def _kinematics(t, p):
     """Offset k0 in ``p`` of the kinematics at time t, recomputed unless they are the
     last call's: p[k0] = t, p[k0 + 1], p[k0 + 2] the cos and sin of the unbalance
     angle, then per roller j the cos and sin of phi_j and the defect depth under it (m)
-    at p[k0 + 3 + 3 j ...]. A Runge-Kutta step evaluates the force twice at each of
-    two times (its midpoint, its end), with the same kinematics. The roller angles
-    phi_j = phi_0 + 2 pi j / Z + c theta are stepped by a rotation of 2 pi / Z (two
-    sines and cosines per time instead of two per roller)."""
+    at p[k0 + 3 + 3 j ...], then the rotation caches of phi_0 and of the unbalance
+    angle (:func:`._kernels.cached_cos_sin`, 4 slots each). A Runge-Kutta step
+    evaluates the force twice at each of two times (its midpoint, its end), with the
+    same kinematics. The roller angles phi_j = phi_0 + 2 pi j / Z + c theta are stepped
+    by a rotation of 2 pi / Z, and phi_0 and the unbalance angle by a rotation from the
+    previous time: no sine or cosine at most times (they cost a quarter of a step
+    otherwise)."""
     n_faults = int(p[P_NF])
     k0 = P_FAULTS + n_faults * _K.N_FCOLS
     if p[k0] == t:
@@ -308,7 +314,8 @@ def _kinematics(t, p):
     z = int(p[_K.P_Z])
     theta = _K.shaft_angle(t, p)
     phi = p[P_PHI0] + p[_K.P_CAGE] * theta
-    cs, sn = math.cos(phi), math.sin(phi)
+    kc = k0 + 3 + 3 * z  # the rotation caches
+    cs, sn = _K.cached_cos_sin(phi, p[kc:kc + 4])
     pitch = _K.TWO_PI / z
     cz, sz = p[_K.P_COS_STEP], p[_K.P_SIN_STEP]
     for j in range(z):
@@ -318,9 +325,7 @@ def _kinematics(t, p):
         p[r + 2] = _defect_depth(j, phi, theta, n_faults, p) if n_faults > 0 else 0.0
         cs, sn = cs * cz - sn * sz, sn * cz + cs * sz
         phi += pitch
-    theta += p[P_UPH]
-    p[k0 + 1] = math.cos(theta)
-    p[k0 + 2] = math.sin(theta)
+    p[k0 + 1], p[k0 + 2] = _K.cached_cos_sin(theta + p[P_UPH], p[kc + 4:kc + 8])
     p[k0] = t
     return k0
 
@@ -456,12 +461,18 @@ def contact_omega(scene: Scene, params: Rotor2Parameters | None = None) -> float
     b = scene.bearing
     ld = b.load_distribution(max(_static_load(scene, params), 1.0),
                              cage_angle_deg=params.cage_angle_deg)
+    return _omega_of(ld, params.rotor_mass_kg)
+
+
+def _omega_of(ld, mass: float) -> float:
+    """:func:`contact_omega` of the static equilibrium ``ld``
+    (:meth:`ballpass.Bearing.load_distribution`) of a rotor of ``mass`` kg, rad/s."""
     psi = np.radians(ld.element_angles_deg)
     radial = ld.deflection_m * np.cos(psi) + ld.lateral_deflection_m * np.sin(psi)
     delta = np.maximum(radial - ld.clearance_m, 0.0)
     n = ld.load_exponent
     dq = np.where(delta > 0.0, n * ld.stiffness * delta ** (n - 1.0), 0.0)
-    return float(math.sqrt(np.sum(dq * np.cos(psi) ** 2) / params.rotor_mass_kg))
+    return float(math.sqrt(np.sum(dq * np.cos(psi) ** 2) / mass))
 
 
 def _bind(scene: Scene, params: Rotor2Parameters) -> _Bound:
@@ -473,9 +484,8 @@ def _bind(scene: Scene, params: Rotor2Parameters) -> _Bound:
     if b.element != "roller" and params.misalignment_rad != 0.0:
         raise ValueError(f"misalignment_rad={params.misalignment_rad:g} needs the laminae of "
                          f"a roller; bearing {b.name!r} has balls (use misalignment_rad=0)")
-    kh = b.hertz_stiffness()
     load = _static_load(scene, params)
-    ld = b.load_distribution(load, stiffness=kh, cage_angle_deg=params.cage_angle_deg)
+    kh, ld = stiffness_and_load_zone(b, load, None, params.cage_angle_deg)
     deflection = ld.deflection_m - b.radial_clearance_m
     limit = elastic_limit_m(b)
     if ld.q_max_n > 0 and (ld.q_max_n / kh) ** (1.0 / b.load_exponent) > limit:
@@ -488,10 +498,10 @@ def _bind(scene: Scene, params: Rotor2Parameters) -> _Bound:
     cage_ratio = orders.ftf
     z = b.n_elements
     psi0 = math.radians(params.cage_angle_deg) + 2.0 * math.pi * np.arange(z) / z
-    faults, levels = _fault_table(scene, psi0)
+    faults, levels = _fault_table(scene, psi0, kh)
     # parameters, the fault table, then the kinematics cache of _kinematics (its time
-    # NaN: none cached yet)
-    p = np.zeros(P_FAULTS + faults.size + 3 + 3 * b.n_elements)
+    # NaN: none cached yet) and its two rotation caches (zero: empty)
+    p = np.zeros(P_FAULTS + faults.size + 3 + 3 * b.n_elements + 8)
     p[_K.P_MS] = params.rotor_mass_kg
     p[_K.P_KH] = kh
     p[_K.P_NH] = b.load_exponent
@@ -529,7 +539,11 @@ def _bind(scene: Scene, params: Rotor2Parameters) -> _Bound:
     # duration of each fault's ramps (0: sharp edges)
     t_ramp = np.array([2.0 * row[_K.F_HALF] * row[_K.F_RAMP] / rate[int(row[_K.F_KIND])]
                        for row in faults])
-    return _Bound(p=p, x0=x0, x_scale=np.full(2, scale), omega=contact_omega(scene, params),
+    # the linearised contact frequency from the same equilibrium (contact_omega takes at
+    # least 1 N, so that an unloaded rotor still has a stiffness)
+    omega = _omega_of(ld if load >= 1.0 else stiffness_and_load_zone(
+        b, 1.0, kh, params.cage_angle_deg)[1], params.rotor_mass_kg)
+    return _Bound(p=p, x0=x0, x_scale=np.full(2, scale), omega=omega,
                   mass=params.rotor_mass_kg, t_impact=t_impact, t_ramp=t_ramp, levels=levels)
 
 
@@ -561,23 +575,24 @@ def _crossings(scene: Scene, p: np.ndarray, levels: np.ndarray, t_end: float) ->
         else:
             offset0 = p[P_PHI0] + 2.0 * np.pi * np.arange(z) / z - centre
             rate = cage - 1.0 if fault.kind == "inner" else cage
-        for path, o0 in enumerate(offset0):
-            for k in range(4):
-                if not np.isfinite(lv[k]):
-                    continue  # no ramp: no ramp ends
-                # turns m with theta in [0, theta_end], one spare at each end
-                first = (o0 - lv[k]) / (2.0 * np.pi)
-                last = first + rate * theta_end / (2.0 * np.pi)
-                m = np.arange(np.floor(min(first, last)) - 1, np.ceil(max(first, last)) + 2)
-                theta = (lv[k] - o0 + 2.0 * np.pi * m) / rate
-                theta = theta[(theta >= 0.0) & (theta <= theta_end)]
-                t = (theta / w0 if accel == 0.0
-                     else 2.0 * theta / (w0 + np.sqrt(w0 * w0 + 4.0 * accel * theta)))
-                times.append(t)
-                faults.append(np.full(t.size, i))
-                paths.append(np.full(t.size, path))
-                # an inner-race offset falls: it meets its levels from the top down
-                edges.append(np.full(t.size, names[k] if rate > 0 else names[3 - k]))
+        for k in range(4):
+            if not np.isfinite(lv[k]):
+                continue  # no ramp: no ramp ends
+            # turns m with theta in [0, theta_end] on every path, one spare at each end
+            first = (offset0 - lv[k]) / (2.0 * np.pi)
+            last = first + rate * theta_end / (2.0 * np.pi)
+            m = np.arange(np.floor(min(first.min(), last.min())) - 1,
+                          np.ceil(max(first.max(), last.max())) + 2)
+            theta = (lv[k] - offset0[:, None] + 2.0 * np.pi * m) / rate  # (path, turn)
+            path, turn = np.nonzero((theta >= 0.0) & (theta <= theta_end))
+            theta = theta[path, turn]
+            t = (theta / w0 if accel == 0.0
+                 else 2.0 * theta / (w0 + np.sqrt(w0 * w0 + 4.0 * accel * theta)))
+            times.append(t)
+            faults.append(np.full(t.size, i))
+            paths.append(path)
+            # an inner-race offset falls: it meets its levels from the top down
+            edges.append(np.full(t.size, names[k] if rate > 0 else names[3 - k]))
     t = np.concatenate(times)
     order = np.argsort(t, kind="stable")
     return FaultCrossings(time_s=t[order], fault=np.concatenate(faults)[order],
@@ -743,10 +758,12 @@ ROTOR2 = Model(
     represents=frozenset({"rotor_dynamics", "contact_dynamics", "contact_forces",
                           "varying_speed"}),
     # wall time per simulated second against sr5, side by side, on the 6205 reference
-    # scene at 48 kHz with the rk4 default: 1.13 (CPU time 1.12; 5 interleaved rounds,
-    # benchmarks/models_cost.py, docs/models_cost.md) and 0.98 (11 rounds, range
-    # 0.82-1.16, benchmarks/rotor2_step.py); 0.71 at 12 kHz; 25x with the old Newmark step
-    relative_cost=1.1,
+    # scene at 48 kHz with the rk4 default: 0.85 (IQR 0.83-0.86, CPU time 0.85; 15
+    # interleaved rounds on a quiet machine, benchmarks/models_cost.py,
+    # docs/models_cost.md; 0.99 on a loaded one; 1.17 before the cached rotations, the
+    # per-step output coefficients and the binding computed once); 0.60 at 12 kHz; 25x
+    # with the old Newmark step. 1.0, not below: on a tie the registry keeps sr5 first
+    relative_cost=1.0,
     solvers=tuple(SOLVERS),
     fixed_step_solvers=("rk4", "newmark"),
     reference="Dynamic behaviour of rotor roller bearing system with bearing defects "
