@@ -261,8 +261,8 @@ def main() -> None:
 def page(out: Path) -> None:
     """Write the page from the tables in ``out/results`` (``--page-only`` rebuilds it
     alone)."""
-    table = pd.read_csv(out / "results" / "twin_hit.csv")
-    kurt_table = pd.read_csv(out / "results" / "twin_hit_kurtosis.csv")
+    table = pd.read_csv(results_in(out) / "twin_hit.csv")
+    kurt_table = pd.read_csv(results_in(out) / "twin_hit_kurtosis.csv")
     write_page(out / "twin_hit.md", [
         "# A twin of the HIT-SM rig from one healthy recording", "", INTRO, "",
         markdown(summary(table)), "",
