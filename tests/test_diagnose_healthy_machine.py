@@ -88,3 +88,23 @@ def test_supply_lines_set_aside_where_the_supply_frequency_is_stated():
     assert bad.label == "outer", str(bad)
     with pytest.raises(ValueError, match="line_hz must be"):
         EnvelopeDiagnoser("6205", fs=fs, rpm=rpm, line_hz=-50.0).predict(X[:1])
+
+
+def test_baseline_sets_the_supply_lines_aside_where_the_supply_frequency_is_stated():
+    # --baseline with --line-hz: the electrical machine's 100 Hz comb sits 0.7 % from
+    # BPFI at 1116 rpm (above), so a baseline fitted on it without the supply frequency
+    # raises the inner-race threshold to where its comb reads (7.3 dB on 5 s, measured
+    # 7.2-8.1 dB on three seeds); told the supply frequency, the fit sets the comb aside
+    # as the diagnosis does and the thresholds stay at the 6 dB floor. Planted: the
+    # CLI's BaselineThresholds dropping line_hz (as it did) gives 7.3 dB; fails.
+    from types import SimpleNamespace
+
+    from ballpass.commands.diagnose import BaselineThresholds
+
+    fs, rpm = 48_000.0, 1116.0
+    x = machines.machine("electrical", fs, 5.0, rpm, np.random.default_rng(3))
+    record = SimpleNamespace(x=x, fs=fs, rpm=rpm, bearing="6205", name="electrical")
+    blind = BaselineThresholds([record])(record)
+    told = BaselineThresholds([record], line_hz=50.0)(record)
+    assert blind["inner"] > 6.5, blind  # the comb raises the fit where it is not told
+    assert told == {"outer": 6.0, "inner": 6.0, "ball": 6.0}, told

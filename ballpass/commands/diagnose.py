@@ -157,7 +157,7 @@ def run(args) -> int:
     thresholds = None
     if args.baseline is not None:
         healthy = load_records(argparse.Namespace(**{**vars(args), "inputs": args.baseline}))
-        thresholds = BaselineThresholds(healthy, band)
+        thresholds = BaselineThresholds(healthy, band, line_hz=args.line_hz)
         thresholds.check(records)
     results = verdict_rows(signals, band, progress=show_progress(args), segmented=segmented,
                            thresholds=thresholds, line_hz=args.line_hz)
@@ -210,11 +210,13 @@ class BaselineThresholds:
     :func:`ballpass.diagnose.baseline_thresholds` fits on the healthy ``baseline``
     signals of that bearing (windows as long as the signal diagnosed, or the whole
     baseline if shorter), fitted once and printed. Call it with a signal to get its
-    ``threshold_db``."""
+    ``threshold_db``. ``line_hz`` (``--line-hz``): the supply frequency, whose
+    harmonics the fit sets aside as the diagnosis does."""
 
-    def __init__(self, baseline, band=None):
+    def __init__(self, baseline, band=None, line_hz=None):
         self.baseline = baseline
         self.band = band
+        self.line_hz = line_hz
         self._fitted = {}
 
     def check(self, signals) -> None:
@@ -243,7 +245,8 @@ class BaselineThresholds:
         key = (str(sig.bearing), round(seconds, 3))
         if key not in self._fitted:
             found = baseline_thresholds([(b.x, b.fs, float(b.rpm)) for b in mine],
-                                        sig.bearing, seconds, band=self.band)
+                                        sig.bearing, seconds, band=self.band,
+                                        line_hz=self.line_hz)
             self._fitted[key] = found
             print(f"baseline ({', '.join(b.name for b in mine)}), {key[0]} on {seconds:.3g} s "
                   "windows: thresholds "
