@@ -324,3 +324,34 @@ def test_twin_command(machine, tmp_path, capsys):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "rpm must be shaft speeds > 0" in err[0]
     assert not bad.exists()
+
+
+def test_benchmark_of_a_twin_reports_the_twins_recommended_pipeline(dataset, tmp_path):
+    """``ballpass benchmark`` on a twin's dataset (it holds ``_machine.json``) reports
+    :data:`RECOMMENDED_TWIN` as model ``recommended`` and names it in the report; on any
+    other dataset :data:`RECOMMENDED`. Planted: the CLI not passing the twin's pipeline
+    names the random forest in the report; fails."""
+    from ballpass.cli import main
+    from ballpass.commands.benchmark import _recommended_for
+    from ballpass.diagnose._names import CLASSIFIERS, RECOMMENDED, RECOMMENDED_TWIN
+
+    assert RECOMMENDED_TWIN != RECOMMENDED  # else this test could not tell them apart
+    _, out, *_ = dataset
+    assert _recommended_for(out) == RECOMMENDED_TWIN
+    assert _recommended_for(tmp_path) == RECOMMENDED
+    report = tmp_path / "rep"
+    assert main(["benchmark", str(out), "--splits", "run", "--models", "recommended",
+                 "--folds", "2", "--out", str(report), "-q"]) == 0
+    models = (report / "results.md").read_text().split("## Models")[1]
+    assert CLASSIFIERS[RECOMMENDED_TWIN[0]] in models, models
+    assert f"`{RECOMMENDED_TWIN[1]}` features" in models, models
+
+
+def test_benchmark_refuses_an_unknown_recommended_pipeline(dataset):
+    from ballpass.datasets import load
+    from ballpass.diagnose import run_benchmark
+
+    X, meta = load(dataset[1])
+    with pytest.raises(ValueError, match="recommended must be"):
+        run_benchmark(X, meta, splits=["run"], models=["recommended"],
+                      recommended=("random_forest", "volts"))

@@ -104,6 +104,15 @@ def _same_bearing(real, bearing: str):
     return Xr[keep], meta.loc[keep].reset_index(drop=True)
 
 
+def _recommended_for(dataset) -> tuple[str, str]:
+    """The pipeline reported as model ``recommended``: the one for a twin's dataset (it
+    holds the learned paths, ``_machine.json``) or the one for simulation-to-real."""
+    from ..datasets.twin import MACHINE_FILE
+    from ..diagnose._names import RECOMMENDED, RECOMMENDED_TWIN
+
+    return RECOMMENDED_TWIN if (Path(dataset) / MACHINE_FILE).exists() else RECOMMENDED
+
+
 def run(args) -> int:
     """Run ``ballpass benchmark``; returns the exit code (130 when interrupted)."""
     import sys
@@ -142,7 +151,8 @@ def run(args) -> int:
                            features=args.features, n_splits=args.folds,
                            random_state=args.seed, seeds=args.train_seeds,
                            progress=show_progress(args),
-                           checkpoint=Path(args.out) / "_checkpoint", drawn=drawn)
+                           checkpoint=Path(args.out) / "_checkpoint", drawn=drawn,
+                           recommended=_recommended_for(args.dataset))
     if result.table.empty and not result.info.get("interrupted", False):
         # every split asked for was skipped: nothing to report
         why = "; ".join(f"{split}: {reason}" for split, reason in result.skipped.items())

@@ -41,12 +41,23 @@ FEATURE_SETS = {
 #: sets (docs/sim2real.md); never chosen on a test set.
 RECOMMENDED = ("random_forest", "combined")
 
+#: The learned pipeline recommended for a twin of the user's machine
+#: (:func:`ballpass.datasets.twin`: simulated faults through the machine's learned
+#: path over its own healthy recording), chosen by the same kind of rule on the shared
+#: twin validation: of the five classifiers on the `dimensionless`, `evidence` and
+#: `combined` features, the highest mean three-class balanced accuracy on the HIT-SM
+#: rig's recordings, each of its three healthy recordings in turn the twin's input, three
+#: twins each (docs/twin.md); never chosen on a test set.
+RECOMMENDED_TWIN = ("gradient_boosting", "dimensionless")
+
 #: Model name -> description: the physics-based diagnoser and the learned pipelines.
 MODELS = {
     "envelope": "EnvelopeDiagnoser (physics; thresholds calibrated on healthy training rows)",
     **CLASSIFIERS,
     "recommended": f"the pipeline recommended for simulation-to-real: {RECOMMENDED[0]} on "
-                   f"the `{RECOMMENDED[1]}` features, whatever --features says",
+                   f"the `{RECOMMENDED[1]}` features ({RECOMMENDED_TWIN[0]} on the "
+                   f"`{RECOMMENDED_TWIN[1]}` features on a twin's dataset), whatever "
+                   "--features says",
 }
 
 #: Folds of a split on a drawn (continuous) axis: quantile bins of its values, each

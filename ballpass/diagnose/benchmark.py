@@ -48,7 +48,7 @@ from threadpoolctl import threadpool_limits
 from tqdm.auto import tqdm
 
 from ..signalio import atomic_write
-from ._names import LABELS, MODELS, QUANTILE_BINS, RECOMMENDED, SPLITS
+from ._names import CLASSIFIERS, FEATURE_SETS, LABELS, MODELS, QUANTILE_BINS, RECOMMENDED, SPLITS
 from .evidence import FAULT_FAMILIES
 from .pipelines import make_features, make_pipeline
 from .rules import EnvelopeDiagnoser
@@ -380,14 +380,14 @@ def _evidence_rows(diagnoser: EnvelopeDiagnoser):
     return compute
 
 
-def _pipeline_of(model: str, features: str) -> tuple[str, str]:
+def _pipeline_of(model: str, features: str, recommended=RECOMMENDED) -> tuple[str, str]:
     """(classifier, feature set) of a learned model: ``"recommended"`` is
-    :data:`~ballpass.diagnose._names.RECOMMENDED` whatever ``features`` is."""
-    return RECOMMENDED if model == "recommended" else (model, features)
+    ``recommended`` whatever ``features`` is."""
+    return tuple(recommended) if model == "recommended" else (model, features)
 
 
 def _fit_predict(model, train, test, test_set, meta, rows_of, diagnoser, features,
-                 random_state):
+                 random_state, recommended=RECOMMENDED):
     """Fit ``model`` on the simulated ``train`` rows and predict the ``test`` rows of
     ``test_set`` from the per-row work (features, diagnoser evidence) done once."""
     y_tr = meta["label"].to_numpy()[train]
@@ -400,7 +400,7 @@ def _fit_predict(model, train, test, test_set, meta, rows_of, diagnoser, feature
         test_ev = rows_of["evidence", test_set][test]
         margins = est._decision({f: test_ev[:, i] for i, f in enumerate(FAULT_FAMILIES)})
         return est.classes_[margins.argmax(axis=1)]
-    name, feature_set = _pipeline_of(model, features)
+    name, feature_set = _pipeline_of(model, features, recommended)
     est = clone(make_pipeline(name, features=feature_set, random_state=random_state)[1:])
     classifier = est.steps[-1][1]
     if hasattr(classifier, "n_neighbors"):  # kNN: no more neighbours than training rows
@@ -503,6 +503,7 @@ def run_benchmark(
     progress: bool = False,
     checkpoint=None,
     drawn=None,
+    recommended=None,
 ) -> BenchmarkResult:
     """Cross-validate the envelope diagnoser and the classifier pipelines.
 
@@ -554,6 +555,11 @@ def run_benchmark(
         instead of each value (see :func:`split_indices`; default None: a column with
         many distinct values counts as drawn). ``info["fold_rules"]`` says which rule
         made each split's folds.
+    recommended : (str, str), optional
+        (classifier, feature set) reported as model ``"recommended"``: default
+        :data:`~ballpass.diagnose._names.RECOMMENDED`; ``ballpass benchmark`` passes
+        :data:`~ballpass.diagnose._names.RECOMMENDED_TWIN` for a twin's dataset.
+        ``info["recommended"]`` holds the one used.
 
     Returns
     -------
@@ -619,6 +625,12 @@ def run_benchmark(
                              f"got {given!r}")
     if "sim2real" in splits and real is None:
         raise ValueError("the sim2real split needs real recordings (real=(X_real, meta_real))")
+    recommended = RECOMMENDED if recommended is None else tuple(recommended)
+    if len(recommended) != 2 or recommended[0] not in CLASSIFIERS \
+            or recommended[1] not in FEATURE_SETS:
+        raise ValueError(f"recommended must be (classifier, feature set) with a classifier "
+                         f"of {list(CLASSIFIERS)} and a feature set of {list(FEATURE_SETS)}, "
+                         f"got {recommended!r}")
 
     datasets = {"sim": (X, meta)}
     if real is not None:
@@ -647,13 +659,15 @@ def run_benchmark(
             raise RuntimeError(f"split {split!r} put one group on both sides")
         plan.append((split, folds, "sim"))
 
-    settings = {"features": features, "band": band, "harmonics": harmonics,
+    settings = {"features": features, "recommended": list(recommended), "band": band,
+                "harmonics": harmonics,
                 "n_splits": n_splits, "random_state": random_state, "seeds": seeds}
     state = _Checkpoint(checkpoint, datasets, settings)
     learned = [m for m in models if m != "envelope"]
     diagnoser = EnvelopeDiagnoser(bearing, fs=fs, band=band, harmonics=harmonics)
     per_row = []  # (name, dataset, function of (x, rpm) -> per-row values)
-    for feature_set in dict.fromkeys(_pipeline_of(m, features)[1] for m in learned):
+    for feature_set in dict.fromkeys(_pipeline_of(m, features, recommended)[1]
+                                     for m in learned):
         union = make_features(feature_set, bearing=bearing, fs=fs, band=band,
                               harmonics=harmonics)
         per_row += [(f"features_{feature_set}", k, _union_rows(union)) for k in datasets]
@@ -682,14 +696,14 @@ def run_benchmark(
     def fit_predict(model, split, k, train, test, test_set, seed):
         """``_fit_predict`` once per pipeline: ``recommended`` is one of the others
         when ``features`` is its feature set, and is then not fitted again."""
-        key = (_pipeline_of(model, features) if model != "envelope" else model, split, k,
-               seed)
+        key = (_pipeline_of(model, features, recommended) if model != "envelope" else model,
+               split, k, seed)
         if key not in fitted:
             # one thread: a fit on a few hundred rows gains nothing from OpenMP's
             # threads, which cost gradient boosting 60x its time on a busy machine
             with threadpool_limits(1):
                 fitted[key] = _fit_predict(model, train, test, test_set, meta, rows_of,
-                                           diagnoser, features, seed)
+                                           diagnoser, features, seed, recommended)
         return fitted[key]
 
     try:
@@ -757,7 +771,8 @@ def run_benchmark(
         "rows": len(X), "groups": int(meta["group"].nunique()), "bearing": bearing, "fs": fs,
         "few_groups": few,
         "fold_rules": {split: fold_rules[split] for split, _f, _t in plan},
-        "samples_per_row": int(X.shape[1]), "features": features, "n_splits": n_splits,
+        "samples_per_row": int(X.shape[1]), "features": features,
+        "recommended": recommended, "n_splits": n_splits,
         "seeds": seeds if "sim2real" in splits else 1,
         "labels": meta["label"].value_counts().to_dict(),
     }

@@ -145,8 +145,9 @@ def sim2real_table(result: BenchmarkResult):
     return pd.DataFrame(rows)
 
 
-def pipeline_description(model: str, features: str) -> str:
-    """How a benchmark model is built, step by step, in words.
+def pipeline_description(model: str, features: str, recommended=RECOMMENDED) -> str:
+    """How a benchmark model is built, step by step, in words (``"recommended"``: the
+    pipeline ``recommended``, (classifier, feature set), whatever ``features`` is).
 
     Examples
     --------
@@ -156,7 +157,7 @@ def pipeline_description(model: str, features: str) -> str:
     """
     if model == "envelope":
         return MODELS["envelope"]
-    name, feature_set = RECOMMENDED if model == "recommended" else (model, features)
+    name, feature_set = tuple(recommended) if model == "recommended" else (model, features)
     return (f"`{feature_set}` features ({FEATURE_SETS[feature_set]}) -> median imputation "
             f"-> standard scaling -> {CLASSIFIERS[name]}")
 
@@ -256,7 +257,8 @@ def write_report(result: BenchmarkResult, out_dir, *, title: str = "Classifier b
         lines += ["## Splits not formed", ""]
         lines += [f"* `{s}`: {why}" for s, why in result.skipped.items()]
         lines.append("")
-    lines += ["## Models", ""] + [f"* `{m}`: {pipeline_description(m, info['features'])}"
+    chosen = info.get("recommended", RECOMMENDED)
+    lines += ["## Models", ""] + [f"* `{m}`: {pipeline_description(m, info['features'], chosen)}"
                                   for m in dict.fromkeys(table.get("model", ()))]
     paths["markdown"].write_text("\n".join(lines) + "\n")
     return paths
