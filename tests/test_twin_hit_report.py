@@ -45,3 +45,24 @@ def test_the_identical_impact_twin_fixes_the_spread_at_zero():
     lines = [ln for ln in _GRID_TEMPLATE.splitlines() if re.match(r"^impact_spread = ", ln)]
     assert len(lines) == 1
     assert bench.TWINS["identical impacts"] == "impact_spread = [0]"
+
+
+def test_pipeline_choice_and_leave_one_input_out():
+    """benchmarks/twin_pipelines.py: the pipeline with the highest mean over inputs (and
+    twins) is chosen; leaving an input out, the choice is made on the other inputs only.
+    Hand-made scores: A leads on the mean (0.85) on the strength of input 1 alone, B leads
+    on inputs 2 and 3, so with input 1 left out B is chosen and scored there (0.6).
+    Planted: the choice made on all inputs picks A for every left-out input; fails."""
+    pipelines = load_benchmark("twin_pipelines", "twin_pipelines_bench")
+    scores = {("dimensionless", "A"): (1.0, 0.8, 0.75), ("combined", "B"): (0.6, 0.82, 0.8)}
+    runs = pd.DataFrame([{"features": f, "model": m, "input": i + 1, "twin_seed": s,
+                          "balanced_accuracy_3class": v + (s - 0.5) / 100}
+                         for (f, m), vals in scores.items() for i, v in enumerate(vals)
+                         for s in (0, 1)])
+    per_input, held = pipelines.summary(runs)
+    assert per_input.index[0] == ("dimensionless", "A")
+    assert per_input.loc[("dimensionless", "A"), "mean"] == pytest.approx(0.85)
+    first = held.set_index("left_out").loc[1]
+    assert (first["features"], first["model"]) == ("combined", "B")
+    assert first["balanced_accuracy_3class"] == pytest.approx(0.6)
+    assert list(held.set_index("left_out").loc[[2, 3], "model"]) == ["A", "A"]
