@@ -88,7 +88,7 @@ from . import _kernels as K
 from ._registry import Model
 from ._shared import OVERSAMPLE, add_noise, check_finite, stiffness_and_load_zone
 from ._sr5_driver import _edge_names, _events
-from .result import FaultCrossings, GroundTruth, SimulationResult
+from .result import Deferred, FaultCrossings, GroundTruth, SimulationResult, sample_times
 from .sr5 import SR5Parameters, _check_elastic, build_model
 
 __all__ = ["ImpulseParameters", "IMPULSE", "impact_amplitudes"]
@@ -366,19 +366,21 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
         raise ValueError("return_forces=True: the impulse model does not represent "
                          "contact_forces; use model='sr5' (or model='auto')")
     t_wall = time.perf_counter()
-    t_hit, steps, (before, fault, elem, crossings_edge) = _impacts(scene, params)
+    t_hit, steps, (before, fault, elem, edges) = _impacts(scene, params)
     n_samples = scene.n_samples
     accel = _ring(t_hit, steps, n_samples, scene.fs, scene.resonance_hz,
                   scene.resonance_damping)
-    accel -= accel.mean(axis=1, keepdims=True)  # AC-coupled accelerometers, as sr5
+    mean = accel.mean(axis=1, keepdims=True)
+    # the mean is finite only if every sample is (a NaN or an infinite sample makes the
+    # sum NaN or infinite), so it checks the signal without another pass over it
+    check_finite(scene, mean, "impulse")
+    accel -= mean  # AC-coupled accelerometers, as sr5
     accel = add_noise(scene, accel)
-    check_finite(scene, accel, "impulse")
 
-    t = np.arange(n_samples, dtype=np.float64)
-    t /= scene.fs  # the values of arange(n) / fs, in one array instead of two
+    # the sample times (and from them the tachometer and the speed) on first read
+    t = Deferred(sample_times, n_samples, scene.fs)
     truth = GroundTruth.of_scene(
-        scene, t, FaultCrossings(time_s=before.copy(), fault=fault, element=elem,
-                                 edge=crossings_edge))
+        scene, t, FaultCrossings(time_s=before, fault=fault, element=elem, edge=edges))
     info = {"solver": solver, "n_impacts": int(t_hit.size), "n_events": int(before.size),
             "wall_time_s": time.perf_counter() - t_wall}
     return SimulationResult(accel=accel[0] if len(scene.sensors) == 1 else accel,
@@ -398,8 +400,8 @@ def _impacts(scene: Scene, params: ImpulseParameters | None = None):
     steps : ndarray, shape (n_sensors, n_impacts)
         Step of housing acceleration at each sensor, m/s^2.
     crossings : tuple of ndarray
-        Time, fault, element and edge name of every defect crossing (the ground truth's
-        ``fault_crossings``).
+        Time, fault, element and edge name (a :class:`.result.Deferred`) of every defect
+        crossing (the ground truth's ``fault_crossings``).
     """
     params = params or _DEFAULTS
     # K, for the kinematics and the loads; refuses a load beyond the elastic limit
@@ -427,7 +429,7 @@ def _impacts(scene: Scene, params: ImpulseParameters | None = None):
     t_hit, steps = _impact_steps(before, fault, elem, level, np.where(inner, 0, 3),
                                  bm.faults, bm.p, bm.walk, depth, _zone(scene, load_zone, kh),
                                  bm.sensors, params.housing_mass)
-    return t_hit, steps, (before, fault, elem, _edge_names(bm, fault, level))
+    return t_hit, steps, (before, fault, elem, Deferred(_edge_names, bm, fault, level))
 
 
 def _accepts(scene: Scene) -> str | None:
