@@ -234,15 +234,15 @@ def _impact_steps(before, fault, elem, level, exit_level, faults, p, walk, depth
             n += 1
     times = np.empty(n)
     steps = np.empty((sensors.shape[0], n))
-    kin = K.kinematics_scratch(int(p[K.P_Z]))
+    step = K.TWO_PI / p[K.P_Z]
     k = 0
     for c in range(before.shape[0]):
         i = fault[c]
         if level[c] != exit_level[i]:
             continue
         j = int(faults[i, K.F_ELEM]) if int(faults[i, K.F_KIND]) == K.KIND_BALL else elem[c]
-        K.element_angles(before[c], p, walk, kin)
-        psi = kin[K.K_PSI, j]
+        # element j's angle as K.element_angles puts it, without the other elements
+        psi = K.cage_angle(before[c], p, walk)[0] + step * j
         dq = _released(psi, depth[i], zone) / housing_mass
         for s in range(sensors.shape[0]):
             cos_rel = math.cos(psi - sensors[s, K.S_ANG])
