@@ -253,8 +253,9 @@ def _impact_steps(before, fault, elem, level, exit_level, faults, p, walk, depth
 
 
 def _ring(times: np.ndarray, steps: np.ndarray, n_samples: int, fs: float, f_n: float,
-          zeta: float) -> np.ndarray:
-    """Sum of resonator rings at the output samples, (n_sensors, n_samples), m/s^2.
+          zeta: float) -> tuple[np.ndarray, np.ndarray]:
+    """Sum of resonator rings at the output samples, AC-coupled, (n_sensors, n_samples),
+    m/s^2, and the mean taken off each sensor (n_sensors, 1), m/s^2.
 
     Step k of base acceleration ``steps[:, k]`` (m/s^2) at ``times[k]`` (s, ascending)
     adds -a e^(-sigma tau) (cos w_d tau - sigma/w_d sin w_d tau), tau = t - t_k >= 0.
@@ -262,13 +263,16 @@ def _ring(times: np.ndarray, steps: np.ndarray, n_samples: int, fs: float, f_n: 
     is D [alpha C_m + beta S_m] with C_m = r^m cos(theta m), S_m = r^m sin(theta m),
     r = e^(-sigma/fs), theta = w_d / fs: the real and imaginary parts of z^m with
     z = r e^(i theta), which :func:`_ring_kernel` sums over the rings exactly (no
-    truncation, no resampling).
+    truncation, no resampling). The mean over the record (taken off, as the
+    AC-coupled accelerometers of sr5 do) is summed in closed form, a geometric series
+    per stretch between starts.
     """
     out = np.empty((steps.shape[0], n_samples))
+    mean = np.empty((steps.shape[0], 1))
     _ring_kernel(np.ascontiguousarray(times, dtype=np.float64),
                  np.ascontiguousarray(steps, dtype=np.float64), fs, 2.0 * math.pi * f_n,
-                 zeta, out)
-    return out
+                 zeta, out, mean)
+    return out, mean
 
 
 @njit(cache=True, error_model="numpy")
@@ -297,55 +301,96 @@ def _ring_weights(times, steps, fs, w_n, zeta, n_out):
 
 
 @njit(cache=True, error_model="numpy")
-def _ring_kernel(times, steps, fs, w_n, zeta, out):
+def _powers(r, theta, span):
+    """Real and imaginary parts of z^0 .. z^span, z = r e^(i theta): z^j directly for
+    j below :data:`_BLOCK`, beyond it z^(q + b) = z^q z^b with z^q, q a multiple of
+    _BLOCK, directly (one rounded product: within two units in the last place of the
+    direct value, at a 1/_BLOCK of its cost in pow, cos and sin)."""
+    pr = np.empty(span + 1)
+    pi = np.empty(span + 1)
+    for j in range(min(span + 1, _BLOCK)):
+        mag = r ** j
+        pr[j] = mag * math.cos(theta * j)
+        pi[j] = mag * math.sin(theta * j)
+    for q in range(_BLOCK, span + 1, _BLOCK):
+        mag = r ** q
+        qr, qi = mag * math.cos(theta * q), mag * math.sin(theta * q)
+        for b in range(min(_BLOCK, span + 1 - q)):
+            pr[q + b] = qr * pr[b] - qi * pi[b]
+            pi[q + b] = qr * pi[b] + qi * pr[b]
+    return pr, pi
+
+
+@njit(cache=True, error_model="numpy")
+def _sweep(n0, alpha, beta, pr, pi, row, shift, write):
+    """One sensor's rings (weights ``alpha``, ``beta`` of :func:`_ring_weights`) over
+    the record: with ``write``, ``row[n]`` = their sum at sample n minus ``shift``.
+    Returns the sum over every sample of the record (before the shift).
+
+    Each stretch of ``gap`` samples from amplitude A sums to
+    Re(A (1 - z^gap) / (1 - z)); the stretches' A (1 - z^gap) are summed and divided once.
+    """
+    n_out = row.shape[0]
+    m = n0.shape[0]
+    span = pr.shape[0] - 1
+    if write:
+        row[:n_out if m == 0 else n0[0]] = -shift
+    ar = ai = cr = ci = 0.0
+    k = 0
+    while k < m:
+        s = n0[k]
+        while k < m and n0[k] == s:  # rings starting on the same sample
+            ar += alpha[k]
+            ai -= beta[k]
+            k += 1
+        end = n0[k] if k < m else n_out
+        while s < end:  # Re(A z^j) up to the next start, A carried by z^gap
+            gap = min(end - s, span)
+            if write:
+                for j in range(gap):
+                    row[s + j] = ar * pr[j] - ai * pi[j] - shift
+            nr, ni = ar * pr[gap] - ai * pi[gap], ar * pi[gap] + ai * pr[gap]
+            cr += ar - nr
+            ci += ai - ni
+            ar, ai = nr, ni
+            s += gap
+    dr, di = 1.0 - pr[1], -pi[1]  # 1 - z; Re(C / d) = Re(C conj(d)) / |d|^2
+    return (cr * dr + ci * di) / (dr * dr + di * di)
+
+
+@njit(cache=True, error_model="numpy")
+def _ring_kernel(times, steps, fs, w_n, zeta, out, mean):
     """Evaluate the rings of :func:`_ring` at the output samples into ``out``
-    (n_sensors, n_samples).
+    (n_sensors, n_samples), less their mean over the record, written into ``mean``
+    (n_sensors, 1).
 
     With z = r e^(i theta) and the weights of :func:`_ring_weights`, the rings started
     at or before sample n sum to Re(A z^(n - s)), where s is the latest start and the
     complex amplitude A = sum_k (alpha_k - i beta_k) z^(s - n0_k) is carried from start
     to start; between starts every sample is one product with a tabulated power z^m,
     independent of its neighbours (no recursion through the samples, so the loop
-    vectorises).
+    vectorises). A first sweep without writing sums the record (:func:`_sweep`), the
+    second writes it with the mean taken off.
     """
     n_out = out.shape[1]
     n0, alpha, beta, r, theta = _ring_weights(times, steps, fs, w_n, zeta, n_out)
     m = n0.shape[0]
     # powers z^0 .. z^span, span the longest stretch without a new ring (capped: longer
-    # stretches advance by z^span per block)
+    # stretches advance by z^span per block; at least 1, for 1 - z)
     span = n_out if m == 0 else max(n0[0], n_out - n0[m - 1])
     for k in range(1, m):
         span = max(span, n0[k] - n0[k - 1])
-    span = min(span, _SPAN)
-    pr = np.empty(span + 1)
-    pi = np.empty(span + 1)
-    for j in range(span + 1):
-        mag = r ** j
-        pr[j] = mag * math.cos(theta * j)
-        pi[j] = mag * math.sin(theta * j)
+    pr, pi = _powers(r, theta, max(1, min(span, _SPAN)))
     for i in range(out.shape[0]):
-        out[i, :n_out if m == 0 else n0[0]] = 0.0
-        ar = 0.0
-        ai = 0.0
-        k = 0
-        while k < m:
-            s = n0[k]
-            while k < m and n0[k] == s:  # rings starting on the same sample
-                ar += alpha[i, k]
-                ai -= beta[i, k]
-                k += 1
-            end = n0[k] if k < m else n_out
-            while s < end:  # Re(A z^j) up to the next start, A carried by z^gap
-                gap = min(end - s, span)
-                for j in range(gap):
-                    out[i, s + j] = ar * pr[j] - ai * pi[j]
-                ar, ai = ar * pr[gap] - ai * pi[gap], ar * pi[gap] + ai * pr[gap]
-                s += gap
+        mean[i, 0] = _sweep(n0, alpha[i], beta[i], pr, pi, out[i], 0.0, False) / n_out
+        _sweep(n0, alpha[i], beta[i], pr, pi, out[i], mean[i, 0], True)
 
 
 #: most powers of z :func:`_ring_kernel` tabulates (a longer stretch without a new ring
 #: advances block by block)
 _SPAN = 4096
+#: powers of z :func:`_powers` computes directly before it multiplies blocks
+_BLOCK = 32
 
 
 def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=None,
@@ -368,13 +413,12 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
     t_wall = time.perf_counter()
     t_hit, steps, (before, fault, elem, edges) = _impacts(scene, params)
     n_samples = scene.n_samples
-    accel = _ring(t_hit, steps, n_samples, scene.fs, scene.resonance_hz,
-                  scene.resonance_damping)
-    mean = accel.mean(axis=1, keepdims=True)
-    # the mean is finite only if every sample is (a NaN or an infinite sample makes the
-    # sum NaN or infinite), so it checks the signal without another pass over it
+    # AC-coupled accelerometers, as sr5: the mean over the record taken off
+    accel, mean = _ring(t_hit, steps, n_samples, scene.fs, scene.resonance_hz,
+                        scene.resonance_damping)
+    # the mean is finite only if every ring's amplitude is, and so every sample: it
+    # checks the signal without another pass over it
     check_finite(scene, mean, "impulse")
-    accel -= mean  # AC-coupled accelerometers, as sr5
     accel = add_noise(scene, accel)
 
     # the sample times (and from them the tachometer and the speed) on first read
