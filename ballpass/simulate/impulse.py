@@ -493,13 +493,12 @@ IMPULSE = Model(
                 "scene's resonance; no contact dynamics",
     represents=frozenset({"envelope", "varying_speed"}),
     # measured by benchmarks/models_cost.py (docs/models_cost.md), 15 interleaved rounds
-    # of 3 back-to-back calls: 0.044 of sr5's time at 48 kHz (CPU time alike) and 0.024 at
-    # 12 kHz on a quiet machine; on a busy one the wall-time ratio reads 0.024, which
-    # flatters it (sr5's longer calls wait more for a core), and the CPU-time ratio 0.048;
-    # 0.035-0.039 of sr5's thread time in an A/B against the former version (0.045): about
-    # 0.3 ms per call of fixed cost (binding the kinematics, the crossings, four result
-    # arrays)
-    relative_cost=0.04,
+    # of 3 back-to-back calls: 0.0196 of sr5's time at 48 kHz (IQR 0.018-0.021, CPU time
+    # alike; 0.37 ms per call) and 0.017 at 12 kHz, after its fixed cost was cut (binding
+    # only the kinematics, the crossings in one compiled call, the mean taken off in
+    # closed form, the sample times, tachometer and speed computed on first read):
+    # 0.044 and 0.024 before
+    relative_cost=0.02,
     solvers=("analytic",),
     fixed_step_solvers=(),
     reference="P. D. McFadden, J. D. Smith, J. Sound Vib. 96 (1984) 69-82; D. Ho, R. B. "
