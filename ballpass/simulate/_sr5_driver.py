@@ -21,6 +21,7 @@ import warnings
 from dataclasses import dataclass
 
 import numpy as np
+from numba import njit
 
 from ..phenomena import DEFAULT_NEEDS
 from ..scene import Scene
@@ -114,36 +115,62 @@ def _events(bm: BearingModel, t_end: float, exact: bool = True):
     """Fault-edge crossings in [0, t_end], by time: brackets (s), fault, element and
     level indices. ``exact=False`` gives each crossing's time to 1e-13 s in both
     brackets instead of adjacent floating-point numbers around it
-    (:func:`._kernels.find_crossings`)."""
-    n_faults = bm.levels.shape[0]
-    # Scan so that every offset moves by at most 0.5 rad per interval: each offset is
-    # monotone in time and the levels lie within 1 rad of the fault centre (a race
-    # fault is narrower than the element spacing, a ball fault than the ball), so a
-    # sign change against a level is never missed and a wrap at +-pi never mistaken
-    # for one. Offset speeds: the cage (with its steepest slip increment), the inner
-    # race relative to it (< shaft speed) or the ball spin.
-    p, walk = bm.p, bm.walk
+    (:func:`._kernels.find_crossings`). One compiled call (:func:`_events_kernel`)."""
+    before, after, index, n = _events_kernel(bm.p, bm.walk, bm.faults, bm.levels,
+                                             float(t_end), exact)
+    if n < 0:
+        raise RuntimeError(f"more fault crossings than the kinematic bound {-n - 1}")
+    return before, after, index[:, 0], index[:, 1], index[:, 2]
+
+
+@njit(cache=True, error_model="numpy")
+def _events_kernel(p, walk, faults, levels, t_end, exact):
+    """:func:`_events`: the sorted crossings, their (fault, element, level) rows and
+    their count, or -1 - the capacity when they exceed it.
+
+    Scan so that every offset moves by at most 0.5 rad per interval: each offset is
+    monotone in time and the levels lie within 1 rad of the fault centre (a race fault
+    is narrower than the element spacing, a ball fault than the ball), so a sign change
+    against a level is never missed and a wrap at +-pi never mistaken for one. Offset
+    speeds: the cage (with its steepest slip increment), the inner race relative to it
+    (< shaft speed) or the ball spin. The scan times are numpy's
+    ``linspace(0, t_end, n_scan)``, value for value.
+    """
+    n_faults = levels.shape[0]
     z = int(p[_K.P_Z])
     w_max = max(p[_K.P_W0], p[_K.P_W1])
-    slope = float(np.max(np.abs(np.diff(walk)))) * z / (2.0 * math.pi) if walk.size > 1 else 0.0
+    steepest = 0.0
+    for k in range(1, walk.shape[0]):
+        steepest = max(steepest, abs(walk[k] - walk[k - 1]))
+    slope = steepest * z / (2.0 * math.pi)
     cage = p[_K.P_CAGE] * w_max * (1.0 + slope)
-    rates = {_K.KIND_OUTER: cage, _K.KIND_INNER: w_max, _K.KIND_BALL: p[_K.P_SPIN] * cage}
-    local = bm.faults[:n_faults]  # the localized faults; waviness rows follow them
-    kinds = local[:, _K.F_KIND].astype(int)
-    rate = max((rates[k] for k in kinds), default=0.0)
+    rate = 0.0
+    capacity = 0  # at most one crossing of each level per turn of the offset, every path
+    for i in range(n_faults):  # the localized faults; waviness rows follow them
+        kind = int(faults[i, _K.F_KIND])
+        if kind == _K.KIND_OUTER:
+            r = cage
+        elif kind == _K.KIND_INNER:
+            r = w_max
+        else:
+            r = p[_K.P_SPIN] * cage
+        rate = max(rate, r)
+        capacity += 4 * (2 if kind == _K.KIND_BALL else z) * (
+            math.ceil(r * t_end / (2.0 * math.pi)) + 2)
     n_scan = max(2, math.ceil(t_end * rate / 0.5) + 1)
-    # at most one crossing of each level per turn of the offset, on every path
-    capacity = sum(4 * (2 if k == _K.KIND_BALL else z)
-                   * (math.ceil(rates[k] * t_end / (2.0 * math.pi)) + 2) for k in kinds)
+    t_scan = np.empty(n_scan)
+    step = t_end / (n_scan - 1)
+    for k in range(n_scan - 1):
+        t_scan[k] = k * step + 0.0
+    t_scan[n_scan - 1] = t_end
     before, after = np.empty(capacity), np.empty(capacity)
     index = np.empty((capacity, 3), dtype=np.int64)
-    n = _K.find_crossings(p, walk, local, np.linspace(0.0, t_end, n_scan), bm.levels,
-                          before, after, index, exact) if n_faults else 0
+    n = _K.find_crossings(p, walk, faults[:n_faults], t_scan, levels, before, after, index,
+                          exact) if n_faults else 0
     if n < 0:
-        raise RuntimeError(f"more fault crossings than the kinematic bound {capacity}")
-    order = np.argsort(before[:n], kind="stable")
-    index = index[:n][order]
-    return before[:n][order], after[:n][order], index[:, 0], index[:, 1], index[:, 2]
+        return before[:0], after[:0], index[:0], -1 - capacity
+    order = np.argsort(before[:n], kind="mergesort")  # stable
+    return before[:n][order], after[:n][order], index[:n][order], n
 
 
 def _ramp_times(bm: BearingModel) -> tuple[float, float]:

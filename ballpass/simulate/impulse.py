@@ -88,7 +88,7 @@ from . import _kernels as K
 from ._registry import Model
 from ._shared import OVERSAMPLE, add_noise, check_finite, stiffness_and_load_zone
 from ._sr5_driver import _edge_names, _events
-from .result import FaultCrossings, GroundTruth, SimulationResult
+from .result import Deferred, FaultCrossings, GroundTruth, SimulationResult, sample_times
 from .sr5 import SR5Parameters, _check_elastic, build_model
 
 __all__ = ["ImpulseParameters", "IMPULSE", "impact_amplitudes"]
@@ -234,15 +234,15 @@ def _impact_steps(before, fault, elem, level, exit_level, faults, p, walk, depth
             n += 1
     times = np.empty(n)
     steps = np.empty((sensors.shape[0], n))
-    kin = K.kinematics_scratch(int(p[K.P_Z]))
+    step = K.TWO_PI / p[K.P_Z]
     k = 0
     for c in range(before.shape[0]):
         i = fault[c]
         if level[c] != exit_level[i]:
             continue
         j = int(faults[i, K.F_ELEM]) if int(faults[i, K.F_KIND]) == K.KIND_BALL else elem[c]
-        K.element_angles(before[c], p, walk, kin)
-        psi = kin[K.K_PSI, j]
+        # element j's angle as K.element_angles puts it, without the other elements
+        psi = K.cage_angle(before[c], p, walk)[0] + step * j
         dq = _released(psi, depth[i], zone) / housing_mass
         for s in range(sensors.shape[0]):
             cos_rel = math.cos(psi - sensors[s, K.S_ANG])
@@ -253,8 +253,9 @@ def _impact_steps(before, fault, elem, level, exit_level, faults, p, walk, depth
 
 
 def _ring(times: np.ndarray, steps: np.ndarray, n_samples: int, fs: float, f_n: float,
-          zeta: float) -> np.ndarray:
-    """Sum of resonator rings at the output samples, (n_sensors, n_samples), m/s^2.
+          zeta: float) -> tuple[np.ndarray, np.ndarray]:
+    """Sum of resonator rings at the output samples, AC-coupled, (n_sensors, n_samples),
+    m/s^2, and the mean taken off each sensor (n_sensors, 1), m/s^2.
 
     Step k of base acceleration ``steps[:, k]`` (m/s^2) at ``times[k]`` (s, ascending)
     adds -a e^(-sigma tau) (cos w_d tau - sigma/w_d sin w_d tau), tau = t - t_k >= 0.
@@ -262,13 +263,16 @@ def _ring(times: np.ndarray, steps: np.ndarray, n_samples: int, fs: float, f_n: 
     is D [alpha C_m + beta S_m] with C_m = r^m cos(theta m), S_m = r^m sin(theta m),
     r = e^(-sigma/fs), theta = w_d / fs: the real and imaginary parts of z^m with
     z = r e^(i theta), which :func:`_ring_kernel` sums over the rings exactly (no
-    truncation, no resampling).
+    truncation, no resampling). The mean over the record (taken off, as the
+    AC-coupled accelerometers of sr5 do) is summed in closed form, a geometric series
+    per stretch between starts.
     """
     out = np.empty((steps.shape[0], n_samples))
+    mean = np.empty((steps.shape[0], 1))
     _ring_kernel(np.ascontiguousarray(times, dtype=np.float64),
                  np.ascontiguousarray(steps, dtype=np.float64), fs, 2.0 * math.pi * f_n,
-                 zeta, out)
-    return out
+                 zeta, out, mean)
+    return out, mean
 
 
 @njit(cache=True, error_model="numpy")
@@ -297,55 +301,96 @@ def _ring_weights(times, steps, fs, w_n, zeta, n_out):
 
 
 @njit(cache=True, error_model="numpy")
-def _ring_kernel(times, steps, fs, w_n, zeta, out):
+def _powers(r, theta, span):
+    """Real and imaginary parts of z^0 .. z^span, z = r e^(i theta): z^j directly for
+    j below :data:`_BLOCK`, beyond it z^(q + b) = z^q z^b with z^q, q a multiple of
+    _BLOCK, directly (one rounded product: within two units in the last place of the
+    direct value, at a 1/_BLOCK of its cost in pow, cos and sin)."""
+    pr = np.empty(span + 1)
+    pi = np.empty(span + 1)
+    for j in range(min(span + 1, _BLOCK)):
+        mag = r ** j
+        pr[j] = mag * math.cos(theta * j)
+        pi[j] = mag * math.sin(theta * j)
+    for q in range(_BLOCK, span + 1, _BLOCK):
+        mag = r ** q
+        qr, qi = mag * math.cos(theta * q), mag * math.sin(theta * q)
+        for b in range(min(_BLOCK, span + 1 - q)):
+            pr[q + b] = qr * pr[b] - qi * pi[b]
+            pi[q + b] = qr * pi[b] + qi * pr[b]
+    return pr, pi
+
+
+@njit(cache=True, error_model="numpy")
+def _sweep(n0, alpha, beta, pr, pi, row, shift, write):
+    """One sensor's rings (weights ``alpha``, ``beta`` of :func:`_ring_weights`) over
+    the record: with ``write``, ``row[n]`` = their sum at sample n minus ``shift``.
+    Returns the sum over every sample of the record (before the shift).
+
+    Each stretch of ``gap`` samples from amplitude A sums to
+    Re(A (1 - z^gap) / (1 - z)); the stretches' A (1 - z^gap) are summed and divided once.
+    """
+    n_out = row.shape[0]
+    m = n0.shape[0]
+    span = pr.shape[0] - 1
+    if write:
+        row[:n_out if m == 0 else n0[0]] = -shift
+    ar = ai = cr = ci = 0.0
+    k = 0
+    while k < m:
+        s = n0[k]
+        while k < m and n0[k] == s:  # rings starting on the same sample
+            ar += alpha[k]
+            ai -= beta[k]
+            k += 1
+        end = n0[k] if k < m else n_out
+        while s < end:  # Re(A z^j) up to the next start, A carried by z^gap
+            gap = min(end - s, span)
+            if write:
+                for j in range(gap):
+                    row[s + j] = ar * pr[j] - ai * pi[j] - shift
+            nr, ni = ar * pr[gap] - ai * pi[gap], ar * pi[gap] + ai * pr[gap]
+            cr += ar - nr
+            ci += ai - ni
+            ar, ai = nr, ni
+            s += gap
+    dr, di = 1.0 - pr[1], -pi[1]  # 1 - z; Re(C / d) = Re(C conj(d)) / |d|^2
+    return (cr * dr + ci * di) / (dr * dr + di * di)
+
+
+@njit(cache=True, error_model="numpy")
+def _ring_kernel(times, steps, fs, w_n, zeta, out, mean):
     """Evaluate the rings of :func:`_ring` at the output samples into ``out``
-    (n_sensors, n_samples).
+    (n_sensors, n_samples), less their mean over the record, written into ``mean``
+    (n_sensors, 1).
 
     With z = r e^(i theta) and the weights of :func:`_ring_weights`, the rings started
     at or before sample n sum to Re(A z^(n - s)), where s is the latest start and the
     complex amplitude A = sum_k (alpha_k - i beta_k) z^(s - n0_k) is carried from start
     to start; between starts every sample is one product with a tabulated power z^m,
     independent of its neighbours (no recursion through the samples, so the loop
-    vectorises).
+    vectorises). A first sweep without writing sums the record (:func:`_sweep`), the
+    second writes it with the mean taken off.
     """
     n_out = out.shape[1]
     n0, alpha, beta, r, theta = _ring_weights(times, steps, fs, w_n, zeta, n_out)
     m = n0.shape[0]
     # powers z^0 .. z^span, span the longest stretch without a new ring (capped: longer
-    # stretches advance by z^span per block)
+    # stretches advance by z^span per block; at least 1, for 1 - z)
     span = n_out if m == 0 else max(n0[0], n_out - n0[m - 1])
     for k in range(1, m):
         span = max(span, n0[k] - n0[k - 1])
-    span = min(span, _SPAN)
-    pr = np.empty(span + 1)
-    pi = np.empty(span + 1)
-    for j in range(span + 1):
-        mag = r ** j
-        pr[j] = mag * math.cos(theta * j)
-        pi[j] = mag * math.sin(theta * j)
+    pr, pi = _powers(r, theta, max(1, min(span, _SPAN)))
     for i in range(out.shape[0]):
-        out[i, :n_out if m == 0 else n0[0]] = 0.0
-        ar = 0.0
-        ai = 0.0
-        k = 0
-        while k < m:
-            s = n0[k]
-            while k < m and n0[k] == s:  # rings starting on the same sample
-                ar += alpha[i, k]
-                ai -= beta[i, k]
-                k += 1
-            end = n0[k] if k < m else n_out
-            while s < end:  # Re(A z^j) up to the next start, A carried by z^gap
-                gap = min(end - s, span)
-                for j in range(gap):
-                    out[i, s + j] = ar * pr[j] - ai * pi[j]
-                ar, ai = ar * pr[gap] - ai * pi[gap], ar * pi[gap] + ai * pr[gap]
-                s += gap
+        mean[i, 0] = _sweep(n0, alpha[i], beta[i], pr, pi, out[i], 0.0, False) / n_out
+        _sweep(n0, alpha[i], beta[i], pr, pi, out[i], mean[i, 0], True)
 
 
 #: most powers of z :func:`_ring_kernel` tabulates (a longer stretch without a new ring
 #: advances block by block)
 _SPAN = 4096
+#: powers of z :func:`_powers` computes directly before it multiplies blocks
+_BLOCK = 32
 
 
 def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=None,
@@ -366,19 +411,20 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
         raise ValueError("return_forces=True: the impulse model does not represent "
                          "contact_forces; use model='sr5' (or model='auto')")
     t_wall = time.perf_counter()
-    t_hit, steps, (before, fault, elem, crossings_edge) = _impacts(scene, params)
+    t_hit, steps, (before, fault, elem, edges) = _impacts(scene, params)
     n_samples = scene.n_samples
-    accel = _ring(t_hit, steps, n_samples, scene.fs, scene.resonance_hz,
-                  scene.resonance_damping)
-    accel -= accel.mean(axis=1, keepdims=True)  # AC-coupled accelerometers, as sr5
+    # AC-coupled accelerometers, as sr5: the mean over the record taken off
+    accel, mean = _ring(t_hit, steps, n_samples, scene.fs, scene.resonance_hz,
+                        scene.resonance_damping)
+    # the mean is finite only if every ring's amplitude is, and so every sample: it
+    # checks the signal without another pass over it
+    check_finite(scene, mean, "impulse")
     accel = add_noise(scene, accel)
-    check_finite(scene, accel, "impulse")
 
-    t = np.arange(n_samples, dtype=np.float64)
-    t /= scene.fs  # the values of arange(n) / fs, in one array instead of two
+    # the sample times (and from them the tachometer and the speed) on first read
+    t = Deferred(sample_times, n_samples, scene.fs)
     truth = GroundTruth.of_scene(
-        scene, t, FaultCrossings(time_s=before.copy(), fault=fault, element=elem,
-                                 edge=crossings_edge))
+        scene, t, FaultCrossings(time_s=before, fault=fault, element=elem, edge=edges))
     info = {"solver": solver, "n_impacts": int(t_hit.size), "n_events": int(before.size),
             "wall_time_s": time.perf_counter() - t_wall}
     return SimulationResult(accel=accel[0] if len(scene.sensors) == 1 else accel,
@@ -398,8 +444,8 @@ def _impacts(scene: Scene, params: ImpulseParameters | None = None):
     steps : ndarray, shape (n_sensors, n_impacts)
         Step of housing acceleration at each sensor, m/s^2.
     crossings : tuple of ndarray
-        Time, fault, element and edge name of every defect crossing (the ground truth's
-        ``fault_crossings``).
+        Time, fault, element and edge name (a :class:`.result.Deferred`) of every defect
+        crossing (the ground truth's ``fault_crossings``).
     """
     params = params or _DEFAULTS
     # K, for the kinematics and the loads; refuses a load beyond the elastic limit
@@ -427,7 +473,7 @@ def _impacts(scene: Scene, params: ImpulseParameters | None = None):
     t_hit, steps = _impact_steps(before, fault, elem, level, np.where(inner, 0, 3),
                                  bm.faults, bm.p, bm.walk, depth, _zone(scene, load_zone, kh),
                                  bm.sensors, params.housing_mass)
-    return t_hit, steps, (before, fault, elem, _edge_names(bm, fault, level))
+    return t_hit, steps, (before, fault, elem, Deferred(_edge_names, bm, fault, level))
 
 
 def _accepts(scene: Scene) -> str | None:
@@ -447,13 +493,12 @@ IMPULSE = Model(
                 "scene's resonance; no contact dynamics",
     represents=frozenset({"envelope", "varying_speed"}),
     # measured by benchmarks/models_cost.py (docs/models_cost.md), 15 interleaved rounds
-    # of 3 back-to-back calls: 0.044 of sr5's time at 48 kHz (CPU time alike) and 0.024 at
-    # 12 kHz on a quiet machine; on a busy one the wall-time ratio reads 0.024, which
-    # flatters it (sr5's longer calls wait more for a core), and the CPU-time ratio 0.048;
-    # 0.035-0.039 of sr5's thread time in an A/B against the former version (0.045): about
-    # 0.3 ms per call of fixed cost (binding the kinematics, the crossings, four result
-    # arrays)
-    relative_cost=0.04,
+    # of 3 back-to-back calls: 0.0196 of sr5's time at 48 kHz (IQR 0.018-0.021, CPU time
+    # alike; 0.37 ms per call) and 0.017 at 12 kHz, after its fixed cost was cut (binding
+    # only the kinematics, the crossings in one compiled call, the mean taken off in
+    # closed form, the sample times, tachometer and speed computed on first read):
+    # 0.044 and 0.024 before
+    relative_cost=0.02,
     solvers=("analytic",),
     fixed_step_solvers=(),
     reference="P. D. McFadden, J. D. Smith, J. Sound Vib. 96 (1984) 69-82; D. Ho, R. B. "

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -10,6 +11,79 @@ from ..bearing import BearingFrequencies
 from ..scene import Fault, Scene
 
 __all__ = ["SimulationResult", "GroundTruth", "FaultCrossings"]
+
+
+class Deferred:
+    """An array computed on first use: ``function(*args)``, evaluated once and kept.
+
+    A model passes one for an output that costs more to fill than to describe (the
+    sample times, the tachometer channel and the speed of a 48 kHz record are three
+    arrays as long as the signal), so a caller who never reads it never pays for it.
+    Picklable when ``function`` and ``args`` are.
+    """
+
+    __slots__ = ("function", "args", "value")
+
+    def __init__(self, function: Callable, *args) -> None:
+        self.function, self.args, self.value = function, args, None
+
+    def __call__(self) -> np.ndarray:
+        if self.value is None:
+            self.value = self.function(*(a() if isinstance(a, Deferred) else a
+                                         for a in self.args))
+            self.args = ()
+        return self.value
+
+    def __getstate__(self):
+        return self.function, self.args, self.value
+
+    def __setstate__(self, state) -> None:
+        self.function, self.args, self.value = state
+
+
+class _OnFirstAccess:
+    """A dataclass field that accepts a :class:`Deferred` and reads as its value.
+
+    The value lives in the instance's ``__dict__`` under the field's own name (so
+    ``vars()`` and ``__dict__`` copies keep working); a :class:`Deferred` there is
+    evaluated on the first read and replaced by its array. Has no default: reading it
+    on the class raises AttributeError, which tells ``dataclass`` the field is required.
+    """
+
+    def __set_name__(self, owner, name: str) -> None:
+        self.name = name
+
+    def __get__(self, obj, owner=None):
+        if obj is None:
+            raise AttributeError(self.name)
+        value = obj.__dict__[self.name]
+        if isinstance(value, Deferred):
+            value = value()
+            obj.__dict__[self.name] = value
+        return value
+
+    def __set__(self, obj, value) -> None:
+        obj.__dict__[self.name] = value
+
+
+def sample_times(n_samples: int, fs: float) -> np.ndarray:
+    """The output sample times ``arange(n_samples) / fs``, s (one array, not two)."""
+    t = np.arange(n_samples, dtype=np.float64)
+    t /= fs
+    return t
+
+
+def _shaft_angle(scene: Scene, t: np.ndarray) -> np.ndarray:
+    """The tachometer channel at the sample times ``t`` (s): shaft angle, rad."""
+    return scene.speed.shaft_angle(t, scene.duration_s)
+
+
+def _rpm(scene: Scene, t: np.ndarray) -> np.ndarray:
+    """The shaft speed at the sample times ``t`` (s), rpm."""
+    speed = scene.speed
+    if speed.is_constant:
+        return np.full(t.shape, float(speed.rpm_start))
+    return speed.rpm_at(t, scene.duration_s) * np.ones_like(t)
 
 
 @dataclass(frozen=True)
@@ -33,7 +107,7 @@ class FaultCrossings:
     time_s: np.ndarray
     fault: np.ndarray
     element: np.ndarray
-    edge: np.ndarray
+    edge: np.ndarray = _OnFirstAccess()
 
     def entries(self, fault: int | None = None) -> np.ndarray:
         """Times (s) at which an element enters a defect (optionally one fault only)."""
@@ -83,8 +157,8 @@ class GroundTruth:
     label: str
     faults: tuple[Fault, ...]
     frequencies: BearingFrequencies
-    shaft_angle: np.ndarray
-    rpm: np.ndarray
+    shaft_angle: np.ndarray = _OnFirstAccess()
+    rpm: np.ndarray = _OnFirstAccess()
     fault_crossings: FaultCrossings
     effective_depth_mm: tuple[float, ...]
     contact_forces: np.ndarray | None = None
@@ -149,18 +223,19 @@ class GroundTruth:
         return tuple(out)
 
     @classmethod
-    def of_scene(cls, scene: Scene, t: np.ndarray, crossings: FaultCrossings,
+    def of_scene(cls, scene: Scene, t: np.ndarray | Deferred, crossings: FaultCrossings,
                  **outputs) -> GroundTruth:
         """The ground truth every model shares, from the scene (label, faults,
-        frequencies, tachometer, speed, effective depths) at sample times ``t`` (s), plus
-        the model's crossings and optional outputs (``contact_forces`` ...)."""
+        frequencies, tachometer, speed, effective depths) at sample times ``t`` (s, or
+        a :class:`Deferred` of them), plus the model's crossings and optional outputs
+        (``contact_forces`` ...). The tachometer and the speed are computed on their
+        first read."""
         return cls(
             label=scene.label,
             faults=scene.faults,
             frequencies=scene.frequencies,
-            shaft_angle=scene.speed.shaft_angle(t, scene.duration_s),
-            rpm=(np.full(t.shape, float(scene.speed.rpm_start)) if scene.speed.is_constant
-                 else scene.speed.rpm_at(t, scene.duration_s) * np.ones_like(t)),
+            shaft_angle=Deferred(_shaft_angle, scene, t),
+            rpm=Deferred(_rpm, scene, t),
             fault_crossings=crossings,
             effective_depth_mm=tuple(f.effective_depth_mm(scene.bearing) for f in scene.faults),
             **outputs,
@@ -206,7 +281,7 @@ class SimulationResult:
 
     accel: np.ndarray
     fs: float
-    t: np.ndarray
+    t: np.ndarray = _OnFirstAccess()
     scene: Scene
     sensor_names: tuple[str, ...]
     truth: GroundTruth

@@ -323,16 +323,20 @@ def _waviness_rows(scene: Scene, rng: np.random.Generator) -> list:
 
 
 def _fault_table(scene: Scene, psi0: np.ndarray, kh: float | None = None,
-                 bearing_load: float | None = None, rng: np.random.Generator | None = None
-                 ) -> tuple[np.ndarray, np.ndarray]:
+                 bearing_load: float | None = None, rng: np.random.Generator | None = None,
+                 draws: bool = True) -> tuple[np.ndarray, np.ndarray]:
     """Kernel fault table (localized faults first, then waviness rows) and the event
     levels (rad) of each localized fault. ``kh`` (default: the bearing's Hertz
     constant) and ``bearing_load`` (default: the radial load) size round pits; ``rng``
-    (default: seeded by the scene) draws the per-fault seeds and ball phases."""
+    (default: seeded by the scene) draws the per-fault seeds and ball phases.
+    ``draws=False`` draws nothing: the per-fault seeds (column F_SEED, which only the
+    engagement of an intermittent fault reads) are 0 and the waviness rows left out,
+    for callers that use only the localized faults' kinematics."""
     b = scene.bearing
     kh = kh or b.hertz_stiffness()
     bearing_load = scene.radial_load_n if bearing_load is None else bearing_load
-    rng = rng or np.random.default_rng(np.random.SeedSequence(scene.seed).spawn(4)[3])
+    if draws:
+        rng = rng or np.random.default_rng(np.random.SeedSequence(scene.seed).spawn(4)[3])
     rows, levels = [], []
     for f in scene.faults:
         if f.geometry == "pit":
@@ -354,11 +358,12 @@ def _fault_table(scene: Scene, psi0: np.ndarray, kh: float | None = None,
              K.F_SHAPE, K.F_ENGAGE, K.F_SEED]] = (
             kind, math.radians(f.angle_deg), half, depth_m, ramp, f.element,
             psi0[f.element] if f.kind == "ball" else 0.0, shape, f.engagement,
-            float(rng.integers(1, 2**20)))
+            float(rng.integers(1, 2**20)) if draws else 0.0)
         rows.append(row)
         inner = half * (1.0 - 2.0 * ramp) if ramp > 0 else math.nan
         levels.append([-half, -inner, inner, half])
-    rows += _waviness_rows(scene, rng)
+    if draws:
+        rows += _waviness_rows(scene, rng)
     return (np.array(rows, dtype=np.float64).reshape(-1, K.N_FCOLS),
             np.array(levels, dtype=np.float64).reshape(-1, 4))
 
@@ -408,7 +413,9 @@ def build_model(scene: Scene, params: SR5Parameters | None = None, *,
         False skips the static equilibrium, for callers that use only the kinematics
         (``p``, ``walk``, ``faults``, ``levels``: the impulse model): ``y0`` and
         ``scale`` are then None, ``static_deflection`` NaN, and the elastic-limit check
-        is the caller's.
+        is the caller's. It also skips the draws only the contact kernels read (see
+        :func:`_fault_table`): the localized faults' rows without their seeds, no
+        waviness rows, no EHL film.
 
     Returns
     -------
@@ -453,14 +460,16 @@ def build_model(scene: Scene, params: SR5Parameters | None = None, *,
     # children of the scene seed: 0 slip, 1 noise, 2 shaft lines, 3 fault draws; the
     # two used here built directly (SeedSequence(seed, spawn_key=(i,)) is the i-th child
     # that SeedSequence(seed).spawn returns, in a third of spawn(4)'s time)
-    slip_seed, fault_seed = (np.random.SeedSequence(scene.seed, spawn_key=(i,)) for i in (0, 3))
+    slip_seed = np.random.SeedSequence(scene.seed, spawn_key=(0,))
     walk = _slip_walk(scene, cage_ratio, np.random.default_rng(slip_seed))
     psi0 = K.element_angles_many(np.zeros(1), p, walk, b.n_elements)[0]
     bearing_load = scene.radial_load_n + params.shaft_mass * g
-    faults, levels = _fault_table(scene, psi0, kh, bearing_load,
-                                  np.random.default_rng(fault_seed))
+    faults, levels = _fault_table(
+        scene, psi0, kh, bearing_load,
+        np.random.default_rng(np.random.SeedSequence(scene.seed, spawn_key=(3,)))
+        if equilibrium else None, draws=equilibrium)
     film = 0.0
-    if "ehl_film" in scene.needs:
+    if equilibrium and "ehl_film" in scene.needs:
         film = _film_m(scene, params, bearing_load)
         row = np.zeros((1, K.N_FCOLS))
         row[0, [K.F_KIND, K.F_CENTRE, K.F_HALF, K.F_DEPTH]] = (
