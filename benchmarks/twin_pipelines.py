@@ -101,6 +101,7 @@ def page(runs: pd.DataFrame, results: Path) -> None:
     inputs = [c for c in per_input.columns if c != "mean"]
     best = per_input.index[0]
     lines = [
+        "# Every learned pipeline on the HIT-SM twin", "",
         "Every learned pipeline trained on a twin of the HIT-SM rig (`benchmarks/"
         "twin_pipelines.py`): three-class balanced accuracy on the rig's other recordings, "
         f"one-second segments, mean over {runs['twin_seed'].nunique()} twins per input "
