@@ -123,6 +123,15 @@ def _race_drop(faults, kind, bx, by, radius, j, which):
 
 
 @njit(cache=True, error_model="numpy")
+def _has_ball_faults(faults):
+    """Whether any ball carries a fault (else no ball looks its own faults up)."""
+    for f in range(faults.shape[0]):
+        if int(faults[f, F_KIND]) == KIND_BALL:
+            return True
+    return False
+
+
+@njit(cache=True, error_model="numpy")
 def _has_ball_fault(faults, j):
     """Whether ball j carries a fault."""
     for f in range(faults.shape[0]):
@@ -162,6 +171,7 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
     traction = p[P_TRACTION] != 0.0
     w_bd, hd, ufloor, weps = p[P_WBD], p[P_HD], p[P_UFLOOR], p[P_WEPS]
     has_faults = faults.shape[0] > 0
+    has_ball = _has_ball_faults(faults)
     inv_relax = 1.0 / p[P_RELAX]
     inv_mb = 1.0 / mb
 
@@ -206,7 +216,7 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
         fyb = 0.0
         tb = 0.0
         cb, sb = 1.0, 0.0
-        ball_fault = has_faults and _has_ball_fault(faults, j)
+        ball_fault = has_ball and _has_ball_fault(faults, j)
         if ball_fault:
             cb, sb = math.cos(thb), math.sin(thb)
         # ---- inner contact
