@@ -18,27 +18,17 @@ the make script before changing the kernels."""
 
 from __future__ import annotations
 
-import sys
-from pathlib import Path
-
 import numpy as np
 import pytest
+from _reference import reference
 
-DATA = Path(__file__).parent / "data"
-sys.path.insert(0, str(DATA))
-import make_multibody_reference as ref  # noqa: E402
-
-
-@pytest.fixture(scope="module")
-def stored():
-    with np.load(DATA / "multibody_reference.npz") as archive:
-        return {key: archive[key] for key in archive.files}
+ref, STORED = reference("multibody")
 
 
 @pytest.mark.parametrize("name", list(ref.SCENES))
-def test_output_as_before(stored, name):
+def test_output_as_before(name):
     got = ref.outputs(ref.run(name))
     for key, value in got.items():
-        old = stored[f"{name}/{key}"]
+        old = STORED[f"{name}/{key}"]
         assert value.shape == old.shape, key
         np.testing.assert_array_equal(value, old, err_msg=f"{name}/{key}")
