@@ -7,31 +7,22 @@ tests/data/make_impulse_reference.py; and the arrays it now computes on first re
 from __future__ import annotations
 
 import pickle
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
+from _reference import reference
 
 import ballpass as bp
 
-DATA = Path(__file__).parent / "data"
-sys.path.insert(0, str(DATA))
-import make_impulse_reference as ref  # noqa: E402
-
-
-@pytest.fixture(scope="module")
-def stored():
-    with np.load(DATA / "impulse_reference.npz") as archive:
-        return {key: archive[key] for key in archive.files}
+ref, STORED = reference("impulse")
 
 
 @pytest.mark.parametrize("name", list(ref.SCENES))
-def test_output_as_before(stored, name):
+def test_output_as_before(name):
     res = bp.simulate(ref.scene(name), model="impulse")
     got = ref.outputs(res)
     for key, value in got.items():
-        old = stored[f"{name}/{key}"]
+        old = STORED[f"{name}/{key}"]
         assert value.shape == old.shape, key
         if key == "accel":
             # rounding only: the mean taken off in closed form (a geometric series per

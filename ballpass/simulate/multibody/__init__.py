@@ -925,13 +925,14 @@ MULTIBODY = Model(
                 "profiles",
     represents=frozenset({"ball_dynamics", "contact_dynamics", "contact_forces", "envelope",
                           "varying_speed"}),
-    # benchmarks/models_cost.py (docs/models_cost.md): 80x sr5 per simulated second
-    # (median of 15 interleaved rounds, IQR 78-86x; CPU time 78x) on the 6205 reference
-    # scene at 48 kHz, 60x at 12 kHz, on the loaded shared machine (57-93x in earlier
-    # runs; 225x before the trig-free contact tests and the step from the linearised
-    # spectrum). The Rosenbrock-W solver is not the default: 63x against RK4's 72x side
-    # by side (docs/results/multibody_speed.md), less accurate on faulted scenes
-    relative_cost=80.0,
+    # benchmarks/models_cost.py (docs/models_cost.md): 76x sr5 per simulated second
+    # (median of 15 interleaved rounds, IQR 75-77x; CPU time 74x) on the 6205 reference
+    # scene at 48 kHz, 53x at 12 kHz, on the loaded shared machine (84x and 61x before
+    # the kernels ran without numba's reference counting; 57-93x in earlier runs; 225x
+    # before the trig-free contact tests and the step from the linearised spectrum).
+    # The Rosenbrock-W solver is not the default: 63x against RK4's 72x side by side
+    # (docs/results/multibody_speed.md), less accurate on faulted scenes
+    relative_cost=76.0,
     solvers=tuple(SOLVERS),
     fixed_step_solvers=tuple(SOLVERS),
     reference="M. Nakhaeinejad, M. D. Bryant, 'Dynamic modeling of rolling element bearings "

@@ -51,16 +51,27 @@ S_COS, S_SIN, S_ATT = 0, 1, 2
 N_SCOLS = 3
 
 STATUS_OK, STATUS_NONFINITE = 0, 1
+
+# Every kernel below but integrate_fixed allocates nothing and is compiled without numba's
+# runtime (**_NO_RUNTIME): numba then emits no reference counting of the array arguments
+# (an atomic increment and decrement per array per call, a quarter of an RK4 step's time
+# outside the right-hand side itself); the arithmetic is unchanged. The switch is
+# private to numba: where a numba lacks it, the kernels compile as usual.
+try:
+    from numba.core.cpu import CPUTargetOptions
+    _NO_RUNTIME = {"_nrt": False} if hasattr(CPUTargetOptions, "_nrt") else {}
+except ImportError:  # pragma: no cover - numba moved its options
+    _NO_RUNTIME = {}
 TWO_PI = 2.0 * math.pi
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", **_NO_RUNTIME)
 def wrap_pi(a):
     """Wrap an angle (rad) to [-pi, pi)."""
     return a - TWO_PI * math.floor((a + math.pi) / TWO_PI)
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", **_NO_RUNTIME)
 def mu_slide_roll(s, w_bd, hd_ratio):
     """Traction coefficient at slide-roll ratio s >= 0: Nakhaeinejad & Bryant eq. 13
     mu_bd = (-0.1 + 22.28 s) exp(-181.46 s) + 0.1, blended by eq. 12 with weight w_bd
@@ -69,7 +80,7 @@ def mu_slide_roll(s, w_bd, hd_ratio):
     return mu_bd * (w_bd + (1.0 - w_bd) * hd_ratio)
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", **_NO_RUNTIME)
 def notch_drop(x, half, depth, reff):
     """Extra clearance (m) opened by a rectangular notch of half width ``half`` and
     depth ``depth`` at arc offset ``x`` of the contact from its centre: the mating
@@ -84,7 +95,7 @@ def notch_drop(x, half, depth, reff):
     return drop if drop < depth else depth
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", **_NO_RUNTIME)
 def theta_ref(t, p):
     """Drive (motor) angle and speed at t: the scene's speed profile for t >= 0 and its
     start speed during the settling time before 0."""
@@ -94,7 +105,7 @@ def theta_ref(t, p):
     return p[P_W0] * t + 0.5 * a * t * t, p[P_W0] + a * t
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", **_NO_RUNTIME)
 def _race_drop(faults, kind, bx, by, radius, j, which):
     """Largest notch drop at a contact whose point sits in direction (bx, by) (unit
     vector, body frame) on a race of ``kind`` (radius m), or on ball j's surface (kind
@@ -122,7 +133,16 @@ def _race_drop(faults, kind, bx, by, radius, j, which):
     return drop, flags
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", **_NO_RUNTIME)
+def _has_ball_faults(faults):
+    """Whether any ball carries a fault (else no ball looks its own faults up)."""
+    for f in range(faults.shape[0]):
+        if int(faults[f, F_KIND]) == KIND_BALL:
+            return True
+    return False
+
+
+@njit(cache=True, error_model="numpy", **_NO_RUNTIME)
 def _has_ball_fault(faults, j):
     """Whether ball j carries a fault."""
     for f in range(faults.shape[0]):
@@ -131,7 +151,7 @@ def _has_ball_fault(faults, j):
     return False
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", **_NO_RUNTIME)
 def _contact_force(k, tau, delta, ddelta):
     """Normal force of a Hertz contact with Kramer damping that vanishes with the
     contact: K delta^1.5 + tau (1.5 K delta^0.5) d(delta)/dt, never pulling; exactly 0
@@ -143,7 +163,7 @@ def _contact_force(k, tau, delta, ddelta):
     return q if q > 0.0 else 0.0
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", **_NO_RUNTIME)
 def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
     """dy/dt at (t, y). The traction forces are first-order lags of the paper's
     steady law (eq. 11-13): dF/dt = (mu(s) Q - F) u_r / L, L the relaxation length
@@ -162,6 +182,7 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
     traction = p[P_TRACTION] != 0.0
     w_bd, hd, ufloor, weps = p[P_WBD], p[P_HD], p[P_UFLOOR], p[P_WEPS]
     has_faults = faults.shape[0] > 0
+    has_ball = _has_ball_faults(faults)
     inv_relax = 1.0 / p[P_RELAX]
     inv_mb = 1.0 / mb
 
@@ -206,7 +227,7 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
         fyb = 0.0
         tb = 0.0
         cb, sb = 1.0, 0.0
-        ball_fault = has_faults and _has_ball_fault(faults, j)
+        ball_fault = has_ball and _has_ball_fault(faults, j)
         if ball_fault:
             cb, sb = math.cos(thb), math.sin(thb)
         # ---- inner contact
@@ -345,7 +366,7 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
     dydt[nd + 5] = tc / p[P_JC]
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", **_NO_RUNTIME)
 def energy(t, y, p):
     """Mechanical energy (J) of the conservative part: kinetic energy of every body,
     Hertz potentials 0.4 K delta^2.5 (healthy races), housing and pocket springs,
@@ -396,7 +417,7 @@ RW_B = np.array([0.24212380706095346, -1.2232505839045147, 1.5452602553351023,
 RW_C = RW_A.sum(axis=1)  # stage times
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", **_NO_RUNTIME)
 def ball_stiffness(y, p, qi, qo, kb):
     """Linearised stiffness of every ball against its races and of the outer race
     against its housing and the balls, N/m, each as the symmetric 2 x 2 matrix
@@ -435,7 +456,7 @@ def ball_stiffness(y, p, qi, qo, kb):
         kb[j, 2] = kyy
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", **_NO_RUNTIME)
 def _w_solve(k, r, g, kb, p, h):
     """k = W^-1 (r + h J g) for a ROS34PW2 stage, J the contact blocks
     d(dx/dt, dv/dt)/d(x, v) = [[0, I], [-K/m, -tau K/m]] of every ball's centre and of
@@ -581,7 +602,7 @@ def integrate_fixed(method, y, p, faults, sensors, t0, dt_pre, dt, n_pre, n_sub,
     return STATUS_OK, n_steps, t, n_cross
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", **_NO_RUNTIME)
 def _log_crossings(faults, flags, prev, t, cross_t, cross_f, cross_e, cross_edge, n_cross,
                    cap):
     """Append every change of a contact's fault flags since ``prev`` (then updated);
@@ -606,7 +627,7 @@ def _log_crossings(faults, flags, prev, t, cross_t, cross_f, cross_e, cross_edge
     return n_cross
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", **_NO_RUNTIME)
 def _rk4_stages(t, y, h, k1, k2, k3, k4, tmp, p, faults, sensors, qi, qo, flags, e1, e2,
                 e3, e4):
     """One classical RK4 step of y (in place), k1 = f(t, y) given."""
@@ -624,7 +645,7 @@ def _rk4_stages(t, y, h, k1, k2, k3, k4, tmp, p, faults, sensors, qi, qo, flags,
         y[k] += h / 6.0 * (k1[k] + 2.0 * k2[k] + 2.0 * k3[k] + k4[k])
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", **_NO_RUNTIME)
 def _rosw_stages(t, y, h, f1, k2, k3, k4, tmp, gsum, kb, p, faults, sensors, qi, qo, flags,
                  e2, e3, e4):
     """One ROS34PW2 step of y (in place) with the per-ball contact blocks ``kb``
