@@ -46,6 +46,8 @@ SCENES = {"48 kHz": (48_000.0, 15_000.0), "12 kHz": (12_000.0, 3_500.0)}
 
 #: back-to-back calls per model and round (models faster than 1 s per call)
 REPEATS = 3
+#: back-to-back calls of a fast model fill at least this long, s
+WARM_S = 0.05
 
 
 def reference_scene(duration: float, config: str = "48 kHz") -> bp.Scene:
@@ -72,11 +74,14 @@ def measure(duration: float, rounds: int, config: str) -> tuple[list[dict], dict
         for name, first in models:
             if r > 0 and first * r > BUDGET_S:
                 continue  # a very slow model: enough rounds for a median
-            # the median of REPEATS back-to-back calls (one for slow models): a model run
-            # right after a multi-second one starts with cold caches, which is not how a
-            # dataset runs it; rounds still interleave the models side by side
+            # the median of back-to-back calls (REPEATS, or as many as fill WARM_S for a
+            # fast model; one for slow models): a model run right after a multi-second one
+            # starts with cold caches, which is not how a dataset runs it (the impulse
+            # model's first call after the multibody costs 3x its next ones); rounds still
+            # interleave the models side by side
             calls = []
-            for _ in range(REPEATS if first < 1.0 else 1):
+            n_calls = max(REPEATS, int(np.ceil(WARM_S / first))) if first < 1.0 else 1
+            for _ in range(n_calls):
                 t0, c0 = time.perf_counter(), time.thread_time()
                 bp.simulate(scene, model=name)
                 calls.append(((time.perf_counter() - t0) / duration,
