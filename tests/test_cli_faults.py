@@ -130,9 +130,10 @@ def test_interrupted_generate_stops_its_workers_and_says_how_far_it_got(tmp_path
     assert said, stderr
     assert stdout == ""
     time.sleep(0.5)
-    # the workers were stopped, not left to finish the queue: beyond the shards said, at
-    # most one per worker renamed into place before the parent heard of it (kept on resume)
-    assert len(list(out.glob("part-*.parquet"))) <= int(said[1]) + len(workers) < 200
+    # the workers were stopped, not left to finish the queue, and the count said is what
+    # is in place (kept on resume), also the shards a worker finished before the parent
+    # heard of them: with the impulse model's 0.2 s rows a worker finishes several
+    assert len(list(out.glob("part-*.parquet"))) == int(said[1]) < 200
     assert not [w for w in workers if Path(f"/proc/{w}").exists()
                 and Path(f"/proc/{w}/stat").read_text().rsplit(")", 1)[1].split()[0] != "Z"]
     assert not [p for p in out.iterdir() if p.name.endswith(".tmp")]   # no half shard

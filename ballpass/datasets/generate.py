@@ -585,9 +585,13 @@ def generate(grid, out_dir, n_jobs: int = 1, executor: cf.Executor | None = None
         try:
             rows_written, done_models = _run(specs, folder, manifest, n_workers, executor,
                                              progress)
-        except KeyboardInterrupt as exc:   # the manifest lists every shard finished
+        except KeyboardInterrupt as exc:
             remove_temporaries(folder)
-            done = sum(s["complete"] for s in manifest["shards"])
+            # the workers are stopped: every shard in place is kept on resume, also those
+            # a worker finished while the parent had not yet heard of them (a fast model
+            # finishes several per worker in that time)
+            done = sum(s["complete"] or shard_complete(folder / s["file"], s["n_rows"])
+                       for s in manifest["shards"])
             exc.add_note(f"{done} of {len(manifest['shards'])} shards written, rerun to "
                          "resume")
             raise
