@@ -115,3 +115,18 @@ def test_averaged_ses_has_one_hertz_bins():
     freqs, psd = averaged_ses(BandDemodulator(x, FS, max_hz=600.0), BAND)
     assert freqs[1] == pytest.approx(1.0 / SEGMENT_S, rel=1e-3)
     assert psd.shape == (1, freqs.size)
+
+
+def test_the_benchmark_reads_a_cage_modulated_ball_as_an_expert_would():
+    # benchmarks/diagnose_ball.py's expert row on a synthetic record (no shared data):
+    # the comb found within the slip search, its component swelling at FTF rather than
+    # fr (as the library test above), and one verdict per one-second segment.
+    from _bench import load_benchmark
+
+    bench = load_benchmark("diagnose_ball")
+    x = _impacts(0.99 * FREQS.ftf, seconds=10.0)
+    row = bench.expert_row(x, FS, "6205", RPM, "synthetic")
+    assert row["smear_db"] > NOISE_CEILING_DB
+    assert abs(row["found_1x_hz"] - 0.99 * FREQS.ball_defect) <= 1.0 + 1e-9  # one 1 Hz bin
+    assert row["cage_ftf_db"] > row["cage_fr_db"] + 6.0
+    assert sum(int(k) for k in row["segments"].split("/")) == 10
