@@ -58,6 +58,24 @@ SEEDS = (0, 1)
 SEGMENT_S = 1.0
 
 
+def _decisive(why) -> str:
+    """The band and lines that carried a fault verdict (empty for "healthy")."""
+    if why.label == "healthy":
+        return ""
+    lo, hi = why.band_hz[why.label]
+    lines = why.lines[why.lines.decisive & ~why.lines.shared]
+    ball = why.lines[(why.lines.fault == "ball") & ~why.lines.shared]
+    first = lines.iloc[0]
+
+    def listed(rows) -> str:
+        return ", ".join(f"{r.line} {r.found_hz:.1f} Hz {r.level_db:+.1f} dB"
+                         for r in rows.itertuples())
+
+    return (f"{why.label} {why.evidence_db[why.label]:.1f} dB in {lo:.0f}-{hi:.0f} Hz: "
+            f"{listed(lines)} (1x found at {first.found_hz / first.nominal_hz:.3f} of its "
+            f"kinematic frequency); the ball's lines: {listed(ball)}")
+
+
 def _row(why, x, fs, bearing, **meta) -> dict:
     ev = why.evidence_db
     ees = {f: cyclic_family_evidence(x, fs, bearing, why.rpm, why.band_hz[f], fault=f)
@@ -66,7 +84,8 @@ def _row(why, x, fs, bearing, **meta) -> dict:
     return dict(meta, bearing=bearing, verdict=why.label, grade=why.grade,
                 **{f"{f}_db": round(float(ev[f]), 1) for f in ("outer", "inner", "ball")},
                 ees_ball_db=round(float(ees["ball"]), 1),
-                ees_race_db=round(float(max(ees["outer"], ees["inner"])), 1))
+                ees_race_db=round(float(max(ees["outer"], ees["inner"])), 1),
+                decisive=_decisive(why))
 
 
 def _simulated_row(kind, bearing, fs, rpm, snr, seed) -> dict:
@@ -280,6 +299,11 @@ def markdown(table: pd.DataFrame, before: pd.DataFrame | None = None,
         "diagnosable.",
         "",
     ]
+    raced = own[own.verdict.isin(["outer", "inner"])]
+    if len(raced):
+        lines += ["What carried each race verdict on a ball record, at its own sensor:", ""]
+        lines += [f"- {r.record}: {r.decisive}." for r in raced.itertuples()]
+        lines += [""]
     if before is not None:
         lines += _before_after(table, before)
     if reading is not None:
