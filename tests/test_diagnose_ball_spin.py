@@ -130,3 +130,27 @@ def test_the_benchmark_reads_a_cage_modulated_ball_as_an_expert_would():
     assert abs(row["found_1x_hz"] - 0.99 * FREQS.ball_defect) <= 1.0 + 1e-9  # one 1 Hz bin
     assert row["cage_ftf_db"] > row["cage_fr_db"] + 6.0
     assert sum(int(k) for k in row["segments"].split("/")) == 10
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(cage_hz=0.0), "cage_hz"),
+    (dict(centre_hz=-1.0), "centre_hz"),
+    (dict(rates_hz=[]), "rates_hz"),
+])
+def test_cage_modulation_bad_input_names_the_argument(kwargs, match):
+    x = np.random.default_rng(0).standard_normal(int(2 * FS))
+    args = dict(centre_hz=140.0, rates_hz=[12.0], cage_hz=12.0) | kwargs
+    with pytest.raises(ValueError, match=match):
+        cage_modulation_db(BandDemodulator(x, FS, max_hz=600.0), BAND, args["centre_hz"],
+                           args["rates_hz"], cage_hz=args["cage_hz"])
+
+
+def test_smeared_ball_bad_input_names_the_argument():
+    x = np.random.default_rng(0).standard_normal((1, int(3 * FS)))
+    bands, ok = candidate_bands(x, FS, 600.0)
+    with pytest.raises(ValueError, match="segment_s"):
+        smeared_ball_evidence(x, FS, "6205", np.array([30.0]), bands, ok, segment_s=0.0)
+    with pytest.raises(ValueError, match="has_signal"):
+        smeared_ball_evidence(x, FS, "6205", np.array([30.0]), bands, ok[:, :1])
+    with pytest.raises(ValueError, match="shaft_hz"):
+        smeared_ball_evidence(x, FS, "6205", np.array([0.0]), bands, ok)

@@ -4,14 +4,14 @@ A race defect strikes at a rate the shaft and cage fix (BPFO = Z FTF, BPFI = Z (
 FTF)); on a 10 s record its squared envelope spectrum (SES) lines are one 0.1 Hz bin
 wide. A defect on a ball strikes at twice the ball spin frequency, and the ball's spin
 is not locked to anything: its axis wanders in three dimensions as it rolls in and out
-of the load zone, and its spin speed with it (Randall & Antoni 2011, section 2.2: ball
-faults show lines "smeared" by random slip, and they are the hardest to see). On the
-CWRU drive-end 0.021 in ball record the 2xBSF line spreads over 3-4 Hz round 139-141
-Hz (1.0-1.5 % below the kinematic 141.1 Hz), no SES bin of it standing more than 6 dB
-above the background, while the inner-race comb beside it (BPFI 161.9 Hz, +-fr) is one
-bin wide. Read at one bin, such a line loses to noise; read on an SES averaged over
-one-second segments (Welch; 1 Hz bins) it gathers its power into a bin or two and the
-background's scatter shrinks with the number of segments.
+of the load zone, and its spin speed with it (Randall & Antoni 2011, section 2.2, on
+the rolling elements' random slip and why ball faults are the hardest to see). On the
+CWRU drive-end 0.021 in ball record the SES bins round 2xBSF stand 5-7 dB above the
+background over 137.9-141.0 Hz (0.1-2.3 % below the kinematic 141.1 Hz), while the
+inner-race comb beside it (BPFI 161.9 Hz, +-fr) is one bin wide. Read at one bin, such
+a line loses to noise; read on an SES averaged over one-second segments (Welch; 1 Hz
+bins) it gathers its power into a bin or two and the background's scatter shrinks
+with the number of segments.
 
 :func:`smeared_ball_evidence` reads the 2xBSF harmonics so, in each candidate band of
 :func:`ballpass.diagnose.evidence.candidate_bands`, leaving out every harmonic a race
@@ -45,6 +45,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.signal
 
+from ..features._validation import check_fs, check_nonnegative, check_signal
 from ..features.bands import as_bearing
 from ..features.demodulate import BandDemodulator
 from ..features.shaft import shaft_line_bins
@@ -58,8 +59,8 @@ __all__ = ["RACE_SIDEBANDS", "SEGMENT_S", "SmearedBall", "averaged_ses", "cage_m
 SEGMENT_S = 1.0
 #: Sidebands of every race carrier a ball harmonic must keep clear of: ``(FTF, fr)``
 #: orders, each ``-k..k``. +-1 FTF (load zone, cage) and +-2 fr: the CWRU inner-race
-#: records carry +-2 fr, and the drive-end outer-race ones BPFO + fr on 2xBSF's
-#: window (138 Hz against 141 Hz, 1.6 % below at 1796 rpm).
+#: records carry +-2 fr, and the drive-end outer-race ones BPFO + fr in 2xBSF's
+#: window (137.2 Hz against 141.1 Hz at 1796 rpm, 2.7 % below).
 RACE_SIDEBANDS = (1, 2)
 
 
@@ -147,13 +148,26 @@ def smeared_ball_evidence(x, fs: float, bearing, shaft_hz, bands, has_signal, *,
     -------
     SmearedBall
     """
+    fs = check_fs(fs)
+    x = check_signal(x)
+    if x.ndim != 2:
+        raise ValueError(f"x must be (n_signals, n_samples), got shape {x.shape}")
     n, n_samples = x.shape
-    shaft_hz = np.asarray(shaft_hz, dtype=float)
+    shaft_hz = np.broadcast_to(np.asarray(shaft_hz, dtype=float), (n,))
+    if not np.all(shaft_hz > 0):
+        raise ValueError(f"shaft_hz must be > 0 (shaft speed per row, Hz), got {shaft_hz!r}")
+    if not check_nonnegative("segment_s", segment_s) > 0:
+        raise ValueError("segment_s must be > 0 (Welch segment, s), got 0")
+    bands = np.asarray(bands, dtype=float).reshape(-1, 2)
+    has_signal = np.asarray(has_signal, dtype=bool)
+    if has_signal.shape != (n, len(bands)):
+        raise ValueError(f"has_signal must be (n_signals, n_bands) = {(n, len(bands))}, "
+                         f"got {has_signal.shape}")
     evidence = np.full(n, -np.inf)
     level_best = np.full((n, harmonics), np.nan)
     found_best = np.full((n, harmonics), np.nan)
     band_best = np.full((n, 2), np.nan)
-    n_bands = np.asarray(has_signal).sum(axis=1)
+    n_bands = has_signal.sum(axis=1)
     if n_samples / fs < 2.0 * segment_s or len(bands) == 0:
         return SmearedBall(evidence, level_best, found_best, band_best, n_bands)
     orders = as_bearing(bearing).frequencies(1.0).as_dict()
@@ -161,9 +175,10 @@ def smeared_ball_evidence(x, fs: float, bearing, shaft_hz, bands, has_signal, *,
     races = _race_lines(orders, harmonics)
     reach = float(np.max(shaft_hz)) * (harmonics * orders["ball_defect"] * (1 + slip) + 1.0)
     demodulator = BandDemodulator(x, fs, max_hz=reach + background_hz + 2.0 / segment_s)
-    for k in np.flatnonzero(np.asarray(has_signal).any(axis=0)):
+    for k in np.flatnonzero(has_signal.any(axis=0)):
         freqs, psd = averaged_ses(demodulator, tuple(bands[k]), segment_s)
         df = freqs[1]
+        half = math.ceil(background_hz / df)
         notch = shaft_line_bins(freqs, psd, shaft_hz, background_hz)
         for i in np.flatnonzero(has_signal[:, k]):
             f_b = h * orders["ball_defect"] * shaft_hz[i]
@@ -173,11 +188,10 @@ def smeared_ball_evidence(x, fs: float, bearing, shaft_hz, bands, has_signal, *,
             clear = ~((races[None, :] >= guard_lo[:, None])
                       & (races[None, :] <= guard_hi[:, None])).any(axis=1) | (
                           not set_aside_races)
-            half = math.ceil(background_hz / df)
             level = np.full(harmonics, np.nan)
             found = np.full(harmonics, np.nan)
+            row = np.where(notch[i], np.nan, psd[i])  # shaft lines read as background
             for j in np.flatnonzero(clear & (hi + half < freqs.size)):
-                row = np.where(notch[i], np.nan, psd[i])
                 background = np.nanmedian(row[max(1, lo[j] - half): hi[j] + half + 1])
                 window = np.nan_to_num(row[lo[j]: hi[j] + 1], nan=background)
                 level[j] = 10 * np.log10(window.max() / background)
@@ -242,6 +256,12 @@ def cage_modulation_db(demodulator: BandDemodulator, band, centre_hz, rates_hz, 
     >>> bool(ftf_db > 20.0 and ftf_db > fr_db + 6.0)
     True
     """
+    for name, value in (("centre_hz", centre_hz), ("cage_hz", cage_hz)):
+        if not check_nonnegative(name, value) > 0:
+            raise ValueError(f"{name} must be > 0 Hz, got {value!r}")
+    rates = np.atleast_1d(np.asarray(rates_hz, dtype=float))
+    if rates.ndim != 1 or rates.size == 0 or not np.all(rates > 0):
+        raise ValueError(f"rates_hz must be one or more rates > 0 Hz, got {rates_hz!r}")
     rate, e = demodulator.squared_envelope(band)
     if e.shape[0] != 1:
         raise ValueError(f"demodulator must hold one signal, got {e.shape[0]}")
@@ -253,7 +273,7 @@ def cage_modulation_db(demodulator: BandDemodulator, band, centre_hz, rates_hz, 
     a = np.abs(z) ** 2
     power = np.abs(np.fft.rfft((a - a.mean()) * np.hanning(a.size))) ** 2
     out = []
-    for r in np.atleast_1d(np.asarray(rates_hz, dtype=float)):
+    for r in rates:
         near = np.abs(f - r) <= max(0.02 * r, 2.0 * f[1])
         around = (np.abs(f - r) <= 5.0 + max(0.02 * r, 2.0 * f[1])) & ~near
         out.append(10.0 * np.log10(power[near].max() / np.median(power[around])))
