@@ -105,6 +105,34 @@ def test_a_clear_2xbsf_comb_without_cage_modulation_is_graded_not_diagnosable(se
         assert any("no cage modulation" in note for note in why.notes)
 
 
+@pytest.mark.parametrize("seed", range(3))
+def test_the_same_2xbsf_comb_swelling_at_the_shaft_rate_is_not_a_ball(seed):
+    # One carrier, two modulations: the load zone met once per cage revolution (FTF, a
+    # ball) or once per shaft revolution (the pattern of a race turning with the
+    # shaft). Only the first is a ball; noise alone is healthy. Measured over 4 seeds:
+    # ball Y at 17.3-17.7 dB; the shaft-modulated comb's ball evidence 0.9-2.7 dB (its
+    # sidebands sit at +-fr, not +-FTF); noise healthy, 2.8-3.3 dB. Planted: the ball
+    # family's sidebands at +-fr instead of +-FTF (FAULT_FAMILIES["ball"] = (...,
+    # "shaft", ...)) names the shaft-modulated comb ball and not the cage-modulated one.
+    t = np.arange(int(4 * FS)) / FS
+    rate = 0.99 * FREQS.ball_defect
+    phase = (t * rate) % 1.0 / rate                           # time since the last impact, s
+    ring = np.exp(-800.0 * phase) * np.sin(2 * np.pi * 3000.0 * phase)
+    noise = np.random.default_rng(seed)
+
+    def swelling(hz):  # the Stribeck load zone (epsilon 0.5) met at ``hz``
+        psi = 2 * np.pi * hz * (t - phase)
+        x = ring * np.clip(1 - (1 - np.cos(psi)) / (2 * 0.5), 0, None) ** 1.5
+        return x / x.std() + 0.5 * noise.standard_normal(t.size)
+
+    X = np.stack([swelling(0.99 * FREQS.ftf), swelling(FREQS.shaft),
+                  noise.standard_normal(t.size)])
+    cage, shaft, quiet = EnvelopeDiagnoser(bearing="6205", fs=FS, rpm=RPM).explain(X)
+    assert cage.label == "ball" and cage.grade == "Y"
+    assert shaft.label != "ball" and shaft.evidence_db["ball"] < 6.0  # the threshold
+    assert quiet.label == "healthy"
+
+
 def test_an_inner_race_fault_is_not_called_ball():
     # Impacts at BPFI modulated by the shaft (the load zone seen by a rotating race).
     t = np.arange(int(4 * FS)) / FS

@@ -99,6 +99,37 @@ class BandDemodulator:
         self.max_hz = None if max_hz is None else float(max_hz)
         self.order = order
 
+    def _squared(self, band):
+        """Squared envelope of ``band`` on just enough samples for its SES up to
+        ``max_hz``: ``(e (n_signals, m), reach in bins, SES bins wanted)``."""
+        lo, hi = check_band(band, self.fs)
+        a, b = _reach_bins(lo, hi, self.fs, self.order, self.df, self._freqs.size)
+        gain = butterworth_gain(self._freqs[a:b], lo, hi, self.fs, self.order)
+        weight = 2.0 * gain
+        weight[(np.arange(a, b) == 0) | (2 * np.arange(a, b) == self.n)] *= 0.5  # as hilbert
+        reach = b - a  # the squared envelope's spectrum spans +-reach bins
+        n_bins = reach + 1 if self.max_hz is None else int(self.max_hz / self.df) + 1
+        # Samples: the squared envelope's spectrum spans +-reach bins; on m samples a
+        # line at f > m/2 folds to m - f, so bins up to n_bins stay clean for
+        # m > reach + n_bins (and the Hann window's +-1 bin).
+        m = scipy.fft.next_fast_len(reach + min(n_bins, reach + 1) + 4)
+        z = scipy.fft.ifft(self._spectrum[:, a:b] * weight, n=m, axis=-1) * (m / self.n)
+        return z.real**2 + z.imag**2, reach, n_bins
+
+    def squared_envelope(self, band) -> tuple[float, np.ndarray]:
+        """Squared envelope of the signals in ``band``, resampled to the fewest samples
+        that hold its spectrum up to ``max_hz`` (the same envelope :meth:`ses` reads).
+
+        Returns
+        -------
+        rate : float
+            Sampling rate of the envelope, Hz.
+        e : ndarray, shape (n_signals, m)
+            Squared envelope, unit^2, over the whole record.
+        """
+        e, _, _ = self._squared(band)
+        return e.shape[-1] * self.df, e
+
     def ses(self, band) -> tuple[np.ndarray, np.ndarray]:
         """SES of the signals demodulated in ``band``.
 
@@ -115,19 +146,8 @@ class BandDemodulator:
             One-sided amplitude of the squared envelope, unit^2, as
             :func:`ballpass.features.envelope_spectrum`.
         """
-        lo, hi = check_band(band, self.fs)
-        a, b = _reach_bins(lo, hi, self.fs, self.order, self.df, self._freqs.size)
-        gain = butterworth_gain(self._freqs[a:b], lo, hi, self.fs, self.order)
-        weight = 2.0 * gain
-        weight[(np.arange(a, b) == 0) | (2 * np.arange(a, b) == self.n)] *= 0.5  # as hilbert
-        reach = b - a  # the squared envelope's spectrum spans +-reach bins
-        n_bins = reach + 1 if self.max_hz is None else int(self.max_hz / self.df) + 1
-        # Samples: the squared envelope's spectrum spans +-reach bins; on m samples a
-        # line at f > m/2 folds to m - f, so bins up to n_bins stay clean for
-        # m > reach + n_bins (and the Hann window's +-1 bin).
-        m = scipy.fft.next_fast_len(reach + min(n_bins, reach + 1) + 4)
-        z = scipy.fft.ifft(self._spectrum[:, a:b] * weight, n=m, axis=-1) * (m / self.n)
-        e = z.real**2 + z.imag**2
+        e, reach, n_bins = self._squared(band)
+        m = e.shape[-1]
         w = _window("hann", m)
         e = e - np.sum(e * w, axis=-1, keepdims=True) / w.sum()
         amp = np.zeros((len(e), n_bins))
