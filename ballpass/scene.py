@@ -113,6 +113,19 @@ class Fault:
         Randall 2015 find few CWRU ball faults diagnosable); revolutions are drawn
         independently from the scene's seed. Default 1 (every revolution, as in
         Sawalhi & Randall).
+    spin_drift_deg : float, optional
+        Ball defects only: how far the ball's spin axis wanders, D in [0, 90] degrees.
+        A ball turns in three dimensions, so the defect strikes the races with a size
+        that changes from one revolution to the next, and on some not at all
+        (Nakhaeinejad & Bryant 2011 on why ball-fault harmonics are clear in simulation
+        but not in measurement; Smith & Randall 2015 on the CWRU ball faults). Per spin
+        revolution the defect's latitude lambda off the rolling band is drawn with
+        sin(lambda) uniform on [-sin D, sin D]; a round pit of diameter ``width_mm``
+        then unloads the strip of the Hertz contact it covers, and it strikes on a
+        share min(1, (w/2 + a) / (R sin D)) of the revolutions (R the ball radius, a
+        the contact ellipse's semi-axis across the track). Default 0: the axis is
+        fixed and the defect strikes on every revolution it is engaged. 90 is a ball
+        turning every way.
 
     Examples
     --------
@@ -130,6 +143,7 @@ class Fault:
     ramp_fraction: float = 0.2
     geometry: str = "groove"
     engagement: float = 1.0
+    spin_drift_deg: float = 0.0
 
     def __post_init__(self) -> None:
         if self.kind not in FAULT_KINDS:
@@ -155,6 +169,12 @@ class Fault:
         if self.engagement < 1.0 and self.kind != "ball":
             raise ValueError(f"engagement < 1 applies to ball defects only, got "
                              f"engagement={self.engagement!r} for a {self.kind}-race fault")
+        object.__setattr__(self, "spin_drift_deg",
+                           _number("spin_drift_deg", self.spin_drift_deg, 0.0, 90.0))
+        if self.spin_drift_deg > 0.0 and self.kind != "ball":
+            raise ValueError(f"spin_drift_deg > 0 applies to ball defects only, got "
+                             f"spin_drift_deg={self.spin_drift_deg!r} for a {self.kind}-race "
+                             f"fault")
 
     def check_fits(self, bearing: Bearing) -> None:
         """Raise ``ValueError`` if the defect does not fit on ``bearing``.

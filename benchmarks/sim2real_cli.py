@@ -20,8 +20,10 @@ Run::
         --seeds 2015,1,2,3,4 --features combined                 # ~10 min on 2 busy cores
 
 ``--engagement 0.3,0.5,0.7`` adds the grid's ``fault_engagement`` axis (intermittent
-ball defects), ``--angles 0,90,180`` sets its ``fault_angle_deg`` axis (outer-race faults
-at 6, 3 and 12 o'clock), ``--clearance -5`` adds a ``clearance_um`` axis (a preload, so
+ball defects), ``--spin-drift 0`` sets its ``fault_spin_drift_deg`` axis (0: a fixed
+spin axis; the axis is drawn last, so the other draws stay those of the shipped grid),
+``--angles 0,90,180`` sets its ``fault_angle_deg`` axis (outer-race faults at 6, 3 and
+12 o'clock), ``--clearance -5`` adds a ``clearance_um`` axis (a preload, so
 that faults out of the load zone strike), ``--snr 0,10,20`` sets its ``snr_db`` axis,
 ``--noise-rms 0.6`` replaces that axis by a fixed background of that RMS (m/s^2); each
 is measured in docs/sim2real.md.
@@ -62,6 +64,8 @@ AXIS_OPTIONS = {
     "--snr": ("snr_db", "0,10,20 (dB)", "the grid's own, 20"),
     "--noise-rms": ("noise_rms", "0.6 (m/s^2; replaces snr_db)", "none"),
     "--engagement": ("fault_engagement", "0.3,0.5,0.7", "none"),
+    "--spin-drift": ("fault_spin_drift_deg", "0 (a fixed spin axis),45",
+                     "the grid's own, uniform 0-90 deg"),
 }
 
 

@@ -217,10 +217,12 @@ def test_kill_and_resume(tmp_path):
     (GRID_TOML.replace("seed = 3", 'seed = 3\nmodel = "sr9"'), "model 'sr9'"),
     (GRID_TOML.replace("rpm =", "fault_engagement = [0.5, 2]\nrpm ="),
      "grid.fault_engagement[1] = 2 is outside (0, 1]"),
-    # the impulse model would ignore the engagement: rows labelled 0.5 striking every time
+    (GRID_TOML.replace("rpm =", "fault_spin_drift_deg = [30, 91]\nrpm ="),
+     "grid.fault_spin_drift_deg[1] = 91 is outside [0, 90]"),
+    # the impulse model would ignore the clearance: rows labelled -3 um without a preload
     (GRID_TOML.replace("seed = 3", 'seed = 3\nmodel = "impulse"')
-     .replace("rpm =", "fault_engagement = [0.5]\nrpm =").replace("[inf, 10]", "[inf]"),
-     "model 'impulse' (run 20, ball) does not represent intermittent_faults"),
+     .replace("rpm =", "clearance_um = [-3]\nrpm =").replace("[inf, 10]", "[inf]"),
+     "model 'impulse' (run 0, healthy) does not represent mounted_clearance"),
 ])
 def test_bad_grid_refused_before_any_work(tmp_path, capsys, text, key):
     grid = tmp_path / "bad.toml"

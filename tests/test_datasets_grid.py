@@ -197,12 +197,12 @@ def test_sim2real_example_counts_as_its_comment_says():
     path = example_grid("sim2real_cwru")
     g = read_grid(path)
     assert g.n_runs == 4 * 40 == 160                   # 4 kinds x 40 draws
-    # ball defects draw their engagement, race faults keep 1 (a race defect is always
-    # on the track), healthy runs have no fault
-    engagement = {r.scene["fault"]["kind"]: r.scene["fault"].get("engagement")
-                  for r in g.runs if "fault" in r.scene}
-    assert engagement["outer"] is None and engagement["inner"] is None
-    assert 0.2 <= engagement["ball"] <= 0.7
+    # ball defects draw their spin-axis drift, race faults keep a fixed axis (a race
+    # defect is always on the track), healthy runs have no fault
+    drift = {r.scene["fault"]["kind"]: r.scene["fault"].get("spin_drift_deg")
+             for r in g.runs if "fault" in r.scene}
+    assert drift["outer"] is None and drift["inner"] is None
+    assert 0.0 <= drift["ball"] <= 90.0
     # every range in the file carries its source in a comment above it
     text = path.read_text()
     assert len(g.distributions) >= 15

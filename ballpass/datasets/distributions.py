@@ -56,6 +56,7 @@ FIELD_RANGES = {
     "fault_depth_mm": (0.0, 50.0, True, False, "mm"),
     "fault_angle_deg": (-1e6, 1e6, False, False, "deg"),
     "fault_engagement": (0.0, 1.0, True, False, ""),
+    "fault_spin_drift_deg": (0.0, 90.0, False, False, "deg"),
     "rpm": (0.0, 1e5, True, False, "rpm"),
     "radial_load_n": (0.0, 1e6, False, False, "N"),
     "clearance_um": (-50.0, 200.0, True, True, "um"),

@@ -92,12 +92,14 @@ AXES = (
     "fault_engagement", "level_db", "rpm", "radial_load_n", "clearance_um", "slip", "snr_db",
     "noise_rms",
     "resonance_hz", "resonance_damping", *REALISM_AXES, "model", "sensor", "impact_spread",
+    "fault_spin_drift_deg",
 )
 REQUIRED_AXES = ("bearing", "fault", "rpm")
 _FAULT_AXES = {"fault_width_mm": "width_mm", "fault_depth_mm": "depth_mm",
-               "fault_angle_deg": "angle_deg", "fault_engagement": "engagement"}
+               "fault_angle_deg": "angle_deg", "fault_engagement": "engagement",
+               "fault_spin_drift_deg": "spin_drift_deg"}
 #: fault axes of ball faults only: race-fault points do not multiply over them
-_BALL_AXES = ("fault_engagement",)
+_BALL_AXES = ("fault_engagement", "fault_spin_drift_deg")
 #: axes of a twin's fault rows (a grid with a [machine] table, :mod:`.twin`): the fault's
 #: RMS over the real background's, dB, and the spread of its impacts' sizes (standard
 #: deviation of their logarithm); not Scene fields, columns of their own
@@ -490,6 +492,11 @@ class Grid:
                     base = _point_scene(self.dataset, list(self.sensors), values)
                     columns = {"draw": d, "draw_seed": seed}
                 columns.update({k: values[k] for k in realism})
+                if "fault_spin_drift_deg" in self.axes:
+                    # a column of its own when the grid has the axis: 0 for a race fault
+                    # (a fixed axis), NaN for a healthy bearing
+                    columns["fault_spin_drift_deg"] = values.get(
+                        "fault_spin_drift_deg", 0.0 if values["fault"] != "healthy" else math.nan)
                 if self.machine is not None:
                     columns.update({k: values.get(k, math.nan) for k in TWIN_AXES
                                     if k in self.axes})
@@ -625,6 +632,10 @@ def read_grid(source) -> Grid:
     ``fault_width_mm``, ``fault_depth_mm``, ``fault_angle_deg`` (fault rows only),
     ``fault_engagement`` (ball rows only: ``Fault(engagement=...)``, the share of the
     ball's spin revolutions, in (0, 1], on which its defect strikes; see below),
+    ``fault_spin_drift_deg`` (ball rows only: ``Fault(spin_drift_deg=...)``, how far
+    the ball's spin axis wanders, in [0, 90] deg; a metadata column of its own, 0 for
+    race faults and NaN for healthy rows; like ``fault_engagement`` it needs a model
+    that represents ``intermittent_faults``),
     ``rpm`` (a value or a ``[start, end]`` ramp), ``radial_load_n`` (N),
     ``clearance_um`` (mounted radial clearance, um, in (-50, 200); negative is a preload,
     which loads every ball so that outer-race faults out of the load zone strike;
@@ -774,7 +785,8 @@ def _machine_table(raw: dict, source, axes: dict) -> dict | None:
 
 
 def _check_ball_axes(axes: dict) -> None:
-    """Refuse engagements outside (0, 1] and an engagement axis without ball faults."""
+    """Refuse engagements outside (0, 1], spin drifts outside [0, 90] deg and either
+    axis without ball faults."""
     engagements = axes.get("fault_engagement", ())
     for i, v in enumerate(() if isinstance(engagements, Distribution) else engagements):
         if not 0.0 < v <= 1.0:
@@ -782,11 +794,18 @@ def _check_ball_axes(axes: dict) -> None:
                 f"grid.fault_engagement[{i}] = {v:g} is outside (0, 1]: it is the share of "
                 "a ball's spin revolutions on which its defect strikes (Fault(engagement=...); "
                 "1 = every revolution)")
-    if "fault_engagement" in axes and "ball" not in axes["fault"]:
-        raise ValueError(
-            f"grid.fault_engagement applies to ball faults only (a race defect lies on the "
-            f"track on every pass), and grid.fault = {axes['fault']} has no \"ball\": add "
-            "\"ball\" or drop the axis")
+    drifts = axes.get("fault_spin_drift_deg", ())
+    for i, v in enumerate(() if isinstance(drifts, Distribution) else drifts):
+        if not 0.0 <= v <= 90.0:
+            raise ValueError(
+                f"grid.fault_spin_drift_deg[{i}] = {v:g} is outside [0, 90]: it is how far "
+                "a ball's spin axis wanders, deg (Fault(spin_drift_deg=...); 0 = a fixed axis)")
+    for axis in _BALL_AXES:
+        if axis in axes and "ball" not in axes["fault"]:
+            raise ValueError(
+                f"grid.{axis} applies to ball faults only (a race defect lies on the "
+                f"track on every pass), and grid.fault = {axes['fault']} has no \"ball\": add "
+                "\"ball\" or drop the axis")
 
 
 def _fault_axes_of(kind: str, axes) -> list[str]:

@@ -109,8 +109,9 @@ def scene_needs(scene: Scene, *, return_forces: bool = False) -> frozenset:
     Derived from the scene's fields (a speed ramp needs ``varying_speed``, waviness
     ``waviness``, gears ``gear_mesh``, ``clearance_um`` ``mounted_clearance``, extra
     ``resonances`` ``structural_modes``, a pit fault ``pit_faults``, a fault with
-    ``engagement < 1`` ``intermittent_faults``, ``axial_load_n > 0`` ``axial_load``: a
-    model that ignores a field the scene sets would silently drop it) plus
+    ``engagement < 1`` or ``spin_drift_deg > 0`` ``intermittent_faults``,
+    ``axial_load_n > 0`` ``axial_load``: a model that ignores a field the scene sets
+    would silently drop it) plus
     ``Scene(needs=...)`` for what the fields cannot say; a scene that states no needs
     asks for ``envelope`` and ``contact_dynamics``. ``return_forces=True`` adds ``contact_forces``.
 
@@ -151,7 +152,7 @@ def scene_needs(scene: Scene, *, return_forces: bool = False) -> frozenset:
         needs.add("structural_modes")
     if any(f.geometry == "pit" for f in scene.faults):
         needs.add("pit_faults")
-    if any(f.engagement < 1.0 for f in scene.faults):
+    if any(f.engagement < 1.0 or f.spin_drift_deg > 0.0 for f in scene.faults):
         needs.add("intermittent_faults")
     if scene.axial_load_n > 0:
         needs.add("axial_load")

@@ -51,12 +51,15 @@ N_PARAMS = 26
 # columns of the fault table: kind code, centre (rad), half extent (rad), depth (m),
 # ramp fraction, element (ball defects), initial angle of that element (rad), ramp
 # shape (RAMP_COSINE or RAMP_LINEAR), engagement probability per spin revolution (ball
-# defects) and the seed of those draws.
+# defects) and the seed of those draws; for a ball defect whose spin axis drifts
+# (:func:`strike_share`): sin of the drift range (0 = no drift), the ball radius and the
+# pit radius, both over the contact ellipse's semi-axis across the track.
 # Waviness rows (kinds KIND_WAVY_*) reuse the columns: F_CENTRE the phase (rad), F_HALF
 # the order, F_DEPTH the amplitude (m), F_ELEM the ball (KIND_WAVY_BALL).
 F_KIND, F_CENTRE, F_HALF, F_DEPTH, F_RAMP, F_ELEM, F_PSI0 = 0, 1, 2, 3, 4, 5, 6
 F_SHAPE, F_ENGAGE, F_SEED = 7, 8, 9
-N_FCOLS = 10
+F_DRIFT, F_BALL_A, F_PIT_A = 10, 11, 12
+N_FCOLS = 13
 RAMP_COSINE, RAMP_LINEAR = 0, 1
 # columns of the sensor table: angle (rad), attenuation kappa, cos and sin of the angle
 S_ANG, S_ATT, S_COS, S_SIN = 0, 1, 2, 3
@@ -292,6 +295,59 @@ def engaged(faults, i, spin):
 
 
 @njit(cache=True, error_model="numpy")
+def _unit_draw(k, seed):
+    """A uniform draw in [0, 1) for revolution ``k`` (int) and a fault's ``seed``
+    (float, an integer value): the splitmix64 finaliser of both, fixed for a scene."""
+    z = np.uint64(k + 2**40) * np.uint64(0x9E3779B97F4A7C15) + np.uint64(seed)
+    z = (z ^ (z >> np.uint64(30))) * np.uint64(0xBF58476D1CE4E5B9)
+    z = (z ^ (z >> np.uint64(27))) * np.uint64(0x94D049BB133111EB)
+    z = z ^ (z >> np.uint64(31))
+    return float(z >> np.uint64(11)) * 2.0 ** -53
+
+
+@njit(cache=True, error_model="numpy")
+def strip_share(s, r):
+    """Share of a Hertz contact's load on the strip |x - s| < r across the track, in
+    units of the ellipse's semi-axis a: the load density across the track goes as
+    1 - x^2 (Johnson, Contact Mechanics, 1985, sec. 4.2), whose integral over [-1, 1]
+    is 4/3; 0 when the strip misses the ellipse."""
+    lo = max(s - r, -1.0)
+    hi = min(s + r, 1.0)
+    if hi <= lo:
+        return 0.0
+    return 0.75 * ((hi - hi ** 3 / 3.0) - (lo - lo ** 3 / 3.0))
+
+
+@njit(cache=True, error_model="numpy")
+def strike_share(faults, i, spin):
+    """Depth factor, in [0, 1], of ball defect i during the spin revolution holding
+    spin phase ``spin`` (rad): 0 when the defect misses the rolling band, 1 when it
+    strikes as a defect on the band does.
+
+    The engagement draw of :func:`engaged` first; then, with a spin-axis drift
+    (``faults[i, F_DRIFT]`` = sin D > 0), the defect's latitude lambda from the
+    rolling band's centre line is drawn per revolution with sin(lambda) uniform on
+    [-sin D, sin D]: the spin axis uniform over the directions within D of square
+    to the defect's radius (Archimedes: a uniform direction on a zone of the sphere
+    has a uniform sine of latitude; D = 90 deg, a ball turning every way). The pit,
+    of radius r, then lies s = R sin(lambda) off the centre line of the contact
+    ellipse (semi-axis a across the track); it removes the strip |x - s| < r of the
+    contact (:func:`strip_share`), and the depth is scaled by that share over the
+    share of a pit on the centre line. It strikes on a share
+    min(1, (r + a) / (R sin D)) of the revolutions.
+    """
+    if not engaged(faults, i, spin):
+        return 0.0
+    sin_d = faults[i, F_DRIFT]
+    if sin_d <= 0.0:
+        return 1.0
+    k = math.floor((spin + 0.5 * math.pi) / TWO_PI)
+    u = (2.0 * _unit_draw(k, faults[i, F_SEED]) - 1.0) * sin_d
+    r = faults[i, F_PIT_A]
+    return strip_share(u * faults[i, F_BALL_A], r) / strip_share(0.0, r)
+
+
+@njit(cache=True, error_model="numpy")
 def waviness(faults, i, p, kin, th, w, cage_rate, rates):
     """Add the waviness row i of the fault table to the contact geometry in ``kin``.
 
@@ -355,7 +411,8 @@ def fault_depths(t, p, faults, kin, cage_rate, rates):
     element e: its spin phase advances at the ball spin rate relative to the cage
     (rolling without slip on the element's own path), facing the outer race at phase 0
     and the inner race at phase pi; it meets the races only on the spin revolutions
-    drawn by :func:`engaged`. Waviness rows: :func:`waviness`; the film row:
+    drawn by :func:`engaged`, as deep as :func:`strike_share` gives. Waviness rows:
+    :func:`waviness`; the film row:
     :func:`film`.
     """
     z = int(p[P_Z])
@@ -390,10 +447,11 @@ def fault_depths(t, p, faults, kin, cage_rate, rates):
                 if abs(off) >= half:
                     continue
                 inside = 1.0
-                if not engaged(faults, i, spin):
+                share = strike_share(faults, i, spin)
+                if share == 0.0:
                     continue
-                kin[K_DEPTH, e] += profile(off, half, depth, ramp, shape)
-                slope = profile_slope(off, half, depth, ramp, shape)
+                kin[K_DEPTH, e] += profile(off, half, share * depth, ramp, shape)
+                slope = profile_slope(off, half, share * depth, ramp, shape)
                 if slope != 0.0:
                     on_ramp = 1.0
                 if rates:

@@ -240,10 +240,16 @@ def _impact_steps(before, fault, elem, level, exit_level, faults, p, walk, depth
         i = fault[c]
         if level[c] != exit_level[i]:
             continue
-        j = int(faults[i, K.F_ELEM]) if int(faults[i, K.F_KIND]) == K.KIND_BALL else elem[c]
+        ball = int(faults[i, K.F_KIND]) == K.KIND_BALL
+        j = int(faults[i, K.F_ELEM]) if ball else elem[c]
         # element j's angle as K.element_angles puts it, without the other elements
         psi = K.cage_angle(before[c], p, walk)[0] + step * j
-        dq = _released(psi, depth[i], zone) / housing_mass
+        share = 1.0
+        if ball:
+            # the revolution's strike, as sr5's fault depths take it
+            share = K.strike_share(faults, i, faults[i, K.F_CENTRE]
+                                   + p[K.P_SPIN] * (psi - faults[i, K.F_PSI0]))
+        dq = _released(psi, share * depth[i], zone) / housing_mass
         for s in range(sensors.shape[0]):
             cos_rel = math.cos(psi - sensors[s, K.S_ANG])
             steps[s, k] = math.exp(-sensors[s, K.S_ATT] * (1.0 - cos_rel)) * cos_rel * dq
@@ -491,7 +497,7 @@ IMPULSE = Model(
     description="phenomenological impulse train: impacts at the kinematic rates with sr5's "
                 "slip, Stribeck load-zone and transmission modulation, ringing the "
                 "scene's resonance; no contact dynamics",
-    represents=frozenset({"envelope", "varying_speed"}),
+    represents=frozenset({"envelope", "varying_speed", "intermittent_faults"}),
     # measured by benchmarks/models_cost.py (docs/models_cost.md), 15 interleaved rounds
     # of 3 back-to-back calls: 0.0196 of sr5's time at 48 kHz (IQR 0.018-0.021, CPU time
     # alike; 0.37 ms per call) and 0.017 at 12 kHz, after its fixed cost was cut (binding

@@ -280,6 +280,11 @@ def _ellipse_half_width_m(bearing, race: str, load_n: float) -> float:
 STRIBECK_FACTOR = 4.37
 
 
+def _reference_load_n(bearing, bearing_load: float) -> float:
+    """Stribeck's Q_max (N) under the radial load ``bearing_load`` (N), at least 1 N."""
+    return max(STRIBECK_FACTOR * bearing_load / bearing.n_elements, 1.0)
+
+
 def _pit_depth_m(scene: Scene, fault, kh: float, bearing_load: float) -> float:
     """Extra clearance (m) equivalent to a round pit that unloads a contact partly.
 
@@ -293,7 +298,7 @@ def _pit_depth_m(scene: Scene, fault, kh: float, bearing_load: float) -> float:
     """
     b = scene.bearing
     n = b.load_exponent
-    q_ref = max(STRIBECK_FACTOR * bearing_load / b.n_elements, 1.0)
+    q_ref = _reference_load_n(b, bearing_load)
     race = "outer" if fault.kind == "ball" else fault.kind
     share = fault.pit_unloading(_ellipse_half_width_m(b, race, q_ref) * 1e3)
     drop = fault.effective_depth_mm(b) * 1e-3
@@ -322,6 +327,17 @@ def _waviness_rows(scene: Scene, rng: np.random.Generator) -> list:
     return rows
 
 
+def _drift_columns(scene: Scene, fault, bearing_load: float) -> tuple[float, float, float]:
+    """Fault-table columns F_DRIFT, F_BALL_A, F_PIT_A of a ball defect whose spin axis
+    drifts (:func:`._kernels.strike_share`): sin of the drift range, the ball radius R
+    and the pit radius w/2 over the semi-axis a of the contact ellipse across the track
+    (the outer-race contact of the most loaded ball, Stribeck's Q_max, as for a pit)."""
+    b = scene.bearing
+    a = _ellipse_half_width_m(b, "outer", _reference_load_n(b, bearing_load))
+    return (math.sin(math.radians(fault.spin_drift_deg)), 0.5 * b.element_diameter_m / a,
+            0.5 * fault.width_mm * 1e-3 / a)
+
+
 def _fault_table(scene: Scene, psi0: np.ndarray, kh: float | None = None,
                  bearing_load: float | None = None, rng: np.random.Generator | None = None,
                  draws: bool = True) -> tuple[np.ndarray, np.ndarray]:
@@ -329,13 +345,16 @@ def _fault_table(scene: Scene, psi0: np.ndarray, kh: float | None = None,
     levels (rad) of each localized fault. ``kh`` (default: the bearing's Hertz
     constant) and ``bearing_load`` (default: the radial load) size round pits; ``rng``
     (default: seeded by the scene) draws the per-fault seeds and ball phases.
-    ``draws=False`` draws nothing: the per-fault seeds (column F_SEED, which only the
-    engagement of an intermittent fault reads) are 0 and the waviness rows left out,
-    for callers that use only the localized faults' kinematics."""
+    ``draws=False`` draws no waviness rows, and the per-fault seeds (column F_SEED,
+    which only the strikes of an intermittent ball defect read, :func:`._kernels.
+    strike_share`) only when a fault is intermittent: the same seeds as with draws
+    (they come first), so the impulse model strikes on sr5's revolutions; for callers
+    that use only the localized faults' kinematics."""
     b = scene.bearing
     kh = kh or b.hertz_stiffness()
     bearing_load = scene.radial_load_n if bearing_load is None else bearing_load
-    if draws:
+    seeds = draws or any(f.engagement < 1.0 or f.spin_drift_deg > 0.0 for f in scene.faults)
+    if seeds:
         rng = rng or np.random.default_rng(np.random.SeedSequence(scene.seed).spawn(4)[3])
     rows, levels = [], []
     for f in scene.faults:
@@ -358,7 +377,9 @@ def _fault_table(scene: Scene, psi0: np.ndarray, kh: float | None = None,
              K.F_SHAPE, K.F_ENGAGE, K.F_SEED]] = (
             kind, math.radians(f.angle_deg), half, depth_m, ramp, f.element,
             psi0[f.element] if f.kind == "ball" else 0.0, shape, f.engagement,
-            float(rng.integers(1, 2**20)) if draws else 0.0)
+            float(rng.integers(1, 2**20)) if seeds else 0.0)
+        if f.spin_drift_deg > 0.0:
+            row[[K.F_DRIFT, K.F_BALL_A, K.F_PIT_A]] = _drift_columns(scene, f, bearing_load)
         rows.append(row)
         inner = half * (1.0 - 2.0 * ramp) if ramp > 0 else math.nan
         levels.append([-half, -inner, inner, half])
