@@ -18,11 +18,18 @@ fitted once per recording and process (cached), written to the dataset folder
 *Fault rows.* The bearing's impacts come from the ``impulse`` model's kinematics (the
 defect crossings of McFadden & Smith 1984 with random slip, the Stribeck load zone and
 the sensor's transmission factor; :mod:`ballpass.simulate.impulse`), before its own
-resonator: each impact is a unit-sample pulse of its housing-acceleration step, split
-linearly between the two samples around its time, and its size multiplied by a
-log-normal factor of its own (mean 1, log standard deviation ``impact_spread``, drawn
-per row: the random amplitudes of Antoni & Randall 2003; a ball does not strike a real
-spall the same way twice). The pulse train drives ``1 / A(z)``;
+resonator: each is the housing-acceleration step of one defect passage, its size
+multiplied by a log-normal factor of its own (mean 1, log standard deviation
+``impact_spread``, drawn per row: the random amplitudes of Antoni & Randall 2003; a ball
+does not strike a real spall the same way twice; their logarithms correlated from one
+impact to the next by ``impact_correlation``, 0 by default). With ``impact_edges = 1``
+(the default) a passage is what the ball goes through over a defect of width w at the
+rolling speed v: the load leaves over the entry edge and comes back over the exit edge,
+w / v later (the entry and exit of Sawalhi & Randall 2008), each edge as long as a ball
+pivoting on a sharp edge takes to lose or regain its Hertzian deflection
+(:func:`passage_times`, :func:`edge_kernel`); with 0, one point impact at the exit,
+split linearly between the two samples around its time (the twin before the axis).
+The train drives ``1 / A(z)``;
 the result is scaled so that its RMS over the row is ``level_db`` above the RMS of the
 background, and a segment of a real healthy recording is added: one of the recordings
 whose speed is nearest the row's, and the segment's start, drawn from the row's seed.
@@ -33,12 +40,15 @@ Their ``group`` is the recording's name, so no split puts segments of one record
 both sides; a fault row's group is its run.
 
 Every row keeps the columns of a simulated row (its scene, the fault's size and angle,
-the slip, the load) and adds ``level_db``, ``impact_spread``, ``machine`` (the
+the slip, the load) and adds ``level_db``, ``impact_spread``, ``impact_edges``,
+``impact_correlation``, ``machine`` (the
 manifest), ``background`` (the recording) and ``background_start_s``; ``resonance_hz``,
 ``resonance_damping``, ``snr_db`` and ``noise_rms`` are NaN (the learned path and the
 real background replace them).
 
-References: P. D. McFadden, J. D. Smith, J. Sound Vib. 96 (1984) 69-82; J. Antoni,
+References: P. D. McFadden, J. D. Smith, J. Sound Vib. 96 (1984) 69-82; N. Sawalhi,
+R. B. Randall, "Simulating gear and bearing interactions in the presence of faults",
+MSSP 22 (2008) 1924-1951; J. Antoni,
 R. B. Randall, "A stochastic model for simulation and diagnostics of rolling element
 bearings with localized faults", J. Vib. Acoust. 125 (2003) 282-289; N. Sawalhi,
 R. B. Randall, "Spectral kurtosis enhancement using autoregressive models", ACAM 2005;
@@ -478,7 +488,9 @@ def twin(manifest, rpm, out, *, duration_s: float = TWIN_DEFAULTS["duration_s"],
     learns the machine's path from the recordings (see the module docstring). Drawn per
     row, each range with its source in the file: fault width, outer-race fault angle,
     radial load, slip, ``level_db``, the fault's RMS over the background's, and
-    ``impact_spread``, the log standard deviation of the impacts' sizes.
+    ``impact_spread``, the log standard deviation of the impacts' sizes; fixed:
+    ``impact_edges = [1]`` (a defect passage with its entry and exit edges) and
+    ``impact_correlation = [0]`` (independent sizes).
 
     Parameters
     ----------
