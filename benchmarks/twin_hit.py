@@ -10,14 +10,14 @@ has no ball faults: three-class scores (a "ball" verdict counts as wrong).
 
 Variants of the twin side by side in one run, from the same draws (:data:`TWINS`: the
 grid lines each changes): point impacts (``impact_edges = [0]``, the default before the
-Hertzian edges), the default (each defect passage with its entry and exit edges), and
-the default with correlated impact sizes; the impulsiveness (kurtosis) and
-the spectral median frequency of the twin's fault rows beside the rig's fault seconds,
-with the Kolmogorov-Smirnov distance between the twin's and the rig's log-kurtosis.
+Hertzian edges) and the default (each defect passage with its entry and exit edges);
+the impulsiveness (kurtosis) and the spectral median frequency of the twin's fault
+rows beside the rig's fault seconds, with the Kolmogorov-Smirnov distance between the
+twin's and the rig's log-kurtosis.
 
 Run::
 
-    PYTHONPATH=. python benchmarks/twin_hit.py --data ../shared/data/hit   # ~50 min, 2 cores
+    PYTHONPATH=. python benchmarks/twin_hit.py --data ../shared/data/hit   # ~35 min, 2 cores
 
 Writes ``twin_hit.md``, ``twin_hit.csv`` (one row per twin, input speed and model:
 recall per class, three-class balanced accuracy, its range over the training seeds),
@@ -50,7 +50,6 @@ CLASSES = ("healthy", "outer", "inner", "ball")
 TWINS = {
     "point impacts": {"impact_edges": "[0]"},
     "Hertzian edges": {},
-    "edges, correlated sizes": {"impact_correlation": "{ uniform = [0, 0.95] }"},
 }
 #: the twin the figure shows: the default
 DEFAULT_TWIN = "Hertzian edges"
@@ -247,11 +246,10 @@ INTRO = (
     "Input: one healthy recording (5.12 s at one speed). Test: every other recording of the "
     "rig, one-second segments (inner and outer faults of 2/5/8 degree arcs at 600/900/1200 "
     "rpm, healthy at the two other speeds). Goal: three-class balanced accuracy >= 0.9, every "
-    "class recall >= 0.8. Three twins of each input, side by side in one run from the same "
+    "class recall >= 0.8. Two twins of each input, side by side in one run from the same "
     "draws: `point impacts` (one point impact per defect passage, `impact_edges = [0]`, the "
-    "default before), `Hertzian edges` (the default: the load leaves over the entry edge and "
-    "comes back over the exit edge, w / v apart) and `edges, correlated sizes` "
-    "(`impact_correlation` drawn over 0-0.95). Each twin "
+    "default before) and `Hertzian edges` (the default: the load leaves over the entry edge "
+    "and comes back over the exit edge, w / v apart). Each twin "
     "is drawn from three grid seeds (`ballpass twin --seed`): recalls and balanced accuracy "
     "are their means, `balanced_twin_seed_min`/`_max` the balanced accuracy's range over "
     "them, `training_seed_spread_max` the largest range over five training seeds of one twin. "
