@@ -11,6 +11,7 @@ has no ball faults: three-class scores (a "ball" verdict counts as wrong).
 Variants of the twin side by side in one run, from the same draws (:data:`TWINS`: the
 grid lines each changes): point impacts (``impact_edges = [0]``, the default before the
 Hertzian edges) and the default (each defect passage with its entry and exit edges);
+``--twins`` adds the default with identical or correlated impact sizes;
 the impulsiveness (kurtosis) and the spectral median frequency of the twin's fault
 rows beside the rig's fault seconds, with the Kolmogorov-Smirnov distance between the
 twin's and the rig's log-kurtosis.
@@ -50,7 +51,11 @@ CLASSES = ("healthy", "outer", "inner", "ball")
 TWINS = {
     "point impacts": {"impact_edges": "[0]"},
     "Hertzian edges": {},
+    "edges, identical sizes": {"impact_spread": "[0]"},
+    "edges, correlated sizes": {"impact_correlation": "{ uniform = [0, 0.95] }"},
 }
+#: the twins a run compares unless --twins names others: before and after the edges
+COMPARED = ("point impacts", "Hertzian edges")
 #: the twin the figure shows: the default
 DEFAULT_TWIN = "Hertzian edges"
 
@@ -122,16 +127,17 @@ def one_twin(grid: Path, test: Path, work: Path, jobs: int):
     return results, pd.read_csv(report / "predictions.csv"), kurtosis(ds)
 
 
-def one_speed(data: Path, speed: int, seed: int, work: Path, jobs: int):
-    """Both twins of one input speed from the grid seed ``seed``: (results, predictions,
-    kurtosis), each with the columns ``twin``, ``input`` and ``twin_seed``."""
+def one_speed(data: Path, speed: int, seed: int, work: Path, jobs: int,
+              names=COMPARED):
+    """The twins ``names`` of one input speed from the grid seed ``seed``: (results,
+    predictions, kurtosis), each with the columns ``twin``, ``input`` and ``twin_seed``."""
     healthy, test = manifests(data, speed, work)
     written = work / f"twin_{speed}_{seed}.toml"
     ballpass("twin", healthy, "--rpm", *SPEEDS, "--out", written, "--seed", seed)
     out = []
-    for k, (name, lines) in enumerate(TWINS.items()):
+    for k, name in enumerate(names):
         grid = written.with_name(f"twin_{speed}_{seed}_{k}.toml")
-        grid.write_text(variant(written.read_text(), lines))
+        grid.write_text(variant(written.read_text(), TWINS[name]))
         (work / f"{speed}_{seed}_{k}").mkdir()
         parts = one_twin(grid, test, work / f"{speed}_{seed}_{k}", jobs)
         for part in parts:
@@ -158,7 +164,7 @@ def figure(predictions: pd.DataFrame, path: Path) -> None:
     import matplotlib.pyplot as plt
 
     rec = predictions[predictions["model"] == "recommended"]   # its first training seed
-    rec = rec[rec["twin"].isin(["point impacts", DEFAULT_TWIN])]   # before and after
+    rec = rec[rec["twin"].isin(COMPARED)]   # before and after the edges
     twins, inputs = list(dict.fromkeys(rec["twin"])), list(dict.fromkeys(rec["input"]))
     fig, axes = plt.subplots(len(twins), len(inputs), figsize=(4 * len(inputs),
                                                                3.3 * len(twins)),
@@ -249,7 +255,7 @@ INTRO = (
     "class recall >= 0.8. Two twins of each input, side by side in one run from the same "
     "draws: `point impacts` (one point impact per defect passage, `impact_edges = [0]`, the "
     "default before) and `Hertzian edges` (the default: the load leaves over the entry edge "
-    "and comes back over the exit edge, w / v apart). Each twin "
+    "and comes back over the exit edge, w / v apart); `--twins` adds others. Each twin "
     "is drawn from three grid seeds (`ballpass twin --seed`): recalls and balanced accuracy "
     "are their means, `balanced_twin_seed_min`/`_max` the balanced accuracy's range over "
     "them, `training_seed_spread_max` the largest range over five training seeds of one twin. "
@@ -267,6 +273,9 @@ def main() -> None:
     parser.add_argument("--speeds", type=int, nargs="+", default=list(SPEEDS))
     parser.add_argument("--seeds", type=int, nargs="+", default=[0, 1, 2],
                         help="grid seeds of the twins (ballpass twin --seed)")
+    parser.add_argument("--twins", nargs="+", choices=list(TWINS), default=list(COMPARED),
+                        help="the variants of the twin to compare (default: point impacts "
+                             "and the Hertzian edges)")
     parser.add_argument("--page-only", action="store_true",
                         help="rebuild the page from the tables of an earlier run")
     args = parser.parse_args()
@@ -277,7 +286,7 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as tmp:
         for speed in args.speeds:
             for seed in args.seeds:
-                r, p, k = one_speed(args.data, speed, seed, Path(tmp), args.jobs)
+                r, p, k = one_speed(args.data, speed, seed, Path(tmp), args.jobs, args.twins)
                 results.append(r)
                 predictions.append(p)
                 kurt.append(k)
