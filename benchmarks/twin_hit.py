@@ -18,7 +18,7 @@ twin's and the rig's log-kurtosis.
 
 Run::
 
-    PYTHONPATH=. python benchmarks/twin_hit.py --data ../shared/data/hit   # ~35 min, 2 cores
+    PYTHONPATH=. python benchmarks/twin_hit.py --data ../shared/data/hit   # ~25 min, 2 shared cores
 
 Writes ``twin_hit.md``, ``twin_hit.csv`` (one row per twin, input speed and model:
 recall per class, three-class balanced accuracy, its range over the training seeds),
