@@ -8,14 +8,17 @@ healthy at the two other speeds), one-second segments. Nothing is tuned on them:
 twin's ranges are its defaults (:data:`ballpass.datasets.twin.TWIN_DEFAULTS`). The rig
 has no ball faults: three-class scores (a "ball" verdict counts as wrong).
 
-Before and after, side by side in one run: each twin twice, from the same draws, with
-identical impacts (``impact_spread = [0]``, the twin before the axis existed) and with
-the default spread of the impacts' sizes; the impulsiveness (kurtosis) of the twin's
-fault rows beside the rig's fault seconds.
+Variants of the twin side by side in one run, from the same draws (:data:`TWINS`: the
+grid lines each changes): point impacts (``impact_edges = [0]``, the default before the
+Hertzian edges) and the default (each defect passage with its entry and exit edges);
+``--twins`` adds the default with identical or correlated impact sizes;
+the impulsiveness (kurtosis) and the spectral median frequency of the twin's fault
+rows beside the rig's fault seconds, with the Kolmogorov-Smirnov distance between the
+twin's and the rig's log-kurtosis.
 
 Run::
 
-    PYTHONPATH=. python benchmarks/twin_hit.py --data ../shared/data/hit   # ~15 min, 2 cores
+    PYTHONPATH=. python benchmarks/twin_hit.py --data ../shared/data/hit   # ~25 min, 2 shared cores
 
 Writes ``twin_hit.md``, ``twin_hit.csv`` (one row per twin, input speed and model:
 recall per class, three-class balanced accuracy, its range over the training seeds),
@@ -33,7 +36,9 @@ import tempfile
 import time
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
+import scipy.signal
 import scipy.stats
 from _paths import DOCS, results_in
 from _report import write_page
@@ -42,8 +47,27 @@ SPEEDS = (600, 900, 1200)
 LABELS = {"Normal": "healthy", "IR": "inner", "OR": "outer"}
 MODELS = "envelope,recommended"
 CLASSES = ("healthy", "outer", "inner", "ball")
-#: the twins compared: name -> the impact_spread line of the grid (None: as written)
-TWINS = {"identical impacts": "impact_spread = [0]", "spread impacts": None}
+#: the twins compared: name -> {axis: value} of the grid lines it changes ({}: as written)
+TWINS = {
+    "point impacts": {"impact_edges": "[0]"},
+    "Hertzian edges": {},
+    "edges, identical sizes": {"impact_spread": "[0]"},
+    "edges, correlated sizes": {"impact_correlation": "{ uniform = [0, 0.95] }"},
+}
+#: the twins a run compares unless --twins names others: before and after the edges
+COMPARED = ("point impacts", "Hertzian edges")
+#: the twin the figure shows: the default
+DEFAULT_TWIN = "Hertzian edges"
+
+
+def variant(text: str, lines: dict) -> str:
+    """The grid ``text`` with the line of each axis of ``lines`` set to its value; an axis
+    without exactly one line in the grid is an error (the grid template changed)."""
+    for axis, value in lines.items():
+        text, n = re.subn(rf"^{axis} = .*$", f"{axis} = {value}", text, flags=re.M)
+        if n != 1:
+            raise ValueError(f"the twin's grid has {n} lines of {axis}, not 1")
+    return text
 
 
 def manifests(data: Path, speed: int, work: Path) -> tuple[Path, Path]:
@@ -66,14 +90,23 @@ def ballpass(*args) -> None:
     subprocess.run([sys.executable, "-m", "ballpass", *map(str, args)], check=True)
 
 
+def signal_stats(X, labels) -> pd.DataFrame:
+    """Kurtosis and spectral median frequency (Hz: half the power below it, Welch
+    spectrum of 1024-sample segments at 51.2 kHz) of every fault row, with its label."""
+    faults = (labels != "healthy").to_numpy()
+    freq, power = scipy.signal.welch(X[faults], 51_200, nperseg=1024, axis=1)
+    share = np.cumsum(power, axis=1) / power.sum(axis=1, keepdims=True)
+    return pd.DataFrame({"label": labels[faults].to_numpy(),
+                         "kurtosis": scipy.stats.kurtosis(X[faults], axis=1, fisher=False),
+                         "median_hz": freq[np.argmax(share >= 0.5, axis=1)]})
+
+
 def kurtosis(ds: Path) -> pd.DataFrame:
-    """Kurtosis of every fault row of a twin dataset, with its label."""
+    """:func:`signal_stats` of the fault rows of a twin dataset."""
     from ballpass.datasets import load
 
     X, meta = load(ds)
-    faults = (meta["label"] != "healthy").to_numpy()
-    return pd.DataFrame({"label": meta["label"][faults].to_numpy(),
-                         "kurtosis": scipy.stats.kurtosis(X[faults], axis=1, fisher=False)})
+    return signal_stats(X, meta["label"])
 
 
 def one_twin(grid: Path, test: Path, work: Path, jobs: int):
@@ -94,19 +127,17 @@ def one_twin(grid: Path, test: Path, work: Path, jobs: int):
     return results, pd.read_csv(report / "predictions.csv"), kurtosis(ds)
 
 
-def one_speed(data: Path, speed: int, seed: int, work: Path, jobs: int):
-    """Both twins of one input speed from the grid seed ``seed``: (results, predictions,
-    kurtosis), each with the columns ``twin``, ``input`` and ``twin_seed``."""
+def one_speed(data: Path, speed: int, seed: int, work: Path, jobs: int,
+              names=COMPARED):
+    """The twins ``names`` of one input speed from the grid seed ``seed``: (results,
+    predictions, kurtosis), each with the columns ``twin``, ``input`` and ``twin_seed``."""
     healthy, test = manifests(data, speed, work)
     written = work / f"twin_{speed}_{seed}.toml"
     ballpass("twin", healthy, "--rpm", *SPEEDS, "--out", written, "--seed", seed)
     out = []
-    for k, (name, line) in enumerate(TWINS.items()):
+    for k, name in enumerate(names):
         grid = written.with_name(f"twin_{speed}_{seed}_{k}.toml")
-        text = written.read_text()
-        if line is not None:
-            text = re.sub(r"^impact_spread = .*$", line, text, count=1, flags=re.M)
-        grid.write_text(text)
+        grid.write_text(variant(written.read_text(), TWINS[name]))
         (work / f"{speed}_{seed}_{k}").mkdir()
         parts = one_twin(grid, test, work / f"{speed}_{seed}_{k}", jobs)
         for part in parts:
@@ -118,13 +149,11 @@ def one_speed(data: Path, speed: int, seed: int, work: Path, jobs: int):
 
 
 def real_kurtosis(test: Path) -> pd.DataFrame:
-    """Kurtosis of the rig's one-second fault segments (those of a test manifest)."""
+    """:func:`signal_stats` of the rig's one-second fault segments (a test manifest's)."""
     from ballpass.datasets import load_manifest
 
     X, meta = load_manifest(test, segment_s=1.0)[:2]
-    faults = (meta["label"] != "healthy").to_numpy()
-    return pd.DataFrame({"label": meta["label"][faults].to_numpy(),
-                         "kurtosis": scipy.stats.kurtosis(X[faults], axis=1, fisher=False)})
+    return signal_stats(X, meta["label"])
 
 
 def figure(predictions: pd.DataFrame, path: Path) -> None:
@@ -135,6 +164,7 @@ def figure(predictions: pd.DataFrame, path: Path) -> None:
     import matplotlib.pyplot as plt
 
     rec = predictions[predictions["model"] == "recommended"]   # its first training seed
+    rec = rec[rec["twin"].isin(COMPARED)]   # before and after the edges
     twins, inputs = list(dict.fromkeys(rec["twin"])), list(dict.fromkeys(rec["input"]))
     fig, axes = plt.subplots(len(twins), len(inputs), figsize=(4 * len(inputs),
                                                                3.3 * len(twins)),
@@ -157,7 +187,7 @@ def figure(predictions: pd.DataFrame, path: Path) -> None:
             ax.set_title(f"{twin_name}, twin of {name}", fontsize=10)
         row[0].set_ylabel("true (HIT-SM segments)")
     fig.suptitle("HIT-SM rig, recommended pipeline trained on the twin only "
-                 "(segments of all twin seeds)")
+                 "(segments of all twin seeds), before and after the Hertzian edges")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
 
@@ -166,7 +196,11 @@ def markdown(table: pd.DataFrame) -> str:
     """The table as a Markdown pipe table (numbers to 3 digits, times to whole s)."""
     def cell(name, v):
         if isinstance(v, float):
+            if v != v:   # NaN: no such value (the rig has no ball faults)
+                return "-"
             if name.endswith(("_s", "_s_max")):
+                return f"{v:.0f}"
+            if name.endswith("_hz"):
                 return f"{v:.0f}"
             return f"{v:.1f}" if name.startswith("kurtosis") else f"{v:.3f}"
         return str(v)
@@ -177,12 +211,21 @@ def markdown(table: pd.DataFrame) -> str:
 
 
 def kurtosis_table(twins: pd.DataFrame, real: pd.DataFrame) -> pd.DataFrame:
-    """Median and 10-90 % range of the fault rows' kurtosis, per source and class."""
+    """Per source and class: median and 10-90 % range of the fault rows' kurtosis, the
+    Kolmogorov-Smirnov distance of their log-kurtosis from the rig's fault seconds of the
+    class (0: the same distribution; NaN for a class the rig lacks), and the median of
+    their spectral median frequency, Hz."""
     both = pd.concat([twins.assign(source="twin: " + twins["twin"]),
                       real.assign(source="HIT-SM fault seconds")])
-    q = both.groupby(["source", "label"], sort=False)["kurtosis"].quantile(
-        [0.1, 0.5, 0.9]).unstack()
-    return q.set_axis(["kurtosis_p10", "kurtosis_median", "kurtosis_p90"], axis=1).reset_index()
+    g = both.groupby(["source", "label"], sort=False)
+    q = g["kurtosis"].quantile([0.1, 0.5, 0.9]).unstack()
+    q = q.set_axis(["kurtosis_p10", "kurtosis_median", "kurtosis_p90"], axis=1)
+    rig = {label: np.log(part["kurtosis"]) for label, part in real.groupby("label")}
+    q["ks_log_kurtosis"] = [
+        scipy.stats.ks_2samp(np.log(part["kurtosis"]), rig[label]).statistic
+        if label in rig else np.nan for (_, label), part in g]
+    q["median_hz"] = g["median_hz"].median()
+    return q.reset_index()
 
 
 COLUMNS = ["twin", "input", "model", "twin_seed", "n_test", "recall_healthy",
@@ -210,12 +253,12 @@ INTRO = (
     "rig, one-second segments (inner and outer faults of 2/5/8 degree arcs at 600/900/1200 "
     "rpm, healthy at the two other speeds). Goal: three-class balanced accuracy >= 0.9, every "
     "class recall >= 0.8. Two twins of each input, side by side in one run from the same "
-    "draws: `identical impacts` (every impact of a row the size its load gives, the twin "
-    "before `impact_spread`) and `spread impacts` (the default: log-normal sizes, "
-    "`impact_spread` drawn over 0-1). Each twin is drawn from three grid seeds (`ballpass "
-    "twin --seed`): recalls and balanced accuracy are their means, "
-    "`balanced_twin_seed_min`/`_max` the balanced accuracy's range over them, "
-    "`training_seed_spread_max` the largest range over five training seeds of one twin. "
+    "draws: `point impacts` (one point impact per defect passage, `impact_edges = [0]`, the "
+    "default before) and `Hertzian edges` (the default: the load leaves over the entry edge "
+    "and comes back over the exit edge, w / v apart); `--twins` adds others. Each twin "
+    "is drawn from three grid seeds (`ballpass twin --seed`): recalls and balanced accuracy "
+    "are their means, `balanced_twin_seed_min`/`_max` the balanced accuracy's range over "
+    "them, `training_seed_spread_max` the largest range over five training seeds of one twin. "
     "`generate_s_max`, `benchmark_s_max`: longest wall time of `ballpass generate --jobs 2` "
     "and `ballpass benchmark --real` (both models) on a 2-core machine shared with other "
     "work. Produced by `benchmarks/twin_hit.py`; every run in `results/twin_hit.csv`.")
@@ -230,6 +273,9 @@ def main() -> None:
     parser.add_argument("--speeds", type=int, nargs="+", default=list(SPEEDS))
     parser.add_argument("--seeds", type=int, nargs="+", default=[0, 1, 2],
                         help="grid seeds of the twins (ballpass twin --seed)")
+    parser.add_argument("--twins", nargs="+", choices=list(TWINS), default=list(COMPARED),
+                        help="the variants of the twin to compare (default: point impacts "
+                             "and the Hertzian edges)")
     parser.add_argument("--page-only", action="store_true",
                         help="rebuild the page from the tables of an earlier run")
     args = parser.parse_args()
@@ -240,7 +286,7 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as tmp:
         for speed in args.speeds:
             for seed in args.seeds:
-                r, p, k = one_speed(args.data, speed, seed, Path(tmp), args.jobs)
+                r, p, k = one_speed(args.data, speed, seed, Path(tmp), args.jobs, args.twins)
                 results.append(r)
                 predictions.append(p)
                 kurt.append(k)
@@ -253,7 +299,9 @@ def main() -> None:
     kurt_table = kurtosis_table(pd.concat(kurt), real)
     results_dir = results_in(args.out)
     table.round(3).to_csv(results_dir / "twin_hit.csv", index=False)
-    kurt_table.round(1).to_csv(results_dir / "twin_hit_kurtosis.csv", index=False)
+    kurt_table.round({"kurtosis_p10": 1, "kurtosis_median": 1, "kurtosis_p90": 1,
+                      "ks_log_kurtosis": 3, "median_hz": 0}).to_csv(
+        results_dir / "twin_hit_kurtosis.csv", index=False)
     figure(pd.concat(predictions), results_dir / "twin_hit.png")
     page(args.out)
 
@@ -267,7 +315,11 @@ def page(out: Path) -> None:
         "# A twin of the HIT-SM rig from one healthy recording", "", INTRO, "",
         markdown(summary(table)), "",
         "Impulsiveness: kurtosis of the twins' one-second fault rows (all three inputs) "
-        "and of the rig's fault seconds, 10th percentile, median, 90th percentile.", "",
+        "and of the rig's fault seconds, 10th percentile, median, 90th percentile; "
+        "`ks_log_kurtosis`, the Kolmogorov-Smirnov distance between the log-kurtosis of a "
+        "twin's rows and of the rig's seconds of the class (0: one distribution, 1: no "
+        "overlap); `median_hz`, the median over rows of the frequency below which half "
+        "a row's power lies (Welch, 1024 samples).", "",
         markdown(kurt_table), "", "![confusion](results/twin_hit.png)"])
     print(summary(table).round(3).to_string(index=False))
     print(kurt_table.to_string(index=False))

@@ -208,6 +208,21 @@ def test_the_spread_axis_leaves_the_other_draws(dataset):
             == [r.columns.get("level_db") for r in fixed.runs])
 
 
+def _fault_kurtosis(recordings, folder):
+    """Kurtosis of each row of a twin dataset less its background segment (the fault
+    through the path), and the dataset."""
+    import scipy.stats
+
+    X, meta = load(folder)
+    kurt = []
+    for i in meta.index:
+        rec = recordings[meta.at[i, "background"]]
+        start = round(meta.at[i, "background_start_s"] * FS)
+        kurt.append(scipy.stats.kurtosis(X[i].astype(float) - rec[start:start + X.shape[1]],
+                                         fisher=False))
+    return np.asarray(kurt), X, meta
+
+
 def test_the_spread_makes_a_row_more_impulsive(machine, tmp_path):
     """Two twins of the same scenes, one with identical impacts (impact_spread 0), one
     with sizes spread by 1: the second's fault rows are more impulsive (kurtosis of the
@@ -216,8 +231,6 @@ def test_the_spread_makes_a_row_more_impulsive(machine, tmp_path):
     row, the load zone's own modulation and overlapping rings, a factor above 2 of the
     medians is asked, far below that. Planted: impacts' sizes drawn but not applied
     fails (ratio 1)."""
-    import scipy.stats
-
     folder, recordings = machine
     medians = {}
     for spread in (0.0, 1.0):
@@ -225,15 +238,148 @@ def test_the_spread_makes_a_row_more_impulsive(machine, tmp_path):
                               duration_s=0.25, draws=12, seed=1)).as_dict()
         grid["grid"].update(fault=["outer"], impact_spread=[spread], level_db=[0.0])
         generate(grid, tmp_path / f"s{spread}", progress=False)
-        X, meta = load(tmp_path / f"s{spread}")
-        kurt = []
-        for i in meta.index:
-            rec = recordings[meta.at[i, "background"]]
-            start = round(meta.at[i, "background_start_s"] * FS)
-            fault = X[i].astype(float) - rec[start:start + X.shape[1]]
-            kurt.append(scipy.stats.kurtosis(fault, fisher=False))
-        medians[spread] = np.median(kurt)
-    assert medians[1.0] > 2.0 * medians[0.0]   # 4.4 at this seed
+        medians[spread] = np.median(_fault_kurtosis(recordings, tmp_path / f"s{spread}")[0])
+    assert medians[1.0] > 2.0 * medians[0.0]   # 5.1 at this seed (Hertzian edges)
+
+
+def _outer_scene(**kw):
+    import ballpass as bp
+
+    spec = dict(bearing="6205", fault=bp.Fault("outer", width_mm=1.0, depth_mm=0.3),
+                rpm=900.0, duration_s=0.5, fs=FS, radial_load_n=500.0, slip=0.0,
+                resonance_hz=FS / 4, needs=("envelope",))
+    return bp.Scene(**{**spec, **kw})
+
+
+@pytest.mark.parametrize("kind", ["outer", "inner", "ball"])
+def test_a_passage_lasts_the_defect_width_over_the_rolling_speed(kind):
+    """passage_times: w / v against the impulse model's own kinematics (an independent
+    computation: the cage-angle integration and the edge-crossing search), the entry to
+    exit time of every passage of a 1 mm defect at 900 rpm without slip. The crossings
+    are found to 1e-13 s and the speed is constant: 1e-6 relative. Planted: the inner
+    race's radius for the outer race's (a factor 1.5) fails; the cage rate for the inner
+    race's relative rate fails."""
+    import ballpass as bp
+    from ballpass.datasets.twin import passage_times
+
+    scene = _outer_scene(fault=bp.Fault(kind, width_mm=1.0, depth_mm=0.3))
+    passage_s, edge_s, drop = passage_times(scene)
+    crossings = bp.simulate(scene, model="impulse").truth.fault_crossings
+    edges = np.asarray(crossings.edge)
+    # a passage: a crossing and the same element's next one of the other edge (an
+    # inner-race defect's paths run backwards through it, so its names are swapped)
+    durations = []
+    for i in range(len(edges)):
+        later = [j for j in range(i + 1, len(edges))
+                 if crossings.element[j] == crossings.element[i]]
+        if later and edges[i] != edges[later[0]]:
+            durations.append(crossings.time_s[later[0]] - crossings.time_s[i])
+    durations = np.asarray(durations)
+    short = durations[durations < 0.5 * durations.max()]   # passages, not the gaps
+    assert short.size > 3
+    np.testing.assert_allclose(short, passage_s, rtol=1e-6)
+    assert 0 < edge_s <= 0.5 * passage_s and 0 < drop <= 1
+
+
+def test_the_edge_lasts_while_the_ball_regains_its_deflection():
+    """The edge: x_c / v with x_c = sqrt(2 R delta), delta the most loaded element's
+    Hertzian deflection, here taken independently from the force the impulse model
+    releases at the load line into a defect deeper than the deflection, dQ = K delta^1.5
+    (impact_amplitudes, K of the bearing's Hertz stiffness). Same formulas, another path
+    through the code: 1e-9. Planted: the ball's diameter for its radius (a factor
+    sqrt 2) fails."""
+    import ballpass as bp
+    from ballpass.datasets.twin import passage_times
+    from ballpass.simulate.impulse import impact_amplitudes
+
+    scene = _outer_scene(fault=bp.Fault("outer", width_mm=3.0, depth_mm=1.0), gravity=False)
+    passage_s, edge_s, drop = passage_times(scene)
+    b = scene.bearing
+    dq = impact_amplitudes(scene, np.zeros(1), np.full(1, 1e-3))[0]
+    delta = (dq / b.hertz_stiffness()) ** (1 / 1.5)
+    speed = 3.0e-3 / passage_s
+    assert drop == 1.0   # the 1 mm deep, 3 mm wide defect takes the whole load
+    assert edge_s == pytest.approx(math.sqrt(b.element_diameter_m * delta) / speed, rel=1e-9)
+
+
+def test_the_edge_kernel_is_the_hertzian_load_return():
+    """The load comes back as (1 - drop u^2)^1.5, u = x / x_c from 1 to 0 (closed form):
+    the kernel's running sum is that load, normalized, at the sample ends, for a full
+    (drop 1) and a partial (drop 0.3) return; round(edge_s fs) samples, at least 1.
+    Planted: a linear load return (exponent 1) fails."""
+    from ballpass.datasets.twin import edge_kernel
+
+    for drop in (1.0, 0.3):
+        k = edge_kernel(20 / FS, FS, 1.5, drop)
+        assert k.size == 20 and k.sum() == pytest.approx(1.0, abs=1e-12)
+        u = 1.0 - np.arange(1, 21) / 20
+        load = (1.0 - drop * u**2) ** 1.5
+        np.testing.assert_allclose(np.cumsum(k), (load - (1 - drop) ** 1.5)
+                                   / (1 - (1 - drop) ** 1.5), atol=1e-12)
+    assert edge_kernel(0.0, FS).tolist() == [1.0]   # no edge: one point
+
+
+def test_a_passage_is_seen_in_the_train_from_entry_to_exit():
+    """One passage ending at t0 (between samples): the train is non-zero from the entry
+    edge's first sample, (t0 - w/v) fs, to the exit's last, t0 fs, each end within a
+    sample (the split of a point between two samples); the load taken at the entry
+    comes back at the exit (sum 0 to rounding); the exit edge carries the step.
+    Planted: the entry placed at the exit time (no passage) fails."""
+    from ballpass.datasets.twin import _passage_train, edge_kernel
+
+    t0, passage_s = 0.1000123, 1.134e-3
+    edge = edge_kernel(10 / FS, FS)
+    train = _passage_train(np.array([t0]), np.array([2.0]), 8192, FS, passage_s, edge)
+    nonzero = np.flatnonzero(np.abs(train) > 1e-12)
+    assert abs(nonzero[0] - (t0 - passage_s) * FS) < 1.0
+    assert abs(nonzero[-1] - t0 * FS) < 1.0
+    assert (nonzero[-1] - nonzero[0]) / FS == pytest.approx(passage_s, abs=2 / FS)
+    assert train.sum() == pytest.approx(0.0, abs=1e-12)
+    half = (nonzero[0] + nonzero[-1]) // 2
+    assert train[half:].sum() == pytest.approx(2.0, abs=1e-12)
+
+
+def test_correlated_sizes_have_the_stated_lag_one_correlation():
+    """impact_correlation rho: the logarithms of successive sizes are a stationary AR(1)
+    with lag-1 correlation rho, standard deviation the spread, mean size 1. With 4e5
+    draws at rho 0.6 the lag-1 estimate's standard error is sqrt((1 - rho^2) / n) =
+    1.3e-3 (tolerance 0.01, 8 s.e.), the log's standard deviation within 3e-3 and the
+    mean within 0.01 (the correlation widens their errors by sqrt((1 + rho)/(1 - rho))
+    = 2). Planted: without the sqrt(1 - rho^2) gain the log's standard deviation is
+    0.625, fails. rho 0 or NaN draws exactly the independent sizes."""
+    from ballpass.datasets.twin import _impact_sizes
+
+    m = _impact_sizes(np.random.default_rng(3), 400_000, 0.5, 0.6)
+    g = np.log(m)
+    g0 = g - g.mean()
+    assert np.mean(g0[1:] * g0[:-1]) / g0.var() == pytest.approx(0.6, abs=0.01)
+    assert g.std() == pytest.approx(0.5, abs=0.01)
+    assert m.mean() == pytest.approx(1.0, abs=0.01)
+    base = _impact_sizes(np.random.default_rng(4), 50, 0.5)
+    for rho in (0.0, math.nan, None):
+        np.testing.assert_array_equal(_impact_sizes(np.random.default_rng(4), 50, 0.5, rho),
+                                      base)
+
+
+def test_the_edges_spread_an_impact_and_regenerate(machine, tmp_path):
+    """Two twins of the same draws, point impacts (impact_edges 0) and Hertzian edges
+    (1): the edges spread each impact over tens of samples, so the fault rows' kurtosis
+    (background removed, median over rows) falls (by 5.5 at this seed; asked: by more
+    than 1.5). A row with edges and correlated sizes regenerates bit for bit. Planted:
+    edges computed but the point train used fails the ratio."""
+    folder, recordings = machine
+    medians = {}
+    for edges in (0.0, 1.0):
+        grid = read_grid(twin(folder / "healthy.csv", rpm=[900], out=folder / "g.toml",
+                              duration_s=0.25, draws=8, seed=2)).as_dict()
+        grid["grid"].update(fault=["outer", "inner"], impact_edges=[edges], level_db=[0.0],
+                            impact_correlation=[0.5])
+        generate(grid, tmp_path / f"e{edges}", progress=False)
+        kurt, X, meta = _fault_kurtosis(recordings, tmp_path / f"e{edges}")
+        medians[edges] = np.median(kurt)
+    assert medians[0.0] > 1.5 * medians[1.0]   # 5.5 at this seed
+    assert (meta["impact_edges"] == 1.0).all() and (meta["impact_correlation"] == 0.5).all()
+    np.testing.assert_array_equal(regenerate(meta.iloc[-1]), X[-1])
 
 
 def test_the_learned_path_is_stored(dataset):
@@ -299,13 +445,24 @@ def test_generate_refuses_a_twin_at_another_rate(dataset, tmp_path):
 
 
 def test_level_db_needs_a_machine():
-    for axis in ("level_db", "impact_spread"):
+    for axis in ("level_db", "impact_spread", "impact_edges", "impact_correlation"):
         with pytest.raises(ValueError, match=f"{axis} .* needs a .machine. table"):
             read_grid({"grid": {"bearing": ["6205"], "fault": ["outer"], "rpm": [900],
                                 axis: [0.0]}})
     with pytest.raises(ValueError, match="impact_spread .* outside the allowed range"):
         read_grid({"grid": {"bearing": ["6205"], "fault": ["outer"], "rpm": [900],
                             "impact_spread": {"uniform": [-1.0, 1.0]}}})
+    with pytest.raises(ValueError, match="impact_correlation .* outside the allowed range"):
+        read_grid({"grid": {"bearing": ["6205"], "fault": ["outer"], "rpm": [900],
+                            "impact_correlation": {"uniform": [0.0, 1.0]}}})
+
+
+def test_impact_edges_is_zero_or_one(dataset):
+    grid = read_grid(dataset[0]).as_dict()
+    for bad in ([0.5], {"uniform": [0.0, 1.0]}):
+        grid["grid"]["impact_edges"] = bad
+        with pytest.raises(ValueError, match="impact_edges must list 0 .* and/or 1"):
+            read_grid(grid)
 
 
 def test_twin_command(machine, tmp_path, capsys):

@@ -1,5 +1,5 @@
 """The HIT-SM twin study's tables (benchmarks/twin_hit.py): how runs over twin seeds are
-summarized, and the grid line that makes the identical-impact twin."""
+summarized, and the grid lines that make each variant of the twin."""
 
 import re
 
@@ -37,14 +37,26 @@ def test_summary_averages_over_twin_seeds():
     assert (row["generate_s_max"], row["benchmark_s_max"]) == (12.0, 90.0)
 
 
-def test_the_identical_impact_twin_fixes_the_spread_at_zero():
-    """The line that turns a written twin into the before-twin matches the grid the
-    twin writes (one impact_spread line)."""
-    from ballpass.datasets.twin import _GRID_TEMPLATE
+def test_each_twin_changes_its_lines_of_the_written_grid():
+    """Every variant's axes have one line each in the grid the twin writes, and
+    variant() sets exactly those: the default twin is the grid as written, the
+    before-twin has point impacts. An axis the grid lacks is an error, not a silent
+    no-op (planted: a misspelt axis)."""
+    from ballpass.datasets.twin import _GRID_TEMPLATE, TWIN_DEFAULTS
 
-    lines = [ln for ln in _GRID_TEMPLATE.splitlines() if re.match(r"^impact_spread = ", ln)]
-    assert len(lines) == 1
-    assert bench.TWINS["identical impacts"] == "impact_spread = [0]"
+    text = _GRID_TEMPLATE.format(
+        names="a", bearing="6205", fs=51_200.0, manifest='"m.csv"', duration_s=1.0,
+        draws=2, seed=0, rpm="900", d=TWIN_DEFAULTS, resonance_hz=12_800.0, n_runs=8)
+    assert bench.TWINS[bench.DEFAULT_TWIN] == {}
+    assert re.search(r"^impact_edges = \[1\]$", text, flags=re.M)
+    for lines in bench.TWINS.values():
+        changed = bench.variant(text, lines)
+        diff = set(changed.splitlines()) ^ set(text.splitlines())
+        assert len(diff) == 2 * sum(v != re.search(rf"^{k} = (.*)$", text, re.M)[1]
+                                    for k, v in lines.items())
+    assert "impact_edges = [0]" in bench.variant(text, bench.TWINS["point impacts"])
+    with pytest.raises(ValueError, match="0 lines of impact_edge,"):
+        bench.variant(text, {"impact_edge": "[0]"})
 
 
 def test_pipeline_choice_and_leave_one_input_out():

@@ -64,6 +64,8 @@ FIELD_RANGES = {
     "snr_db": (-60.0, 200.0, False, False, "dB"),
     "level_db": (-60.0, 60.0, False, False, "dB"),
     "impact_spread": (0.0, 3.0, False, False, ""),
+    "impact_edges": (0.0, 1.0, False, False, ""),
+    "impact_correlation": (0.0, 1.0, False, True, ""),
     "noise_rms": (0.0, 1e6, False, False, "m/s^2"),
     "noise_slope_db_oct": (-12.0, 12.0, False, False, "dB/octave"),
     "resonance_hz": (100.0, math.inf, False, False, "Hz"),

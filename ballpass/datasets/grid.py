@@ -92,7 +92,7 @@ AXES = (
     "fault_engagement", "level_db", "rpm", "radial_load_n", "clearance_um", "slip", "snr_db",
     "noise_rms",
     "resonance_hz", "resonance_damping", *REALISM_AXES, "model", "sensor", "impact_spread",
-    "fault_spin_drift_deg",
+    "fault_spin_drift_deg", "impact_edges", "impact_correlation",
 )
 REQUIRED_AXES = ("bearing", "fault", "rpm")
 _FAULT_AXES = {"fault_width_mm": "width_mm", "fault_depth_mm": "depth_mm",
@@ -101,9 +101,11 @@ _FAULT_AXES = {"fault_width_mm": "width_mm", "fault_depth_mm": "depth_mm",
 #: fault axes of ball faults only: race-fault points do not multiply over them
 _BALL_AXES = ("fault_engagement", "fault_spin_drift_deg")
 #: axes of a twin's fault rows (a grid with a [machine] table, :mod:`.twin`): the fault's
-#: RMS over the real background's, dB, and the spread of its impacts' sizes (standard
-#: deviation of their logarithm); not Scene fields, columns of their own
-TWIN_AXES = ("level_db", "impact_spread")
+#: RMS over the real background's, dB, the spread of its impacts' sizes (standard
+#: deviation of their logarithm), whether a passage has its Hertzian entry and exit
+#: edges (1) or is one point impact (0), and the lag-1 correlation of the sizes'
+#: logarithms; not Scene fields, columns of their own
+TWIN_AXES = ("level_db", "impact_spread", "impact_edges", "impact_correlation")
 #: axes that healthy points do not multiply over
 _FAULT_ONLY = (*_FAULT_AXES, *TWIN_AXES)
 _SCENE_AXES = ("radial_load_n", "clearance_um", "slip", "snr_db", "noise_rms", "resonance_hz",
@@ -345,7 +347,8 @@ class Run:
         Dataset columns of the run beyond the scene's own: the values of its realism
         axes (:data:`REALISM_AXES`) and, in a grid with drawn axes, ``draw`` (which draw
         of its grid point) and ``draw_seed`` (see :func:`draw_seed`); in a twin's grid,
-        ``level_db`` and ``impact_spread`` (NaN for a healthy run).
+        ``level_db``, ``impact_spread``, ``impact_edges`` and ``impact_correlation``
+        (NaN for a healthy run).
     machine : str, optional
         A twin's run (:mod:`ballpass.datasets.twin`): absolute path of the manifest of
         the machine's healthy recordings, whose learned path and background make its
@@ -660,9 +663,11 @@ def read_grid(source) -> Grid:
     rows are simulated faults through the machine's learned transmission path over
     segments of its healthy recordings, and healthy rows are those segments. Its
     ``level_db`` axis (required there, refused elsewhere) is the fault's RMS over the
-    background's, dB, and its ``impact_spread`` axis (optional there, refused
-    elsewhere) the standard deviation of the logarithm of its impacts' sizes; healthy
-    points multiply over neither; one sensor.
+    background's, dB; its optional axes (refused elsewhere) ``impact_spread``, the
+    standard deviation of the logarithm of its impacts' sizes, ``impact_correlation``,
+    their lag-1 correlation, and ``impact_edges``, 0 or 1 (a list, not drawn): a defect
+    passage as one point impact or with its Hertzian entry and exit edges; healthy
+    points multiply over none of them; one sensor.
 
     **Drawn axes.** Every numeric axis may instead be a distribution (see
     :mod:`ballpass.datasets.distributions`): ``{uniform = [lo, hi]}``,
@@ -762,7 +767,9 @@ def _machine_table(raw: dict, source, axes: dict) -> dict | None:
         given = [k for k in TWIN_AXES if k in axes]
         if given:
             what = {"level_db": "the fault's level over a real machine's background",
-                    "impact_spread": "the spread of a twin's impact sizes"}[given[0]]
+                    "impact_spread": "the spread of a twin's impact sizes",
+                    "impact_edges": "the shape of a twin's defect passages",
+                    "impact_correlation": "the correlation of a twin's impact sizes"}[given[0]]
             raise ValueError(f"grid.{given[0]} is {what}: it needs a [machine] table "
                              "naming the healthy recordings (ballpass twin writes one)")
         return None
@@ -778,6 +785,10 @@ def _machine_table(raw: dict, source, axes: dict) -> dict | None:
     if "level_db" not in axes:
         raise ValueError("a twin's grid (with [machine]) needs grid.level_db, the fault's RMS "
                          "over the background's, dB, e.g. level_db = { uniform = [-10, 15] }")
+    edges = axes.get("impact_edges", [0.0])
+    if isinstance(edges, Distribution) or any(v not in (0.0, 1.0) for v in edges):
+        raise ValueError(f"grid.impact_edges must list 0 (a passage is one point impact) "
+                         f"and/or 1 (its Hertzian entry and exit edges), got {edges}")
     if len(axes.get("sensor", ["loaded"])) != 1:
         raise ValueError("a twin's grid has one sensor, the machine's accelerometer; "
                          f"grid.sensor has {len(axes['sensor'])}")

@@ -18,11 +18,18 @@ fitted once per recording and process (cached), written to the dataset folder
 *Fault rows.* The bearing's impacts come from the ``impulse`` model's kinematics (the
 defect crossings of McFadden & Smith 1984 with random slip, the Stribeck load zone and
 the sensor's transmission factor; :mod:`ballpass.simulate.impulse`), before its own
-resonator: each impact is a unit-sample pulse of its housing-acceleration step, split
-linearly between the two samples around its time, and its size multiplied by a
-log-normal factor of its own (mean 1, log standard deviation ``impact_spread``, drawn
-per row: the random amplitudes of Antoni & Randall 2003; a ball does not strike a real
-spall the same way twice). The pulse train drives ``1 / A(z)``;
+resonator: each is the housing-acceleration step of one defect passage, its size
+multiplied by a log-normal factor of its own (mean 1, log standard deviation
+``impact_spread``, drawn per row: the random amplitudes of Antoni & Randall 2003; a ball
+does not strike a real spall the same way twice; their logarithms correlated from one
+impact to the next by ``impact_correlation``, 0 by default). With ``impact_edges = 1``
+(the default) a passage is what the ball goes through over a defect of width w at the
+rolling speed v: the load leaves over the entry edge and comes back over the exit edge,
+w / v later (the entry and exit of Sawalhi & Randall 2008), each edge as long as a ball
+pivoting on a sharp edge takes to lose or regain its Hertzian deflection
+(:func:`passage_times`, :func:`edge_kernel`); with 0, one point impact at the exit,
+split linearly between the two samples around its time (the twin before the axis).
+The train drives ``1 / A(z)``;
 the result is scaled so that its RMS over the row is ``level_db`` above the RMS of the
 background, and a segment of a real healthy recording is added: one of the recordings
 whose speed is nearest the row's, and the segment's start, drawn from the row's seed.
@@ -33,12 +40,15 @@ Their ``group`` is the recording's name, so no split puts segments of one record
 both sides; a fault row's group is its run.
 
 Every row keeps the columns of a simulated row (its scene, the fault's size and angle,
-the slip, the load) and adds ``level_db``, ``impact_spread``, ``machine`` (the
+the slip, the load) and adds ``level_db``, ``impact_spread``, ``impact_edges``,
+``impact_correlation``, ``machine`` (the
 manifest), ``background`` (the recording) and ``background_start_s``; ``resonance_hz``,
 ``resonance_damping``, ``snr_db`` and ``noise_rms`` are NaN (the learned path and the
 real background replace them).
 
-References: P. D. McFadden, J. D. Smith, J. Sound Vib. 96 (1984) 69-82; J. Antoni,
+References: P. D. McFadden, J. D. Smith, J. Sound Vib. 96 (1984) 69-82; N. Sawalhi,
+R. B. Randall, "Simulating gear and bearing interactions in the presence of faults",
+MSSP 22 (2008) 1924-1951; J. Antoni,
 R. B. Randall, "A stochastic model for simulation and diagnostics of rolling element
 bearings with localized faults", J. Vib. Acoust. 125 (2003) 282-289; N. Sawalhi,
 R. B. Randall, "Spectral kurtosis enhancement using autoregressive models", ACAM 2005;
@@ -75,6 +85,8 @@ TWIN_DEFAULTS = {
     "fault_angle_deg": (-60.0, 60.0),
     "level_db": (-10.0, 15.0),
     "impact_spread": (0.0, 1.0),
+    "impact_edges": 1,
+    "impact_correlation": 0.0,
     "radial_load_n": (150.0, 1500.0),
     "slip": (0.005, 0.02),
 }
@@ -264,14 +276,115 @@ def _pulse_train(times: np.ndarray, steps: np.ndarray, n: int, fs: float) -> np.
     return out[:n]
 
 
-def _impact_sizes(rng: np.random.Generator, n: int, spread) -> np.ndarray:
-    """Relative sizes of ``n`` impacts: log-normal, the standard deviation of their
-    logarithm ``spread`` (no axis, NaN or 0: all 1), their mean 1 (the median
-    exp(-spread^2 / 2)), independent from impact to impact (the random amplitudes of
-    Antoni & Randall's cyclostationary model of a bearing fault)."""
+def _impact_sizes(rng: np.random.Generator, n: int, spread, correlation=None) -> np.ndarray:
+    """Relative sizes of ``n`` successive impacts: log-normal, the standard deviation of
+    their logarithm ``spread`` (no axis, NaN or 0: all 1), their mean 1 (the median
+    exp(-spread^2 / 2)), the random amplitudes of Antoni & Randall's cyclostationary
+    model of a bearing fault. Their logarithms are a stationary first-order
+    autoregression with lag-1 correlation ``correlation`` in [0, 1) (no axis, NaN or 0:
+    independent from impact to impact, drawn as before the axis existed): a load or
+    speed that drifts over several impacts makes neighbours alike."""
     if spread is None or not spread > 0:   # also NaN
         return np.ones(n)
-    return np.exp(spread * rng.standard_normal(n) - 0.5 * spread**2)
+    g = rng.standard_normal(n)
+    if correlation is not None and correlation > 0 and n > 1:
+        import scipy.signal
+
+        # g_k = rho g_(k-1) + sqrt(1 - rho^2) e_k from g_0 = e_0: unit variance throughout
+        gain = math.sqrt(1.0 - correlation**2)
+        g = scipy.signal.lfilter([gain], [1.0, -correlation], g,
+                                 zi=[(1.0 - gain) * g[0]])[0]
+    return np.exp(spread * g - 0.5 * spread**2)
+
+
+def passage_times(scene) -> tuple[float, float, float]:
+    """How long one defect passage and each of its edges last, s.
+
+    A defect of width w (along the rolling direction) passes the contact at the speed
+    v of the contact point relative to the defective surface: the outer race
+    r_o 2 pi FTF, the inner race r_i 2 pi (f_r - FTF), a ball (d / 2) 2 pi BSF, with
+    the raceway radii (d_p +- d) / 2 and the rates of
+    :meth:`ballpass.Bearing.frequencies`; the passage lasts w / v (the time from the
+    entry crossing to the exit crossing of the impulse model's kinematics, without
+    slip). A ball of radius R = d / 2 pivoting over a sharp edge drops by x^2 / (2 R)
+    at a distance x from it, so its contact deflection delta (the Stribeck deflection
+    of the most loaded element, :func:`ballpass.simulate.impulse.impact_amplitudes`),
+    or the defect's effective depth h when smaller, goes or comes back over
+    x_c = sqrt(2 R min(delta, h)) (at most w / 2): the edge lasts x_c / v.
+
+    Parameters
+    ----------
+    scene : Scene
+        A scene with one fault, at constant speed.
+
+    Returns
+    -------
+    passage_s, edge_s : float
+        w / v and x_c / v, s.
+    drop : float
+        min(delta, h) / delta, in (0, 1]: the share of the deflection the ball loses
+        (1: it leaves the load entirely, 0 without a load).
+    """
+    from ..simulate.impulse import _DEFAULTS, _load_zone
+
+    fault, b = scene.faults[0], scene.bearing
+    shaft_hz = scene.speed.rpm_start / 60.0
+    rates = b.frequencies(shaft_hz)
+    radius = 0.5 * b.element_diameter_m
+    speed = {"outer": b.outer_race_radius_m * 2 * math.pi * rates.ftf,
+             "inner": b.inner_race_radius_m * 2 * math.pi * (shaft_hz - rates.ftf),
+             "ball": radius * 2 * math.pi * rates.bsf}[fault.kind]
+    width = fault.width_mm * 1e-3
+    _, zone = _load_zone(scene, _DEFAULTS)
+    delta = (zone.deflection_m - b.radial_clearance_m) * math.cos(b.contact_angle_rad)
+    drop = min(delta, fault.effective_depth_mm(b) * 1e-3)
+    if not drop > 0:
+        return width / speed, 0.0, 0.0
+    reach = min(math.sqrt(2.0 * radius * drop), 0.5 * width)
+    return width / speed, reach / speed, drop / delta
+
+
+def edge_kernel(edge_s: float, fs: float, exponent: float = 1.5,
+                drop: float = 1.0) -> np.ndarray:
+    """How the load comes back at a defect's exit edge, sample by sample, summing to 1.
+
+    The contact deflection returns as delta (1 - drop (x / x_c)^2) while the distance x
+    to the edge falls from x_c to 0 at constant speed (:func:`passage_times`), and the
+    load with it as its Hertzian power ``exponent`` (3/2 for a ball): entry k of the
+    kernel is the load's increment over sample k, of ``round(edge_s fs)`` samples
+    (at least 1). Reversed and negated, it is the load going at the entry edge.
+
+    Parameters
+    ----------
+    edge_s : float
+        Edge duration, s (:func:`passage_times`).
+    fs : float
+        Sampling frequency, Hz.
+    exponent : float, optional
+        Hertz load-deflection exponent n.
+    drop : float, optional
+        Share of the deflection lost in the defect, in (0, 1] (:func:`passage_times`).
+
+    Returns
+    -------
+    ndarray, shape (n_edge,)
+    """
+    n_edge = max(1, round(edge_s * fs))
+    load = (1.0 - drop * np.linspace(1.0, 0.0, n_edge + 1) ** 2) ** exponent
+    return np.diff(load) / (load[-1] - load[0])
+
+
+def _passage_train(times: np.ndarray, steps: np.ndarray, n: int, fs: float,
+                   passage_s: float, edge: np.ndarray) -> np.ndarray:
+    """Defect passages as samples: each load step ``steps[k]`` released by the edge
+    kernel ``edge`` reversed at the entry, ``passage_s`` before ``times[k]``, and taken
+    back by ``edge`` ending at ``times[k]`` (each placed as :func:`_pulse_train` places
+    a point). A passage inside the row sums to 0: the load it takes away comes back.
+    Shape (n,)."""
+    m = edge.size
+    exits = _pulse_train(times, steps, n + m - 1, fs)
+    entries = _pulse_train(times - passage_s, steps, n, fs)
+    return np.convolve(exits, edge)[m - 1:m - 1 + n] - np.convolve(entries, edge[::-1])[:n]
 
 
 def _rms(x: np.ndarray) -> float:
@@ -321,8 +434,15 @@ def twin_signal(run, scene) -> tuple[np.ndarray, dict, dict]:
                        radial_load_n=math.nan, slip=math.nan, clearance_um=math.nan)
     else:
         times, steps, _ = _impacts(scene)
-        steps = steps[0] * _impact_sizes(rng, times.size, run.columns.get("impact_spread"))
-        fault = scipy.signal.lfilter([1.0], rec.a, _pulse_train(times, steps, n, scene.fs))
+        steps = steps[0] * _impact_sizes(rng, times.size, run.columns.get("impact_spread"),
+                                         run.columns.get("impact_correlation"))
+        if run.columns.get("impact_edges", 0.0) == 1.0:
+            passage_s, edge_s, drop = passage_times(scene)
+            edge = edge_kernel(edge_s, scene.fs, scene.bearing.load_exponent, drop or 1.0)
+            train = _passage_train(times, steps, n, scene.fs, passage_s, edge)
+        else:   # one point impact per passage (the twin before impact_edges)
+            train = _pulse_train(times, steps, n, scene.fs)
+        fault = scipy.signal.lfilter([1.0], rec.a, train)
         fault -= fault.mean()
         size = _rms(fault)
         if size > 0:   # a defect that never strikes (out of the load zone) stays silent
@@ -368,7 +488,9 @@ def twin(manifest, rpm, out, *, duration_s: float = TWIN_DEFAULTS["duration_s"],
     learns the machine's path from the recordings (see the module docstring). Drawn per
     row, each range with its source in the file: fault width, outer-race fault angle,
     radial load, slip, ``level_db``, the fault's RMS over the background's, and
-    ``impact_spread``, the log standard deviation of the impacts' sizes.
+    ``impact_spread``, the log standard deviation of the impacts' sizes; fixed:
+    ``impact_edges = [1]`` (a defect passage with its entry and exit edges) and
+    ``impact_correlation = [0]`` (independent sizes).
 
     Parameters
     ----------
@@ -490,6 +612,17 @@ level_db = {{ uniform = [{d[level_db][0]:g}, {d[level_db][1]:g}] }}
 # sizes a factor e apart at one standard deviation: a ball striking a rough, widening
 # spall at a new point each time. A judgement, not a published range
 impact_spread = {{ uniform = [{d[impact_spread][0]:g}, {d[impact_spread][1]:g}] }}
+# a defect passage as the ball sees it (1): the load leaves over the entry edge and comes
+# back over the exit edge, w / v apart (w the defect's width, v the rolling speed over
+# it: the entry and exit of Sawalhi & Randall, MSSP 2008), each edge lasting as long as
+# a ball pivoting on a sharp edge takes to lose or regain its Hertzian deflection; or one
+# point impact at the exit (0), as McFadden & Smith's train and the twin before the axis
+impact_edges = [{d[impact_edges]:g}]
+# lag-1 correlation of the logarithms of successive impacts' sizes: 0, independent (as
+# Antoni & Randall's model draws them); up to 1, a load or speed drifting over several
+# impacts. No published value: kept at 0 (correlated sizes brought the kurtosis of the
+# HIT-SM twin's fault rows no nearer the rig's, docs/twin.md)
+impact_correlation = [{d[impact_correlation]:g}]
 # radial load from light to normal service, P/C = 0.01-0.1 of a 6205-size bearing's
 # basic dynamic rating (SKF catalogue: about 0.01 C to roll without skidding)
 radial_load_n = {{ log_uniform = [{d[radial_load_n][0]:g}, {d[radial_load_n][1]:g}] }}
