@@ -9,9 +9,10 @@ twin's ranges are its defaults (:data:`ballpass.datasets.twin.TWIN_DEFAULTS`). T
 has no ball faults: three-class scores (a "ball" verdict counts as wrong).
 
 Variants of the twin side by side in one run, from the same draws (:data:`TWINS`: the
-grid lines each changes): point impacts (``impact_edges = [0]``, the default before the
-Hertzian edges) and the default (each defect passage with its entry and exit edges);
-``--twins`` adds the default with identical or correlated impact sizes;
+grid lines each changes): point impacts (``impact_edges = [0]``, the twin before the
+Hertzian edges), Hertzian edges only (each defect passage with its entry and exit edges,
+``[1]``) and the default, which draws one of the two per row; ``--twins`` adds the
+edges with identical or correlated impact sizes;
 the impulsiveness (kurtosis) and the spectral median frequency of the twin's fault
 rows beside the rig's fault seconds, with the Kolmogorov-Smirnov distance between the
 twin's and the rig's log-kurtosis.
@@ -50,14 +51,16 @@ CLASSES = ("healthy", "outer", "inner", "ball")
 #: the twins compared: name -> {axis: value} of the grid lines it changes ({}: as written)
 TWINS = {
     "point impacts": {"impact_edges": "[0]"},
-    "Hertzian edges": {},
-    "edges, identical sizes": {"impact_spread": "[0]"},
-    "edges, correlated sizes": {"impact_correlation": "{ uniform = [0, 0.95] }"},
+    "Hertzian edges": {"impact_edges": "[1]"},
+    "both, drawn per row": {},
+    "edges, identical sizes": {"impact_edges": "[1]", "impact_spread": "[0]"},
+    "edges, correlated sizes": {"impact_edges": "[1]",
+                                "impact_correlation": "{ uniform = [0, 0.95] }"},
 }
-#: the twins a run compares unless --twins names others: before and after the edges
-COMPARED = ("point impacts", "Hertzian edges")
+#: the twins a run compares unless --twins names others: each passage shape and the default
+COMPARED = ("point impacts", "Hertzian edges", "both, drawn per row")
 #: the twin the figure shows: the default
-DEFAULT_TWIN = "Hertzian edges"
+DEFAULT_TWIN = "both, drawn per row"
 
 
 def variant(text: str, lines: dict) -> str:
@@ -164,7 +167,7 @@ def figure(predictions: pd.DataFrame, path: Path) -> None:
     import matplotlib.pyplot as plt
 
     rec = predictions[predictions["model"] == "recommended"]   # its first training seed
-    rec = rec[rec["twin"].isin(COMPARED)]   # before and after the edges
+    rec = rec[rec["twin"].isin(COMPARED)]   # each passage shape and the default
     twins, inputs = list(dict.fromkeys(rec["twin"])), list(dict.fromkeys(rec["input"]))
     fig, axes = plt.subplots(len(twins), len(inputs), figsize=(4 * len(inputs),
                                                                3.3 * len(twins)),
@@ -187,7 +190,7 @@ def figure(predictions: pd.DataFrame, path: Path) -> None:
             ax.set_title(f"{twin_name}, twin of {name}", fontsize=10)
         row[0].set_ylabel("true (HIT-SM segments)")
     fig.suptitle("HIT-SM rig, recommended pipeline trained on the twin only "
-                 "(segments of all twin seeds), before and after the Hertzian edges")
+                 "(segments of all twin seeds), for each passage shape and the default")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
 
@@ -252,10 +255,11 @@ INTRO = (
     "Input: one healthy recording (5.12 s at one speed). Test: every other recording of the "
     "rig, one-second segments (inner and outer faults of 2/5/8 degree arcs at 600/900/1200 "
     "rpm, healthy at the two other speeds). Goal: three-class balanced accuracy >= 0.9, every "
-    "class recall >= 0.8. Two twins of each input, side by side in one run from the same "
-    "draws: `point impacts` (one point impact per defect passage, `impact_edges = [0]`, the "
-    "default before) and `Hertzian edges` (the default: the load leaves over the entry edge "
-    "and comes back over the exit edge, w / v apart); `--twins` adds others. Each twin "
+    "class recall >= 0.8. Three twins of each input, side by side in one run from the same "
+    "draws: `point impacts` (one point impact per defect passage, `impact_edges = [0]`), "
+    "`Hertzian edges` (`[1]`: the load leaves over the entry edge and comes back over the "
+    "exit edge, w / v apart) and `both, drawn per row` (the default, "
+    "`{ choice = [0, 1] }`: the two bracket a real passage); `--twins` adds others. Each twin "
     "is drawn from three grid seeds (`ballpass twin --seed`): recalls and balanced accuracy "
     "are their means, `balanced_twin_seed_min`/`_max` the balanced accuracy's range over "
     "them, `training_seed_spread_max` the largest range over five training seeds of one twin. "
@@ -274,8 +278,8 @@ def main() -> None:
     parser.add_argument("--seeds", type=int, nargs="+", default=[0, 1, 2],
                         help="grid seeds of the twins (ballpass twin --seed)")
     parser.add_argument("--twins", nargs="+", choices=list(TWINS), default=list(COMPARED),
-                        help="the variants of the twin to compare (default: point impacts "
-                             "and the Hertzian edges)")
+                        help="the variants of the twin to compare (default: point impacts, "
+                             "the Hertzian edges and both drawn per row)")
     parser.add_argument("--page-only", action="store_true",
                         help="rebuild the page from the tables of an earlier run")
     args = parser.parse_args()

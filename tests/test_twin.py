@@ -459,10 +459,12 @@ def test_level_db_needs_a_machine():
 
 def test_impact_edges_is_zero_or_one(dataset):
     grid = read_grid(dataset[0]).as_dict()
-    for bad in ([0.5], {"uniform": [0.0, 1.0]}):
+    for bad in ([0.5], {"uniform": [0.0, 1.0]}, {"choice": [0.0, 0.5]}):
         grid["grid"]["impact_edges"] = bad
         with pytest.raises(ValueError, match="impact_edges must list 0 .* and/or 1"):
             read_grid(grid)
+    grid["grid"]["impact_edges"] = {"choice": [0, 1]}   # the twin's default: drawn per row
+    assert read_grid(grid).axes["impact_edges"].params == (0.0, 1.0)
 
 
 def test_twin_command(machine, tmp_path, capsys):

@@ -39,8 +39,8 @@ def test_summary_averages_over_twin_seeds():
 
 def test_each_twin_changes_its_lines_of_the_written_grid():
     """Every variant's axes have one line each in the grid the twin writes, and
-    variant() sets exactly those: the default twin is the grid as written, the
-    before-twin has point impacts. An axis the grid lacks is an error, not a silent
+    variant() sets exactly those: the default twin is the grid as written (both passage
+    shapes drawn per row), the others fix one. An axis the grid lacks is an error, not a silent
     no-op (planted: a misspelt axis)."""
     from ballpass.datasets.twin import _GRID_TEMPLATE, TWIN_DEFAULTS
 
@@ -48,13 +48,14 @@ def test_each_twin_changes_its_lines_of_the_written_grid():
         names="a", bearing="6205", fs=51_200.0, manifest='"m.csv"', duration_s=1.0,
         draws=2, seed=0, rpm="900", d=TWIN_DEFAULTS, resonance_hz=12_800.0, n_runs=8)
     assert bench.TWINS[bench.DEFAULT_TWIN] == {}
-    assert re.search(r"^impact_edges = \[1\]$", text, flags=re.M)
+    assert re.search(r"^impact_edges = \{ choice = \[0, 1\] \}$", text, flags=re.M)
     for lines in bench.TWINS.values():
         changed = bench.variant(text, lines)
         diff = set(changed.splitlines()) ^ set(text.splitlines())
         assert len(diff) == 2 * sum(v != re.search(rf"^{k} = (.*)$", text, re.M)[1]
                                     for k, v in lines.items())
     assert "impact_edges = [0]" in bench.variant(text, bench.TWINS["point impacts"])
+    assert "impact_edges = [1]" in bench.variant(text, bench.TWINS["Hertzian edges"])
     with pytest.raises(ValueError, match="0 lines of impact_edge,"):
         bench.variant(text, {"impact_edge": "[0]"})
 

@@ -665,8 +665,9 @@ def read_grid(source) -> Grid:
     ``level_db`` axis (required there, refused elsewhere) is the fault's RMS over the
     background's, dB; its optional axes (refused elsewhere) ``impact_spread``, the
     standard deviation of the logarithm of its impacts' sizes, ``impact_correlation``,
-    their lag-1 correlation, and ``impact_edges``, 0 or 1 (a list, not drawn): a defect
-    passage as one point impact or with its Hertzian entry and exit edges; healthy
+    their lag-1 correlation, and ``impact_edges``, 0 or 1 (a list, or drawn with
+    ``{ choice = [0, 1] }``): a defect passage as one point impact or with its
+    Hertzian entry and exit edges; healthy
     points multiply over none of them; one sensor.
 
     **Drawn axes.** Every numeric axis may instead be a distribution (see
@@ -786,9 +787,12 @@ def _machine_table(raw: dict, source, axes: dict) -> dict | None:
         raise ValueError("a twin's grid (with [machine]) needs grid.level_db, the fault's RMS "
                          "over the background's, dB, e.g. level_db = { uniform = [-10, 15] }")
     edges = axes.get("impact_edges", [0.0])
-    if isinstance(edges, Distribution) or any(v not in (0.0, 1.0) for v in edges):
+    values = edges.params if isinstance(edges, Distribution) and edges.kind == "choice" else (
+        None if isinstance(edges, Distribution) else edges)
+    if values is None or any(v not in (0.0, 1.0) for v in values):
         raise ValueError(f"grid.impact_edges must list 0 (a passage is one point impact) "
-                         f"and/or 1 (its Hertzian entry and exit edges), got {edges}")
+                         f"and/or 1 (its Hertzian entry and exit edges), or draw them with "
+                         f"{{ choice = [0, 1] }}; got {edges}")
     if len(axes.get("sensor", ["loaded"])) != 1:
         raise ValueError("a twin's grid has one sensor, the machine's accelerometer; "
                          f"grid.sensor has {len(axes['sensor'])}")

@@ -23,13 +23,15 @@ multiplied by a log-normal factor of its own (mean 1, log standard deviation
 ``impact_spread``, drawn per row: the random amplitudes of Antoni & Randall 2003; a ball
 does not strike a real spall the same way twice; their logarithms correlated from one
 impact to the next by ``impact_correlation``, 0 by default). With ``impact_edges = 1``
-(the default) a passage is what the ball goes through over a defect of width w at the
+a passage is what the ball goes through over a defect of width w at the
 rolling speed v: the load leaves over the entry edge and comes back over the exit edge,
 w / v later (the entry and exit of Sawalhi & Randall 2008), each edge as long as a ball
 pivoting on a sharp edge takes to lose or regain its Hertzian deflection
 (:func:`passage_times`, :func:`edge_kernel`); with 0, one point impact at the exit,
 split linearly between the two samples around its time (the twin before the axis).
-The train drives ``1 / A(z)``;
+The twin's grid draws one of the two per row: they bracket a real passage (the
+quasi-static edges put less energy high in the band than a real exit, the point impact
+is more impulsive than the rig's faults). The train drives ``1 / A(z)``;
 the result is scaled so that its RMS over the row is ``level_db`` above the RMS of the
 background, and a segment of a real healthy recording is added: one of the recordings
 whose speed is nearest the row's, and the segment's start, drawn from the row's seed.
@@ -85,7 +87,7 @@ TWIN_DEFAULTS = {
     "fault_angle_deg": (-60.0, 60.0),
     "level_db": (-10.0, 15.0),
     "impact_spread": (0.0, 1.0),
-    "impact_edges": 1,
+    "impact_edges": (0, 1),
     "impact_correlation": 0.0,
     "radial_load_n": (150.0, 1500.0),
     "slip": (0.005, 0.02),
@@ -488,9 +490,9 @@ def twin(manifest, rpm, out, *, duration_s: float = TWIN_DEFAULTS["duration_s"],
     learns the machine's path from the recordings (see the module docstring). Drawn per
     row, each range with its source in the file: fault width, outer-race fault angle,
     radial load, slip, ``level_db``, the fault's RMS over the background's, and
-    ``impact_spread``, the log standard deviation of the impacts' sizes; fixed:
-    ``impact_edges = [1]`` (a defect passage with its entry and exit edges) and
-    ``impact_correlation = [0]`` (independent sizes).
+    ``impact_spread``, the log standard deviation of the impacts' sizes, and
+    ``impact_edges``, a defect passage as one point impact or with its entry and
+    exit edges; fixed: ``impact_correlation = [0]`` (independent sizes).
 
     Parameters
     ----------
@@ -616,8 +618,10 @@ impact_spread = {{ uniform = [{d[impact_spread][0]:g}, {d[impact_spread][1]:g}] 
 # back over the exit edge, w / v apart (w the defect's width, v the rolling speed over
 # it: the entry and exit of Sawalhi & Randall, MSSP 2008), each edge lasting as long as
 # a ball pivoting on a sharp edge takes to lose or regain its Hertzian deflection; or one
-# point impact at the exit (0), as McFadden & Smith's train and the twin before the axis
-impact_edges = [{d[impact_edges]:g}]
+# point impact at the exit (0), as McFadden & Smith's train. The two bracket a real
+# passage: the quasi-static edges are smoother than a real exit (too little energy high
+# in the band), the point impact sharper (too impulsive); each row draws one of them
+impact_edges = {{ choice = [{d[impact_edges][0]:g}, {d[impact_edges][1]:g}] }}
 # lag-1 correlation of the logarithms of successive impacts' sizes: 0, independent (as
 # Antoni & Randall's model draws them); up to 1, a load or speed drifting over several
 # impacts. No published value: kept at 0 (correlated sizes brought the kurtosis of the
