@@ -164,33 +164,18 @@ def _contact_force(k, tau, delta, ddelta):
 
 
 @njit(cache=True, error_model="numpy", **_NO_RUNTIME)
-def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
-    """dy/dt at (t, y). The traction forces are first-order lags of the paper's
-    steady law (eq. 11-13): dF/dt = (mu(s) Q - F) u_r / L, L the relaxation length
-    (creep builds up over about a contact length of rolling, Johnson, Contact
-    Mechanics, sec. 8.2); a separated contact applies none and its traction decays.
-    Also writes the inner and outer normal contact loads of every ball (N) into
-    ``qi``/``qo``, the fault flags of every contact into ``flags`` (bit f set: fault f
-    holds the contact; column 0 outer, 1 inner) and, with ``want_exc``, the housing
-    acceleration seen by each sensor (m/s^2) into ``exc``."""
-    z = int(p[P_Z])
-    nd = 6 + 3 * z
-    rb, ri, ro = p[P_RB], p[P_RI], p[P_RO]
-    ki, ko, tau = p[P_KI], p[P_KO], p[P_TAU]
-    mb, jb = p[P_MB], p[P_JB]
+def _ring_loads(t, y, nd, p, sensors, exc, want_exc):
+    """Forces (N) and torques (N m) on the rings and the cage other than the balls':
+    the radial load, weights, drive coupling and friction torques (eqs. 15-18) and the
+    housing; with ``want_exc`` writes the housing's share of each sensor's acceleration
+    into ``exc``. ``nd``: index of the first rate in y. Returns (fxi, fyi, ti, fxo,
+    fyo, tc)."""
     g = p[P_G]
-    traction = p[P_TRACTION] != 0.0
-    w_bd, hd, ufloor, weps = p[P_WBD], p[P_HD], p[P_UFLOOR], p[P_WEPS]
-    has_faults = faults.shape[0] > 0
-    has_ball = _has_ball_faults(faults)
-    inv_relax = 1.0 / p[P_RELAX]
-    inv_mb = 1.0 / mb
-
-    xi, yi, thi = y[0], y[1], y[2]
-    xo, yo, thc = y[3], y[4], y[5]
-    vxi, vyi, wi = y[nd], y[nd + 1], y[nd + 2]
+    weps = p[P_WEPS]
+    thi = y[2]
+    xo, yo = y[3], y[4]
+    wi = y[nd + 2]
     vxo, vyo, wc = y[nd + 3], y[nd + 4], y[nd + 5]
-
     # inner race: radial load, weight, drive coupling, load and seal friction (eqs. 16-17)
     th_r, w_r = theta_ref(t, p)
     fxi = p[P_FR] + p[P_MI] * g
@@ -213,6 +198,71 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
     if want_exc:
         for s in range(sensors.shape[0]):
             exc[s] = (fxo_h * sensors[s, S_COS] + fyo_h * sensors[s, S_SIN]) / p[P_MO]
+    return fxi, fyi, ti, fxo, fyo, tc
+
+
+@njit(cache=True, error_model="numpy", **_NO_RUNTIME)
+def _traction_rate(vs, ur, q, f, w_bd, hd, inv_relax):
+    """dF/dt of a loaded contact's traction F (N): the lag towards mu(s) Q against the
+    sliding speed ``vs`` at rolling speed ``ur`` (m/s)."""
+    target = mu_slide_roll(abs(vs) / ur, w_bd, hd) * q
+    if vs > 0.0:
+        target = -target
+    return (target - f) * ur * inv_relax
+
+
+@njit(cache=True, error_model="numpy", **_NO_RUNTIME)
+def _sensor_share(exc, sensors, nx, ny, q, mo):
+    """Add an outer contact's load ``q`` (N, along (nx, ny)) to each sensor's housing
+    acceleration, weighted by its transmission factor."""
+    for s in range(sensors.shape[0]):
+        cos_rel = nx * sensors[s, S_COS] + ny * sensors[s, S_SIN]
+        kappa = sensors[s, S_ATT]
+        w = math.exp(-kappa * (1.0 - cos_rel)) if kappa != 0.0 else 1.0
+        exc[s] += w * q * cos_rel / mo
+
+
+@njit(cache=True, error_model="numpy", **_NO_RUNTIME)
+def _ring_rates(dydt, y, nd, p, fxi, fyi, ti, fxo, fyo, tc):
+    """Rates of the rings' and the cage's coordinates and velocities."""
+    for k in range(6):
+        dydt[k] = y[nd + k]
+    dydt[nd] = fxi / p[P_MI]
+    dydt[nd + 1] = fyi / p[P_MI]
+    dydt[nd + 2] = ti / p[P_JI]
+    dydt[nd + 3] = fxo / p[P_MO]
+    dydt[nd + 4] = fyo / p[P_MO]
+    dydt[nd + 5] = tc / p[P_JC]
+
+
+@njit(cache=True, error_model="numpy", **_NO_RUNTIME)
+def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
+    """dy/dt at (t, y). The traction forces are first-order lags of the paper's
+    steady law (eq. 11-13): dF/dt = (mu(s) Q - F) u_r / L, L the relaxation length
+    (creep builds up over about a contact length of rolling, Johnson, Contact
+    Mechanics, sec. 8.2); a separated contact applies none and its traction decays.
+    Also writes the inner and outer normal contact loads of every ball (N) into
+    ``qi``/``qo``, the fault flags of every contact into ``flags`` (bit f set: fault f
+    holds the contact; column 0 outer, 1 inner) and, with ``want_exc``, the housing
+    acceleration seen by each sensor (m/s^2) into ``exc``."""
+    z = int(p[P_Z])
+    nd = 6 + 3 * z
+    rb, ri, ro = p[P_RB], p[P_RI], p[P_RO]
+    ki, ko, tau = p[P_KI], p[P_KO], p[P_TAU]
+    mb, jb = p[P_MB], p[P_JB]
+    g = p[P_G]
+    traction = p[P_TRACTION] != 0.0
+    w_bd, hd, ufloor = p[P_WBD], p[P_HD], p[P_UFLOOR]
+    has_faults = faults.shape[0] > 0
+    has_ball = _has_ball_faults(faults)
+    inv_relax = 1.0 / p[P_RELAX]
+    inv_mb = 1.0 / mb
+
+    xi, yi, thi = y[0], y[1], y[2]
+    xo, yo, thc = y[3], y[4], y[5]
+    vxi, vyi, wi = y[nd], y[nd + 1], y[nd + 2]
+    vxo, vyo, wc = y[nd + 3], y[nd + 4], y[nd + 5]
+    fxi, fyi, ti, fxo, fyo, tc = _ring_loads(t, y, nd, p, sensors, exc, want_exc)
 
     # inner race rotation (for its notches), the pocket of ball 0 and the pitch step
     ci = math.cos(thi) if has_faults else 1.0
@@ -265,11 +315,8 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
                 vs = vt - wb * rb - wi * ri
                 om = vt * inv_dist
                 ur = 0.5 * (abs((wi - om) * ri) + abs((wb - om) * rb)) + ufloor
-                target = mu_slide_roll(abs(vs) / ur, w_bd, hd) * q
-                if vs > 0.0:
-                    target = -target
                 f = y[2 * nd + j]
-                dydt[2 * nd + j] = (target - f) * ur * inv_relax
+                dydt[2 * nd + j] = _traction_rate(vs, ur, q, f, w_bd, hd, inv_relax)
                 fxb -= f * ny
                 fyb += f * nx
                 fxi += f * ny
@@ -306,21 +353,14 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
             fxo += q * nx
             fyo += q * ny
             if want_exc:
-                for s in range(sensors.shape[0]):
-                    cos_rel = nx * sensors[s, S_COS] + ny * sensors[s, S_SIN]
-                    kappa = sensors[s, S_ATT]
-                    w = math.exp(-kappa * (1.0 - cos_rel)) if kappa != 0.0 else 1.0
-                    exc[s] += w * q * cos_rel / p[P_MO]
+                _sensor_share(exc, sensors, nx, ny, q, p[P_MO])
             if traction:
                 vt = -rvx * ny + rvy * nx
                 vs = vt + wb * rb
                 om = vt * inv_dist
                 ur = 0.5 * (abs(om * ro) + abs((wb - om) * rb)) + ufloor
-                target = mu_slide_roll(abs(vs) / ur, w_bd, hd) * q
-                if vs > 0.0:
-                    target = -target
                 f = y[2 * nd + z + j]
-                dydt[2 * nd + z + j] = (target - f) * ur * inv_relax
+                dydt[2 * nd + z + j] = _traction_rate(vs, ur, q, f, w_bd, hd, inv_relax)
                 fxb -= f * ny
                 fyb += f * nx
                 fxo += f * ny
@@ -356,14 +396,7 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
     if not traction:
         for k in range(2 * nd, dydt.shape[0]):
             dydt[k] = 0.0
-    for k in range(6):
-        dydt[k] = y[nd + k]
-    dydt[nd] = fxi / p[P_MI]
-    dydt[nd + 1] = fyi / p[P_MI]
-    dydt[nd + 2] = ti / p[P_JI]
-    dydt[nd + 3] = fxo / p[P_MO]
-    dydt[nd + 4] = fyo / p[P_MO]
-    dydt[nd + 5] = tc / p[P_JC]
+    _ring_rates(dydt, y, nd, p, fxi, fyi, ti, fxo, fyo, tc)
 
 
 @njit(cache=True, error_model="numpy", **_NO_RUNTIME)
