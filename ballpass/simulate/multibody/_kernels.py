@@ -236,6 +236,27 @@ def _ring_rates(dydt, y, nd, p, fxi, fyi, ti, fxo, fyo, tc):
 
 
 @njit(cache=True, error_model="numpy", **_NO_RUNTIME)
+def _pocket(xb, yb, vxb, vyb, uc, us, wc, p):
+    """Signed tangential force (N, positive ahead of the pocket centre) of the cage
+    pocket on a ball at (xb, yb) moving at (vxb, vyb), its pocket centre in direction
+    (uc, us), the cage turning at wc: a linear spring-damper beyond the pocket
+    clearance; 0 when not touching. The ball's angle from its pocket centre is an
+    atan2 only when the sine test cannot rule out a touch."""
+    r2 = xb * xb + yb * yb
+    dot = xb * uc + yb * us
+    cr = yb * uc - xb * us
+    if dot <= 0.0 or cr * cr >= p[P_POCK_SIN2] * r2:
+        off = p[P_RP] * math.atan2(cr, dot)
+        if abs(off) > p[P_EPOCK]:
+            sgn = 1.0 if off > 0.0 else -1.0
+            doff = p[P_RP] * ((xb * vyb - yb * vxb) / r2 - wc)
+            fp = p[P_KPOCK] * (abs(off) - p[P_EPOCK]) + p[P_CPOCK] * doff * sgn
+            if fp > 0.0:
+                return sgn * fp
+    return 0.0
+
+
+@njit(cache=True, error_model="numpy", **_NO_RUNTIME)
 def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
     """dy/dt at (t, y). The traction forces are first-order lags of the paper's
     steady law (eq. 11-13): dF/dt = (mu(s) Q - F) u_r / L, L the relaxation length
@@ -369,23 +390,13 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
         flags[j, 0] = fl_o
         flags[j, 1] = fl_i
         # ---- cage pocket (tangential, linear spring-damper beyond the pocket clearance)
-        # the ball's angle from its pocket centre (direction (uc, us)), an atan2 only
-        # when the sine test cannot rule out a touch
-        r2 = xb * xb + yb * yb
-        dot = xb * uc + yb * us
-        cr = yb * uc - xb * us
-        if dot <= 0.0 or cr * cr >= p[P_POCK_SIN2] * r2:
-            off = p[P_RP] * math.atan2(cr, dot)
-            if abs(off) > p[P_EPOCK]:
-                r = math.sqrt(r2)
-                sgn = 1.0 if off > 0.0 else -1.0
-                doff = p[P_RP] * ((xb * vyb - yb * vxb) / r2 - wc)
-                fp = p[P_KPOCK] * (abs(off) - p[P_EPOCK]) + p[P_CPOCK] * doff * sgn
-                if fp > 0.0:
-                    fs = sgn * fp * p[P_RP] / r
-                    fxb += fs * yb / r
-                    fyb -= fs * xb / r
-                    tc += sgn * fp * p[P_RP]
+        fp = _pocket(xb, yb, vxb, vyb, uc, us, wc, p)
+        if fp != 0.0:
+            r = math.sqrt(xb * xb + yb * yb)
+            fs = fp * p[P_RP] / r
+            fxb += fs * yb / r
+            fyb -= fs * xb / r
+            tc += fp * p[P_RP]
         uc, us = uc * pc - us * ps, uc * ps + us * pc
         dydt[b] = vxb
         dydt[b + 1] = vyb
@@ -409,24 +420,25 @@ QS_DRAG_FLOOR = 1e-2
 @njit(cache=True, error_model="numpy", **_NO_RUNTIME)
 def rhs_qs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
     """dy/dt at (t, y) with massless-limit (quasi-static) balls: as :func:`rhs`, but
-    each ball's radial motion carries no inertia. State (``nq = 6 + 2 Z``)::
+    each ball's radial motion carries no inertia. State (``nq = 6 + 3 Z`` coordinates
+    as in :func:`rhs`, then ``6 + 2 Z`` rates)::
 
-        y = [x_i, y_i, th_i, x_o, y_o, th_c, psi_0, th_0, psi_1, th_1, ..., (nq rates),
-             r_0 .. r_Z-1, F_inner_0 .. F_inner_Z-1, F_outer_0 .. F_outer_Z-1]
+        y = [x_i, y_i, th_i, x_o, y_o, th_c, x_0, y_0, th_0, ...,
+             (rates of the first six), u_0, w_0, u_1, w_1, ...,
+             F_inner_0 .. F_inner_Z-1, F_outer_0 .. F_outer_Z-1]
 
-    psi_j and r_j place ball j at r (cos psi, sin psi) about the housing centre.
-    Both contacts are Hertz springs with Kramer's damping, Q = K delta^1.5 + tau k
-    d(delta)/dt with k = 1.5 K delta^0.5; with m_b r'' dropped the radial balance
-    Q_i (n_i.e) - Q_o (n_o.e) + m_b psi'^2 r + m_b g e_x + (traction along e) = 0 is
-    linear in r' (each Q is affine in it): r' solves it over the contacts that press
-    (a contact whose Q would pull is left out and the balance solved again), and the
-    ball relaxes onto its elastic balance with the time tau. The tangential motion
-    (m_b (r psi'' + 2 r' psi') = the tangential force) and the spin stay dynamic.
-    Ball faults are not modelled (refused by ``build``)."""
+    u_j is ball j's speed across its radius e = (x, y) / r (about the housing centre),
+    w_j its spin. Both contacts are Hertz springs with Kramer's damping, Q = K
+    delta^1.5 + tau k d(delta)/dt with k = 1.5 K delta^0.5; with m_b r'' dropped,
+    the radial balance Q_i (n_i.e) - Q_o (n_o.e) + m_b u^2 / r + m_b g e_x +
+    (traction along e) = 0 is linear in r' (each Q is affine in it): r' solves it over
+    the contacts that press (a contact whose Q would pull is left out and the balance
+    solved again), and the ball relaxes onto its elastic balance with the time tau.
+    The tangential motion (m_b (u' + r' u / r) = the tangential force) and the spin
+    stay dynamic. Ball faults are not modelled (refused by ``build``)."""
     z = int(p[P_Z])
-    nq = 6 + 2 * z
-    i_r = 2 * nq
-    i_f = 2 * nq + z
+    nq = 6 + 3 * z
+    i_f = nq + 6 + 2 * z
     rb, ri, ro = p[P_RB], p[P_RI], p[P_RO]
     ki, ko, tau = p[P_KI], p[P_KO], p[P_TAU]
     mb, jb = p[P_MB], p[P_JB]
@@ -436,6 +448,7 @@ def rhs_qs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
     has_faults = faults.shape[0] > 0
     inv_relax = 1.0 / p[P_RELAX]
     floor = QS_DRAG_FLOOR * mb / tau if tau > 0.0 else QS_DRAG_FLOOR * mb * 1e5
+    inv_mb, inv_jb = 1.0 / mb, 1.0 / jb
 
     xi, yi, thi = y[0], y[1], y[2]
     xo, yo, thc = y[3], y[4], y[5]
@@ -444,21 +457,26 @@ def rhs_qs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
     fxi, fyi, ti, fxo, fyo, tc = _ring_loads(t, y, nq, p, sensors, exc, want_exc)
     ci = math.cos(thi) if has_faults else 1.0
     si = math.sin(thi) if has_faults else 0.0
-    pitch = TWO_PI / z
+    uc, us = math.cos(thc), math.sin(thc)
+    pc, ps = p[P_PITCH_COS], p[P_PITCH_SIN]
     for j in range(z):
-        b = 6 + 2 * j
-        psi, dpsi, wb = y[b], y[nq + b], y[nq + b + 1]
-        r = y[i_r + j]
-        ex, ey = math.cos(psi), math.sin(psi)
-        xb, yb = r * ex, r * ey
-        vtx, vty = -r * dpsi * ey, r * dpsi * ex   # the ball's velocity but r' e
+        b = 6 + 3 * j
+        v = nq + 6 + 2 * j
+        xb, yb = y[b], y[b + 1]
+        u, wb = y[v], y[v + 1]
+        r = math.sqrt(xb * xb + yb * yb)
+        inv_r = 1.0 / r
+        ex, ey = xb * inv_r, yb * inv_r
+        vtx, vty = -u * ey, u * ex   # the ball's velocity but r' e
         # ---- geometry of both contacts (normals from the race centres to the ball)
         dx, dy = xb - xi, yb - yi
         dist_i = math.sqrt(dx * dx + dy * dy)
-        nix, niy = dx / dist_i, dy / dist_i
+        inv_i = 1.0 / dist_i
+        nix, niy = dx * inv_i, dy * inv_i
         dx, dy = xb - xo, yb - yo
         dist_o = math.sqrt(dx * dx + dy * dy)
-        nox, noy = dx / dist_o, dy / dist_o
+        inv_o = 1.0 / dist_o
+        nox, noy = dx * inv_o, dy * inv_o
         drop_i, drop_o, fl_i, fl_o = 0.0, 0.0, 0, 0
         if has_faults:
             drop_i, fl_i = _race_drop(faults, KIND_INNER, nix * ci + niy * si,
@@ -483,7 +501,7 @@ def rhs_qs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
         f_i, f_o = y[i_f + j], y[i_f + z + j]
         tr_i = f_i * (nix * ey - niy * ex) if traction else 0.0
         tr_o = f_o * (nox * ey - noy * ex) if traction else 0.0
-        load = mb * (dpsi * dpsi * r + g * ex)
+        load = mb * (u * u * inv_r + g * ex)
         on_i, on_o = d_i > 0.0, d_o > 0.0
         rdot, q_i, q_o = 0.0, 0.0, 0.0
         for _ in range(3):
@@ -517,7 +535,7 @@ def rhs_qs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
             if traction:
                 rvx, rvy = vbx - vxi, vby - vyi
                 vt = -rvx * niy + rvy * nix
-                om = vt / dist_i
+                om = vt * inv_i
                 ur = 0.5 * (abs((wi - om) * ri) + abs((wb - om) * rb)) + ufloor
                 dydt[i_f + j] = _traction_rate(vt - wb * rb - wi * ri, ur, q_i, f_i, w_bd,
                                                hd, inv_relax)
@@ -539,7 +557,7 @@ def rhs_qs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
             if traction:
                 rvx, rvy = vbx - vxo, vby - vyo
                 vt = -rvx * noy + rvy * nox
-                om = vt / dist_o
+                om = vt * inv_o
                 ur = 0.5 * (abs(om * ro) + abs((wb - om) * rb)) + ufloor
                 dydt[i_f + z + j] = _traction_rate(vt + wb * rb, ur, q_o, f_o, w_bd, hd,
                                                    inv_relax)
@@ -550,20 +568,17 @@ def rhs_qs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
                 tb += rb * f_o
         elif traction:
             dydt[i_f + z + j] = -f_o * 1e3 * ufloor * inv_relax
-        # ---- cage pocket (tangential spring-damper beyond the pocket clearance)
         ft = fyb * ex - fxb * ey
-        off = p[P_RP] * wrap_pi(psi - thc - pitch * j)
-        if abs(off) > p[P_EPOCK]:
-            sgn = 1.0 if off > 0.0 else -1.0
-            fp = p[P_KPOCK] * (abs(off) - p[P_EPOCK]) + p[P_CPOCK] * p[P_RP] * (dpsi - wc) * sgn
-            if fp > 0.0:
-                ft -= sgn * fp * p[P_RP] / r
-                tc += sgn * fp * p[P_RP]
-        dydt[b] = dpsi
-        dydt[b + 1] = wb
-        dydt[nq + b] = (ft / mb - 2.0 * rdot * dpsi) / r
-        dydt[nq + b + 1] = tb / jb
-        dydt[i_r + j] = rdot
+        fp = _pocket(xb, yb, vtx, vty, uc, us, wc, p)
+        if fp != 0.0:
+            ft -= fp * p[P_RP] * inv_r
+            tc += fp * p[P_RP]
+        uc, us = uc * pc - us * ps, uc * ps + us * pc
+        dydt[b] = vbx
+        dydt[b + 1] = vby
+        dydt[b + 2] = wb
+        dydt[v] = ft * inv_mb - rdot * u * inv_r
+        dydt[v + 1] = tb * inv_jb
     if not traction:
         for k in range(i_f, dydt.shape[0]):
             dydt[k] = 0.0
@@ -776,14 +791,8 @@ def integrate_fixed(method, qs, y, p, faults, sensors, t0, dt_pre, dt, n_pre, n_
                 for j in range(z):
                     rec_qi[rec_i, j] = qi[j]
                     rec_qo[rec_i, j] = qo[j]
-                    if qs:
-                        r = y[2 * (6 + 2 * z) + j]
-                        psi = y[6 + 2 * j]
-                        rec_ang[rec_i, j] = math.atan2(r * math.sin(psi) - y[4],
-                                                       r * math.cos(psi) - y[3])
-                    else:
-                        b = 6 + 3 * j
-                        rec_ang[rec_i, j] = math.atan2(y[b + 1] - y[4], y[b] - y[3])
+                    b = 6 + 3 * j
+                    rec_ang[rec_i, j] = math.atan2(y[b + 1] - y[4], y[b] - y[3])
                 rec_disp[rec_i, 0] = y[0]
                 rec_disp[rec_i, 1] = y[1]
                 rec_disp[rec_i, 2] = y[3]
