@@ -90,6 +90,25 @@ off by 0.46), and gets the centrifugal balance right at a third of RK4's evaluat
 but at equal cost its short-horizon loads and sensor signal are less accurate than
 RK4's (order 3 against 4, and the explicit traction-slip oscillation): RK4 stays the
 default (benchmarks/multibody_speed.py, work-precision).
+Quasi-static balls (``MultibodyParameters(balls="quasistatic")``, :func:`._kernels.rhs_qs`):
+the massless limit of each ball's radial motion. A loaded ball's radial natural
+frequency (~100 kHz) lies far above the output band, so its radius follows the rings:
+with m_b r'' dropped, the radial balance of its two contacts (each Hertz with Kramer's
+damping, so affine in the ball's radial speed r'), its centrifugal load m_b u^2 / r
+(u its speed across the radius), its weight and the radial parts of its tractions is
+solved for r' over the contacts that press; the ball relaxes onto its elastic balance
+with Kramer's time tau (the dynamic ball's slow root, 1.17 / tau on the 6205, becomes
+1 / tau; its fast root, ~7e5 1/s, is gone). Clearance, separation (a contact carries
+exactly 0) and the notch profiles are as for dynamic balls; the orbit (traction, pocket,
+weight) and the spin stay dynamic, and so do the cage and the slip: the traction-slip
+oscillation (~3.4e5 rad/s) then sets the step with the housing's mode, at omega_max dt
+<= :data:`QS_OMEGA_DT` (two steps per 5.2 us interval on the 6205). Where it applies:
+scenes whose signal does not hinge on a ball's inertia. On the healthy 6205 it is the
+dynamic model (contact loads within 2e-6 over 2 ms, the centrifugal balance exact,
+the cage within 1e-6) at 0.85x its cost; with a race notch the ball no longer strikes
+the trailing corner with its mass, and the envelope's fault lines come out about 0.7 of
+the dynamic balls' (RMS and cage speed agree); ball faults are refused
+(benchmarks/multibody_speed.py). The default stays "dynamic".
 The run starts from the quasi-static equilibrium with the centrifugal load and rolling
 kinematics and settles for ``settle_s`` before t = 0, so the cage finds its pockets and
 its slip before the record begins.
@@ -126,8 +145,8 @@ from .._shared import SimulationUnstableError, add_noise, check_finite, to_outpu
 from ..result import FaultCrossings, GroundTruth, SimulationResult
 from . import _kernels as K
 
-__all__ = ["MULTIBODY", "MultibodyParameters", "MultibodySystem", "build", "integrate",
-           "SOLVERS", "mu_traction", "static_equilibrium"]
+__all__ = ["BALLS", "MULTIBODY", "MultibodyParameters", "MultibodySystem", "build",
+           "integrate", "SOLVERS", "mu_traction", "static_equilibrium"]
 
 SOLVERS = {
     "rk4": "classical Runge-Kutta, fixed step (default: omega_max dt = 1.0 and "
@@ -981,7 +1000,9 @@ MULTIBODY = Model(
     # the kernels ran without numba's reference counting; 57-93x in earlier runs; 225x
     # before the trig-free contact tests and the step from the linearised spectrum).
     # The Rosenbrock-W solver is not the default: 63x against RK4's 72x side by side
-    # (docs/results/multibody_speed.md), less accurate on faulted scenes
+    # (docs/results/multibody_speed.md), less accurate on faulted scenes. Nor are
+    # quasi-static balls (MultibodyParameters(balls="quasistatic"), about 0.85x the
+    # dynamic balls' cost at their default step): their fault lines are weaker
     relative_cost=76.0,
     solvers=tuple(SOLVERS),
     fixed_step_solvers=tuple(SOLVERS),
