@@ -90,6 +90,25 @@ off by 0.46), and gets the centrifugal balance right at a third of RK4's evaluat
 but at equal cost its short-horizon loads and sensor signal are less accurate than
 RK4's (order 3 against 4, and the explicit traction-slip oscillation): RK4 stays the
 default (benchmarks/multibody_speed.py, work-precision).
+Quasi-static balls (``MultibodyParameters(balls="quasistatic")``, :func:`._kernels.rhs_qs`):
+the massless limit of each ball's radial motion. A loaded ball's radial natural
+frequency (~100 kHz) lies far above the output band, so its radius follows the rings:
+with m_b r'' dropped, the radial balance of its two contacts (each Hertz with Kramer's
+damping, so affine in the ball's radial speed r'), its centrifugal load m_b u^2 / r
+(u its speed across the radius), its weight and the radial parts of its tractions is
+solved for r' over the contacts that press; the ball relaxes onto its elastic balance
+with Kramer's time tau (the dynamic ball's slow root, 1.17 / tau on the 6205, becomes
+1 / tau; its fast root, ~7e5 1/s, is gone). Clearance, separation (a contact carries
+exactly 0) and the notch profiles are as for dynamic balls; the orbit (traction, pocket,
+weight) and the spin stay dynamic, and so do the cage and the slip: the traction-slip
+oscillation (~3.4e5 rad/s) then sets the step with the housing's mode, at omega_max dt
+<= :data:`QS_OMEGA_DT` (two steps per 5.2 us interval on the 6205). Where it applies:
+scenes whose signal does not hinge on a ball's inertia. On the healthy 6205 it is the
+dynamic model (contact loads within 2e-6 over 2 ms, the centrifugal balance exact,
+the cage within 1e-6) at 0.85x its cost; with a race notch the ball no longer strikes
+the trailing corner with its mass, and the envelope's fault lines come out about 0.7 of
+the dynamic balls' (RMS and cage speed agree); ball faults are refused
+(benchmarks/multibody_speed.py). The default stays "dynamic".
 The run starts from the quasi-static equilibrium with the centrifugal load and rolling
 kinematics and settles for ``settle_s`` before t = 0, so the cage finds its pockets and
 its slip before the record begins.
@@ -126,8 +145,8 @@ from .._shared import SimulationUnstableError, add_noise, check_finite, to_outpu
 from ..result import FaultCrossings, GroundTruth, SimulationResult
 from . import _kernels as K
 
-__all__ = ["MULTIBODY", "MultibodyParameters", "MultibodySystem", "build", "integrate",
-           "SOLVERS", "mu_traction", "static_equilibrium"]
+__all__ = ["BALLS", "MULTIBODY", "MultibodyParameters", "MultibodySystem", "build",
+           "integrate", "SOLVERS", "mu_traction", "static_equilibrium"]
 
 SOLVERS = {
     "rk4": "classical Runge-Kutta, fixed step (default: omega_max dt = 1.0 and "
@@ -140,6 +159,20 @@ SOLVERS = {
 #: and lambda_max dt (the overdamped contact's fast root, RK4 stable to 2.79); see the
 #: module docstring and benchmarks/multibody_speed.py
 OMEGA_DT, LAMBDA_DT = 1.0, 1.8
+#: how the balls move (``MultibodyParameters(balls=...)``)
+BALLS = {
+    "dynamic": "every ball a rigid body: centre (x, y) and spin with their inertia",
+    "quasistatic": "massless-limit balls: each ball's radial position follows the rings "
+                   "through its contacts' force balance (centrifugal load kept); its "
+                   "orbit and spin stay dynamic",
+}
+#: default step limit with quasi-static balls: omega_max dt (the traction-slip
+#: oscillation, then the fastest mode; RK4 is stable to 2.83 but at omega_max dt ~ 2.3,
+#: one step per 5.2 us interval on the 6205, it damps that mode by a quarter per step
+#: and the sensor signal of a healthy 6205 moves by 1e-2; at 1.15, two steps, it is as
+#: accurate as the dynamic balls' default: benchmarks/multibody_speed.py)
+QS_OMEGA_DT = 1.2
+
 #: default step limit of the Rosenbrock-W solver: omega_max dt (its explicit part,
 #: everything but the balls' contact blocks, is stable to 1.5 on the imaginary axis)
 ROSW_OMEGA_DT = 1.5
@@ -217,6 +250,14 @@ class MultibodyParameters:
         ER-16K at 110 N) would set an explicit step of 0.35 us.
     settle_s : float
         Time simulated before t = 0 from the quasi-static start, s. Default 0.005.
+    balls : {"dynamic", "quasistatic"}
+        How the balls move (:data:`BALLS`). "dynamic" (default): every ball a rigid
+        body. "quasistatic": the massless limit of each ball's radial motion (its
+        radial natural frequency, ~100 kHz, lies far above the output band): the
+        ball's radius follows the rings through the balance of its two damped Hertz
+        contacts, its centrifugal load and weight, relaxing onto it with Kramer's time;
+        its orbit (against traction and pocket) and spin stay dynamic. It removes the
+        stiff radial contact modes from the step. Not for ball faults (refused).
 
     Examples
     --------
@@ -255,13 +296,17 @@ class MultibodyParameters:
     contact_stiffness: tuple | None = None
     relaxation_length: float | None = None
     settle_s: float = 0.005
+    balls: str = "dynamic"
 
     def __post_init__(self) -> None:
         positive = ("shaft_mass", "housing_mass", "housing_stiffness", "density",
                     "cage_mass", "pocket_stiffness")
         for f in fields(self):
             value = getattr(self, f.name)
-            if f.name in ("traction", "friction_torques"):
+            if f.name == "balls":
+                if value not in BALLS:
+                    raise ValueError(f"balls must be one of {sorted(BALLS)}, got {value!r}")
+            elif f.name in ("traction", "friction_torques"):
                 if not isinstance(value, bool):
                     raise TypeError(f"{f.name} must be a bool, got {value!r}")
             elif f.name == "contact_stiffness":
@@ -341,8 +386,9 @@ class MultibodySystem:
         Kernel parameters (indices ``P_*`` of :mod:`._kernels`).
     faults : ndarray (n_faults, N_FCOLS)
     sensors : ndarray (n_sensors, N_SCOLS)
-    y0 : ndarray (2 (6 + 3 Z) + 2 Z,)
-        Quasi-static start at t = -settle_s.
+    y0 : ndarray (2 (6 + 3 Z) + 2 Z,) or, with quasi-static balls, (12 + 7 Z,)
+        Quasi-static start at t = -settle_s (layouts: :func:`._kernels.rhs` and
+        :func:`._kernels.rhs_qs`).
     t0 : float
         Start time, s (= -settle_s).
     omega_max : float
@@ -363,37 +409,46 @@ class MultibodySystem:
 
     @property
     def n_state(self) -> int:
-        """2 (6 + 3 Z) + 2 Z (coordinates, rates, traction forces)."""
+        """2 (6 + 3 Z) + 2 Z (coordinates, rates, traction forces); with quasi-static
+        balls 12 + 7 Z (6 + 2 Z rates: no radial ball speeds)."""
         return self.y0.shape[0]
 
+    @property
+    def quasistatic(self) -> bool:
+        """Whether the balls are quasi-static (``params.balls``)."""
+        return self.params.balls == "quasistatic"
+
     def default_dt(self, solver: str = "rk4") -> float:
-        """Default step of ``solver``, s: for RK4 omega_max dt = OMEGA_DT and
-        lambda_max dt = LAMBDA_DT; for ROS34PW2, whose contact blocks are implicit,
-        omega_max dt = ROSW_OMEGA_DT only."""
+        """Default step of ``solver``, s: for RK4 omega_max dt = OMEGA_DT (QS_OMEGA_DT
+        with quasi-static balls) and lambda_max dt = LAMBDA_DT; for ROS34PW2, whose
+        contact blocks are implicit, omega_max dt = ROSW_OMEGA_DT only."""
         if solver == "rosw":
             return ROSW_OMEGA_DT / self.omega_max
-        return min(OMEGA_DT / self.omega_max, LAMBDA_DT / self.lambda_max)
+        limit = QS_OMEGA_DT if self.quasistatic else OMEGA_DT
+        return min(limit / self.omega_max, LAMBDA_DT / self.lambda_max)
+
+    def _eval(self, t: float, y: np.ndarray):
+        z = int(self.p[K.P_Z])
+        out, qi, qo = np.empty(self.n_state), np.zeros(z), np.zeros(z)
+        K._f(self.quasistatic, float(t), np.ascontiguousarray(y, dtype=np.float64), out,
+             self.p, self.faults, self.sensors, qi, qo, np.zeros((z, 2), dtype=np.int64),
+             np.zeros(len(self.scene.sensors)), False)
+        return out, qi, qo
 
     def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
         """dy/dt at (t, y), callable from Python (e.g. by scipy's ``solve_ivp``)."""
-        z = int(self.p[K.P_Z])
-        out = np.empty(self.n_state)
-        K.rhs(float(t), np.ascontiguousarray(y, dtype=np.float64), out, self.p, self.faults,
-              self.sensors, np.zeros(z), np.zeros(z), np.zeros((z, 2), dtype=np.int64),
-              np.zeros(len(self.scene.sensors)), False)
-        return out
+        return self._eval(t, y)[0]
 
     def contact_loads(self, t: float, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Inner and outer normal contact load of every ball at (t, y), N."""
-        z = int(self.p[K.P_Z])
-        qi, qo = np.zeros(z), np.zeros(z)
-        K.rhs(float(t), np.ascontiguousarray(y, dtype=np.float64), np.empty(self.n_state),
-              self.p, self.faults, self.sensors, qi, qo, np.zeros((z, 2), dtype=np.int64),
-              np.zeros(len(self.scene.sensors)), False)
-        return qi, qo
+        return self._eval(t, y)[1:]
 
     def energy(self, t: float, y: np.ndarray) -> float:
-        """Mechanical energy of the conservative part (see :func:`._kernels.energy`), J."""
+        """Mechanical energy of the conservative part (see :func:`._kernels.energy`), J;
+        dynamic balls only."""
+        if self.quasistatic:
+            raise ValueError("energy needs balls='dynamic' (massless-limit balls carry no "
+                             "radial kinetic energy)")
         return float(K.energy(float(t), np.ascontiguousarray(y, dtype=np.float64), self.p))
 
 
@@ -699,11 +754,15 @@ def build(scene: Scene, params: MultibodyParameters | None = None) -> MultibodyS
     p[K.P_UFLOOR] = 1e-3 * max(w0 * ri, 1e-3)
     p[K.P_WEPS] = 1.0
 
+    quasistatic = prm.balls == "quasistatic"
+    if quasistatic and any(f.kind == "ball" for f in scene.faults):
+        raise ValueError("balls='quasistatic' does not take ball faults (a ball notch's "
+                         "impacts need the ball's inertia): use balls='dynamic'")
     t0 = -prm.settle_s
     start_angle = -om * prm.settle_s
     eq = static_equilibrium(scene, prm, cage_angle=start_angle, orbit_rate=om)
     nd = 6 + 3 * z
-    y0 = np.zeros(2 * nd + 2 * z)
+    y0 = np.zeros(2 * nd + 2 * z - (z if quasistatic else 0))
     load_on_outer = np.zeros(2)
     e = np.stack((np.cos(eq["angles"]), np.sin(eq["angles"])), axis=1)
     for j in range(z):
@@ -719,6 +778,11 @@ def build(scene: Scene, params: MultibodyParameters | None = None) -> MultibodyS
         bj = 6 + 3 * j
         r = eq["radius"][j]
         y0[bj:bj + 2] = xo + r * e[j]
+        if quasistatic:  # speed across the radius, spin
+            vj = nd + 6 + 2 * j
+            y0[vj] = om * math.hypot(*y0[bj:bj + 2])
+            y0[vj + 1] = -om * r / rb
+            continue
         y0[nd + bj:nd + bj + 2] = om * r * np.array([-e[j, 1], e[j, 0]])
         y0[nd + bj + 2] = -om * r / rb
     # ball faults are located at t = 0 (spin phase): the spin turned -om r/rb * settle
@@ -735,12 +799,14 @@ def build(scene: Scene, params: MultibodyParameters | None = None) -> MultibodyS
     kl_i = 1.5 * ki ** (2.0 / 3.0) * qmax ** (1.0 / 3.0)
     qmo = float(eq["q_outer"].max())
     kl_o = 1.5 * ko ** (2.0 / 3.0) * max(qmo, 1e-3) ** (1.0 / 3.0)
-    omega = max(math.sqrt((kl_i + kl_o) / mb),
+    # a quasi-static ball has no radial mode: it relaxes onto its balance at 1 / tau
+    omega = max(0.0 if quasistatic else math.sqrt((kl_i + kl_o) / mb),
                 math.sqrt((prm.housing_stiffness + z * kl_o) / prm.housing_mass),
                 math.sqrt(z * kl_i / prm.shaft_mass),
                 math.sqrt(prm.pocket_stiffness / mb),
                 math.sqrt(prm.pocket_stiffness * rp * rp / max(p[K.P_JC], 1e-30) * z))
-    damp = prm.damping_time * (kl_i + kl_o) / mb
+    damp = 1.0 / max(prm.damping_time, 1e-30) if quasistatic else \
+        prm.damping_time * (kl_i + kl_o) / mb
     u_roll = max(0.5 * (w0 - om) * ri + 0.5 * om * rp, p[K.P_UFLOOR])
     slope = 22.28 + 0.1 * 181.46  # d mu_bd / ds at s = 0 (eq. 13)
     reduced = mb / 3.5            # 1/m + rb^2/J_b = 3.5/m for a solid sphere
@@ -811,6 +877,9 @@ def integrate(system: MultibodySystem, *, h_out: float, n_out: int, stride: int,
     """
     if solver not in SOLVERS:
         raise ValueError(f"solver must be one of {sorted(SOLVERS)}, got {solver!r}")
+    qs = system.quasistatic
+    if qs and solver != "rk4":
+        raise ValueError(f"solver must be 'rk4' with balls='quasistatic', got {solver!r}")
     z = int(system.p[K.P_Z])
     dt_req = system.default_dt(solver) if dt is None else float(dt)
     n_sub = max(1, math.ceil(h_out / dt_req - 1e-9))
@@ -838,13 +907,13 @@ def integrate(system: MultibodySystem, *, h_out: float, n_out: int, stride: int,
     cross_edge = np.zeros(cap, dtype=np.int64)
     y = system.y0.copy()
     nd = 6 + 3 * z
-    scale = np.concatenate((np.full(nd, 1.0), np.full(nd, 1e3 * (1.0 + w_max)),
+    scale = np.concatenate((np.full(nd, 1.0), np.full(nd - (z if qs else 0), 1e3 * (1.0 + w_max)),
                             np.full(2 * z, 1e3 * (1.0 + scene_load(system)))))
     bound = 1e6 * scale
     t_wall = time.perf_counter()
     method = K.METHOD_RK4 if solver == "rk4" else K.METHOD_ROSW
     status, n_steps, t_fail, n_cross = K.integrate_fixed(
-        method, y, system.p, system.faults, system.sensors, t0, step_pre, step, n_pre, n_sub,
+        method, qs, y, system.p, system.faults, system.sensors, t0, step_pre, step, n_pre, n_sub,
         n_out + 1, stride, exc, rec_qi, rec_qo, rec_ang, rec_disp, rec_cage, cross_t, cross_f,
         cross_e, cross_edge, bound)
     wall = time.perf_counter() - t_wall
@@ -931,7 +1000,9 @@ MULTIBODY = Model(
     # the kernels ran without numba's reference counting; 57-93x in earlier runs; 225x
     # before the trig-free contact tests and the step from the linearised spectrum).
     # The Rosenbrock-W solver is not the default: 63x against RK4's 72x side by side
-    # (docs/results/multibody_speed.md), less accurate on faulted scenes
+    # (docs/results/multibody_speed.md), less accurate on faulted scenes. Nor are
+    # quasi-static balls (MultibodyParameters(balls="quasistatic"), about 0.85x the
+    # dynamic balls' cost at their default step): their fault lines are weaker
     relative_cost=76.0,
     solvers=tuple(SOLVERS),
     fixed_step_solvers=tuple(SOLVERS),
