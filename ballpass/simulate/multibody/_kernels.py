@@ -165,10 +165,7 @@ def _contact_force(k, tau, delta, ddelta):
 
 @njit(cache=True, error_model="numpy", **_NO_RUNTIME)
 def _ring_loads(t, y, nd, p, sensors, exc, want_exc):
-    """Forces (N) and torques (N m) on the rings and the cage other than the balls'
-    (:func:`rhs_qs`; :func:`rhs` keeps its own inline copy of this and the next three
-    helpers: called from it they made the dynamic balls' step 2 % slower, measured
-    side by side):
+    """Forces (N) and torques (N m) on the rings and the cage other than the balls':
     the radial load, weights, drive coupling and friction torques (eqs. 15-18) and the
     housing; with ``want_exc`` writes the housing's share of each sensor's acceleration
     into ``exc``. ``nd``: index of the first rate in y. Returns (fxi, fyi, ti, fxo,
@@ -276,7 +273,7 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
     mb, jb = p[P_MB], p[P_JB]
     g = p[P_G]
     traction = p[P_TRACTION] != 0.0
-    w_bd, hd, ufloor, weps = p[P_WBD], p[P_HD], p[P_UFLOOR], p[P_WEPS]
+    w_bd, hd, ufloor = p[P_WBD], p[P_HD], p[P_UFLOOR]
     has_faults = faults.shape[0] > 0
     has_ball = _has_ball_faults(faults)
     inv_relax = 1.0 / p[P_RELAX]
@@ -286,29 +283,7 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
     xo, yo, thc = y[3], y[4], y[5]
     vxi, vyi, wi = y[nd], y[nd + 1], y[nd + 2]
     vxo, vyo, wc = y[nd + 3], y[nd + 4], y[nd + 5]
-
-    # inner race: radial load, weight, drive coupling, load and seal friction (eqs. 16-17)
-    th_r, w_r = theta_ref(t, p)
-    fxi = p[P_FR] + p[P_MI] * g
-    fyi = 0.0
-    ti = p[P_KD] * (th_r - thi) + p[P_CD] * (w_r - wi) - p[P_TLOAD] * math.tanh(wi / weps)
-    # outer race in the housing
-    fxo_h = -p[P_KH] * xo - p[P_CH] * vxo
-    fyo_h = -p[P_KH] * yo - p[P_CH] * vyo
-    fxo = fxo_h + p[P_MO] * g
-    fyo = fyo_h
-    # cage: lubricant drag of the rolling set (eq. 18), opposing its rotation
-    tc = 0.0
-    if p[P_LUB] != 0.0:
-        vn = p[P_NU] * abs(wi) * 30.0 / math.pi
-        if vn >= 2000.0:
-            t_lub = 1e-7 * p[P_F0] * vn ** (2.0 / 3.0) * p[P_DPMM] ** 3 * 1e-3
-        else:
-            t_lub = 160e-7 * p[P_F0] * p[P_DPMM] ** 3 * 1e-3
-        tc -= t_lub * math.tanh(wc / weps)
-    if want_exc:
-        for s in range(sensors.shape[0]):
-            exc[s] = (fxo_h * sensors[s, S_COS] + fyo_h * sensors[s, S_SIN]) / p[P_MO]
+    fxi, fyi, ti, fxo, fyo, tc = _ring_loads(t, y, nd, p, sensors, exc, want_exc)
 
     # inner race rotation (for its notches), the pocket of ball 0 and the pitch step
     ci = math.cos(thi) if has_faults else 1.0
@@ -361,11 +336,8 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
                 vs = vt - wb * rb - wi * ri
                 om = vt * inv_dist
                 ur = 0.5 * (abs((wi - om) * ri) + abs((wb - om) * rb)) + ufloor
-                target = mu_slide_roll(abs(vs) / ur, w_bd, hd) * q
-                if vs > 0.0:
-                    target = -target
                 f = y[2 * nd + j]
-                dydt[2 * nd + j] = (target - f) * ur * inv_relax
+                dydt[2 * nd + j] = _traction_rate(vs, ur, q, f, w_bd, hd, inv_relax)
                 fxb -= f * ny
                 fyb += f * nx
                 fxi += f * ny
@@ -402,21 +374,14 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
             fxo += q * nx
             fyo += q * ny
             if want_exc:
-                for s in range(sensors.shape[0]):
-                    cos_rel = nx * sensors[s, S_COS] + ny * sensors[s, S_SIN]
-                    kappa = sensors[s, S_ATT]
-                    w = math.exp(-kappa * (1.0 - cos_rel)) if kappa != 0.0 else 1.0
-                    exc[s] += w * q * cos_rel / p[P_MO]
+                _sensor_share(exc, sensors, nx, ny, q, p[P_MO])
             if traction:
                 vt = -rvx * ny + rvy * nx
                 vs = vt + wb * rb
                 om = vt * inv_dist
                 ur = 0.5 * (abs(om * ro) + abs((wb - om) * rb)) + ufloor
-                target = mu_slide_roll(abs(vs) / ur, w_bd, hd) * q
-                if vs > 0.0:
-                    target = -target
                 f = y[2 * nd + z + j]
-                dydt[2 * nd + z + j] = (target - f) * ur * inv_relax
+                dydt[2 * nd + z + j] = _traction_rate(vs, ur, q, f, w_bd, hd, inv_relax)
                 fxb -= f * ny
                 fyb += f * nx
                 fxo += f * ny
@@ -425,23 +390,13 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
         flags[j, 0] = fl_o
         flags[j, 1] = fl_i
         # ---- cage pocket (tangential, linear spring-damper beyond the pocket clearance)
-        # the ball's angle from its pocket centre (direction (uc, us)), an atan2 only
-        # when the sine test cannot rule out a touch
-        r2 = xb * xb + yb * yb
-        dot = xb * uc + yb * us
-        cr = yb * uc - xb * us
-        if dot <= 0.0 or cr * cr >= p[P_POCK_SIN2] * r2:
-            off = p[P_RP] * math.atan2(cr, dot)
-            if abs(off) > p[P_EPOCK]:
-                r = math.sqrt(r2)
-                sgn = 1.0 if off > 0.0 else -1.0
-                doff = p[P_RP] * ((xb * vyb - yb * vxb) / r2 - wc)
-                fp = p[P_KPOCK] * (abs(off) - p[P_EPOCK]) + p[P_CPOCK] * doff * sgn
-                if fp > 0.0:
-                    fs = sgn * fp * p[P_RP] / r
-                    fxb += fs * yb / r
-                    fyb -= fs * xb / r
-                    tc += sgn * fp * p[P_RP]
+        fp = _pocket(xb, yb, vxb, vyb, uc, us, wc, p)
+        if fp != 0.0:
+            r = math.sqrt(xb * xb + yb * yb)
+            fs = fp * p[P_RP] / r
+            fxb += fs * yb / r
+            fyb -= fs * xb / r
+            tc += fp * p[P_RP]
         uc, us = uc * pc - us * ps, uc * ps + us * pc
         dydt[b] = vxb
         dydt[b + 1] = vyb
@@ -452,14 +407,7 @@ def rhs(t, y, dydt, p, faults, sensors, qi, qo, flags, exc, want_exc):
     if not traction:
         for k in range(2 * nd, dydt.shape[0]):
             dydt[k] = 0.0
-    for k in range(6):
-        dydt[k] = y[nd + k]
-    dydt[nd] = fxi / p[P_MI]
-    dydt[nd + 1] = fyi / p[P_MI]
-    dydt[nd + 2] = ti / p[P_JI]
-    dydt[nd + 3] = fxo / p[P_MO]
-    dydt[nd + 4] = fyo / p[P_MO]
-    dydt[nd + 5] = tc / p[P_JC]
+    _ring_rates(dydt, y, nd, p, fxi, fyi, ti, fxo, fyo, tc)
 
 
 #: radial drag floor of a quasi-static ball, in units of m_b / tau (N s/m): it bounds
