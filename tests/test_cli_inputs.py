@@ -63,7 +63,8 @@ def test_plain_recordings_say_what_they_lack(recordings, capsys, monkeypatch):
     scipy.io.savemat("two.mat", {"acc": np.zeros(10), "tacho": np.ones(10)})
     cases = [
         (["inner.npy", "--rpm", "1797", "--bearing", "6205"],
-         "inner.npy: a .npy file does not state its sampling rate; give fs (Hz)"),
+         "inner.npy: a .npy file does not state its sampling rate; give fs > 0 Hz "
+         "(--fs / fs)"),
         (["inner.wav", "--fs", "48000", "--rpm", "1797", "--bearing", "6205"],
          "inner.wav: fs 48000 Hz given, but the file states 12000 Hz"),
         (["inner.csv", *PLAIN[:2]],

@@ -65,6 +65,9 @@ RECORDING_SUFFIXES = (".npz", ".parquet", ".csv", ".npy", ".wav", ".mat")
 _DELIMITERS = (",", ";", "\t")
 #: Rows of a plain CSV file that :func:`check_recording` reads.
 _PROBE_ROWS = 16
+#: What a file that does not state its rate asks for: the rate, as the command-line
+#: option and as the manifest column.
+_GIVE_FS = "give fs > 0 Hz (--fs / fs)"
 
 
 class RecordingMismatch(ValueError):
@@ -169,7 +172,7 @@ def read_recording(path, *, fs=None, column=None, variable=None, channel=None,
     >>> read_recording(path)
     Traceback (most recent call last):
         ...
-    ValueError: rec.npy: a .npy file does not state its sampling rate; give fs (Hz)
+    ValueError: rec.npy: a .npy file does not state its sampling rate; give fs > 0 Hz (--fs / fs)
     """
     return _recordings(Path(path), fs, column, variable, channel, mat_channel, probe=False)
 
@@ -246,7 +249,7 @@ def _recordings(path: Path, fs, column, variable, channel, mat_channel: str, pro
     if stated is None:
         if fs is None:
             raise ValueError(f"{path.name}: a {suffix} file does not state its sampling "
-                             "rate; give fs (Hz)")
+                             "rate; " + _GIVE_FS)
         stated = fs
     _check_rate(path, fs, stated)
     picked = _pick(path, names, rows, channel)
@@ -348,7 +351,7 @@ def _read_plain_csv(path: Path, fs, column, nrows: int | None = None) -> Recordi
         raise RecordingMismatch(f"{path.name}: column {column!r} is not numeric")
     if fs is None:
         raise ValueError(f"{path.name}: a plain .csv file does not state its sampling rate; "
-                         "give fs (Hz)")
+                         + _GIVE_FS)
     return Recording(_samples(frame[column].to_numpy(), f"{path.name}: column {column!r}"),
                      fs, path.stem, column)
 
@@ -436,7 +439,7 @@ def _read_mat(path: Path, fs, variable, channel, mat_channel: str, probe: bool =
         raise RecordingMismatch(f"{path.name}: no variable {variable!r}")
     if fs is None:
         raise ValueError(f"{path.name}: a generic .mat variable does not state its sampling "
-                         "rate; give fs (Hz)")
+                         "rate; " + _GIVE_FS)
     return Recording(_samples(data[variable], f"{path.name}: {variable}"), fs, path.stem,
                      str(variable))
 
@@ -463,5 +466,5 @@ def _probe_mat(path: Path, names, fs, variable, channel: str) -> list[str] | Non
         raise RecordingMismatch(f"{path.name}: no variable {variable!r}; it holds {held}")
     if fs is None:
         raise ValueError(f"{path.name}: a generic .mat variable does not state its sampling "
-                         "rate; give fs (Hz)")
+                         "rate; " + _GIVE_FS)
     return [str(variable)]
