@@ -81,17 +81,18 @@ def test_plain_recordings_say_what_they_lack(recordings, capsys, monkeypatch):
 
 
 def test_diagnose_and_features_read_a_manifest(recordings, capsys):
-    """The manifest's rows are diagnosed with their labels, and the feature table keeps
-    its group and label columns."""
+    """The manifest's rows are diagnosed with their labels, and the tables keep their
+    group and label columns and name each row's recording file (not the manifest)."""
     manifest = str(recordings / "recordings.csv")
-    assert main(["diagnose", manifest, "--quiet"]) == 0
+    assert main(["diagnose", manifest, "--quiet", "--out", str(recordings / "v.csv")]) == 0
     lines = capsys.readouterr().out.splitlines()
     assert lines[0].startswith("inner (label: inner): inner (grade Y)")
     assert any(line.startswith("outer (label: outer): outer (grade Y)") for line in lines)
+    assert pd.read_csv(recordings / "v.csv")["file"].tolist() == ["inner.npy", "outer.npy"]
     assert main(["features", manifest, "--quiet", "--out", str(recordings / "f.csv")]) == 0
     table = pd.read_csv(recordings / "f.csv")
-    assert table[["source", "label", "group"]].values.tolist() == [
-        ["inner", "inner", "ir"], ["outer", "outer", "or"]]
+    assert table[["source", "label", "group", "file"]].values.tolist() == [
+        ["inner", "inner", "ir", "inner.npy"], ["outer", "outer", "or", "outer.npy"]]
     assert (table["bpfi_1"] > table["bpfo_1"]).tolist() == [True, False]
 
 

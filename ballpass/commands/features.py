@@ -190,12 +190,13 @@ def _from_recordings(path: Path, args) -> list[Signal]:
         names.append(f"{rec.name}_{rec.channel}" if named else rec.name)
     repeated = Counter(names)
     signals = []
-    for name, (_, rec) in zip(names, found, strict=True):
+    for name, (file, rec) in zip(names, found, strict=True):
         meta = rec.columns()
         if repeated[name] > 1 and "manifest_row" in meta:  # one file on several rows
             name = f"{name}_row{meta['manifest_row']}"
         columns = {k: meta[k] for k in _RECORDING_COLUMNS
                    if k in meta and not (k == "label" and meta[k] == "unknown")}
+        columns["file"] = Path(file).name  # the recording's, not the manifest's or folder's
         rpm = args.rpm if args.rpm is not None else rec.rpm
         signals.append(Signal(name, rec.accel, rec.fs, args.bearing or rec.bearing, rpm,
                               columns))
