@@ -78,10 +78,17 @@ def kernels_cached() -> bool:
 
 
 def compile_notice() -> None:
-    """Say once, on stderr, that the first simulation compiles the kernels."""
+    """Say once, on stderr, that the first simulation compiles the kernels.
+
+    Said before the work starts, so the library's own once-per-process notice on the
+    ``"ballpass"`` logger (at the first simulation) is marked as said: one line, not two.
+    """
     if not kernels_cached():
         print("ballpass: compiling the simulator's kernels (first run after an install or "
               "an update; about a minute, cached afterwards)", file=sys.stderr, flush=True)
+        from .. import simulate
+
+        simulate._compile_checked = True
 
 
 def format_records(records: list[dict], fmt: str, *, headers: dict | None = None,
