@@ -51,6 +51,9 @@ def workdir(tmp_path, monkeypatch, dataset):
     (tmp_path / "broken").mkdir()
     shutil.copy(tmp_path / "truncated.mat", tmp_path / "broken")
     (tmp_path / "ds").symlink_to(dataset)
+    # a machine's healthy recording (2 s of noise) and its manifest, for `twin`
+    np.save(tmp_path / "healthy.npy", np.random.default_rng(0).standard_normal(24_000))
+    (tmp_path / "healthy.csv").write_text("path,fs,rpm,bearing\nhealthy.npy,12000,900,6205\n")
     monkeypatch.chdir(tmp_path)
     return tmp_path
 
@@ -129,7 +132,22 @@ CASES = [
     (["models", "--bearing", "6203"], "give --needs too"),
     (["simulate", "--needs", "gear_mesh", "--out", "x.npz"], "has no gear pair"),
     (["info", "nowhere"], "nowhere"),
-    (["generate", "missing.toml", "--out", "new"], "missing.toml"),
+    (["generate", "missing.toml", "--out", "new"], "GRID missing.toml: no such file"),
+    (["generate", "nowhere/grid", "--out", "new"], "GRID nowhere/grid: no such file"),
+    # found walking the README as a new user: the refusal named an argument of the
+    # library (rpm, draws, duration_s, seed, manifest) or none, not the one typed
+    (["twin", "healthy.csv", "--rpm", "-5", "--out", "t.toml"],
+     "--rpm must be shaft speeds > 0"),
+    (["twin", "healthy.csv", "--rpm", "900", "--draws", "0", "--out", "t.toml"],
+     "--draws must be an int >= 1"),
+    (["twin", "healthy.csv", "--rpm", "900", "--duration", "10", "--out", "t.toml"],
+     "--duration 10 s is longer than the shortest recording (2 s)"),
+    (["twin", "healthy.csv", "--rpm", "900", "--seed", "-1", "--out", "t.toml"],
+     "--seed must be an int >= 0"),
+    (["twin", "missing.csv", "--rpm", "900", "--out", "t.toml"], "MANIFEST: no such file"),
+    (["twin", "healthy.csv", "--rpm", "900", "--out", "t.txt"], "--out must end in .toml"),
+    (["diagnose", "sig.npz", "--baseline", "missing.npz"],
+     "--baseline: no such file or folder: missing.npz"),
 ]
 
 
