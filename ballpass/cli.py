@@ -30,11 +30,21 @@ SUBCOMMANDS = {
 }
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse's parser (its sub-parsers are of the same class), but a usage error is
+    one line, as every other bad input: what is wrong and where the options are listed,
+    without argparse's usage block before it."""
+
+    def error(self, message: str):
+        self.exit(2, f"{self.prog}: error: {message} (`{self.prog} --help` lists the "
+                     "options)\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
     """Return the top-level parser with every available subcommand."""
     from . import __version__
 
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="ballpass",
         description="Rolling-element-bearing vibration: simulate, analyse, diagnose, generate.",
     )

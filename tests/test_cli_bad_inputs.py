@@ -179,6 +179,23 @@ def test_jobs_is_refused_naming_the_option(capsys, argv):
     assert "argument --jobs" in err and "-1 (every core)" in err and "n_jobs" not in err
 
 
+@pytest.mark.parametrize(("argv", "says"), [
+    (["models", "--needs"], "argument --needs: expected at least one argument"),
+    (["features", "x.npz", "--channel", "XX"], "argument --channel: invalid choice: 'XX'"),
+    (["simulate", "--rpm", "fast"], "argument --rpm"),
+    (["generate"], "the following arguments are required: GRID"),
+    (["nonsense"], "argument COMMAND: invalid choice: 'nonsense'"),
+])
+def test_a_usage_error_is_one_line_too(capsys, argv, says):
+    """argparse printed its usage block before the error line: three to seven lines,
+    where the README promises one (found walking the README as a new user)."""
+    with pytest.raises(SystemExit) as exit_:
+        main(argv)
+    assert exit_.value.code == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and says in err and "--help` lists the options" in err, err
+
+
 def test_models_prints_nothing_before_refusing(capsys):
     """The table is not printed ahead of an error about the scene of --needs."""
     assert main(["models", "--needs", "envelope", "--bearing", "nope"]) == 2
