@@ -164,9 +164,11 @@ def run(args) -> int:
         with pd.option_context("display.width", 140, "display.max_rows", 200):
             print(result.table.drop(columns="optimistic").round(3).to_string(index=False))
     if interrupted:
-        print(f"\ninterrupted: partial report of {result.info['pairs_done']} of "
-              f"{result.info['pairs_planned']} split/model pairs: {paths['markdown']}; run the "
-              "same command again to resume", file=sys.stderr)
+        # one line, as generate's: ballpass <command>: interrupted; how far it got
+        print(f"ballpass benchmark: interrupted; partial report of "
+              f"{result.info['pairs_done']} of {result.info['pairs_planned']} split/model "
+              f"pairs: {paths['markdown']}; run the same command again to resume",
+              file=sys.stderr)
         return 130
     print(f"\nreport: {paths['markdown']}")
     return 0
