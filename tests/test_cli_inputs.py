@@ -96,6 +96,24 @@ def test_diagnose_and_features_read_a_manifest(recordings, capsys):
     assert (table["bpfi_1"] > table["bpfo_1"]).tolist() == [True, False]
 
 
+def test_a_folder_of_logger_mat_files_reads_as_its_files_do(recordings, capsys):
+    """A folder of .mat files that are not CWRU/MFPT (one variable each, as the HIT-SM
+    rig's): with --fs, every file is diagnosed as it is alone; without, one line says
+    what is missing. The folder skipped every such file as 'neither CWRU nor MFPT'."""
+    folder = recordings / "logger"
+    folder.mkdir()
+    scipy.io.savemat(folder / "a.mat", {"acc": _crop("IR021_0")})
+    scipy.io.savemat(folder / "b.mat", {"vib": _crop("OR021at6_0")})
+    assert main(["diagnose", str(folder), *PLAIN]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0].startswith("a: inner (grade Y)")
+    assert any(line.startswith("b: outer (grade Y)") for line in lines)
+    with pytest.warns(UserWarning, match="skipped a.mat: a generic .mat variable does not "
+                                         r"state its sampling rate; give fs > 0 Hz \(--fs"):
+        assert main(["diagnose", str(folder), *PLAIN[2:]]) == 2
+    assert "none of its .mat files could be read" in capsys.readouterr().err
+
+
 def test_a_manifest_ignores_options_it_states_per_row(recordings, capsys):
     with pytest.warns(UserWarning, match=r"recordings.csv is a manifest, which states --fs per "
                                          "row: ignored for it"):

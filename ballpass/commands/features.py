@@ -40,7 +40,8 @@ inputs:
                       label, variable, column, channel, group, load (docs/datasets.md).
                       Rows whose file cannot be read are skipped with a warning.
   DIR                 a dataset folder with _manifest.json (`ballpass generate`), or a
-                      folder of .mat recordings (unreadable ones skipped with a warning)
+                      folder of .mat recordings, each read as alone (a logger's with --fs;
+                      unreadable ones skipped with a warning)
 
 columns: source, channel, segment, start_s, fs, bearing, rpm, label (when known), the
 demodulation band chosen by the kurtogram (band_lo_hz, band_hi_hz, kurtogram_sk), the
@@ -82,7 +83,7 @@ def add_input_arguments(p: argparse.ArgumentParser,
         metavar="INPUT",
         help="recording (.csv/.npy/.wav/.mat, or .npz/.parquet from `ballpass simulate`), "
         "manifest table (.csv/.parquet with a path column) listing recordings, folder of "
-        "CWRU/MFPT .mat files, or dataset folder",
+        ".mat recordings (CWRU/MFPT; any other with --fs), or dataset folder",
     )
     p.add_argument(
         "--fs",

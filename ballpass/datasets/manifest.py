@@ -398,8 +398,9 @@ def read_recordings(source, *, fs=None, column=None, variable=None, channel: str
 
     * a manifest (:func:`is_manifest`): its rows (:func:`manifest_records`); ``fs``,
       ``column`` and ``variable`` are then the table's, per row;
-    * a folder: its ``.mat`` recordings (CWRU or MFPT; unreadable ones skipped with a
-      warning);
+    * a folder: its ``.mat`` recordings, each read as a single file is (CWRU, MFPT, or
+      with ``fs`` a logger's file of one variable or of ``variable``); unreadable ones
+      skipped with a warning;
     * a file: its recording(s) (:func:`ballpass.datasets.recordings.read_recording`).
 
     Parameters
@@ -423,8 +424,7 @@ def read_recordings(source, *, fs=None, column=None, variable=None, channel: str
     >>> [(p.name, rec.fs) for p, rec in read_recordings(path, fs=12_000)]
     [('rec.npy', 12000.0)]
     """
-    from .real import read_all, read_mat
-    from .recordings import from_real
+    from .real import read_all
 
     path = Path(source)
     if is_manifest(path):
@@ -442,11 +442,14 @@ def read_recordings(source, *, fs=None, column=None, variable=None, channel: str
                            if p.suffix.lower() in RECORDING_SUFFIXES)
             hint = (f"; give its signal files as inputs ({path / '*'}{Path(files[0]).suffix})"
                     if files else "")
-            raise ValueError(f"{path} is a folder without manifest.json or .mat files: "
+            raise ValueError(f"{path} is a folder without _manifest.json or .mat files: "
                              f"neither a dataset nor a folder of recordings{hint}")
-        found = read_all(path, lambda p: from_real(read_mat(p, channel=channel, fs=fs)))
+        # each file as a single one is read: CWRU, MFPT, or (with fs) any logger's .mat
+        found = read_all(path, lambda p: read_recording(p, fs=fs, variable=variable,
+                                                        mat_channel=channel))
         if not found:
-            raise ValueError(f"{path}: none of its .mat files could be read")
-        return found
+            raise ValueError(f"{path}: none of its .mat files could be read (the warnings "
+                             "above say why)")
+        return [(file, rec) for file, recs in found for rec in recs]
     return [(path, rec) for rec in read_recording(path, fs=fs, column=column,
                                                   variable=variable, mat_channel=channel)]
