@@ -93,6 +93,15 @@ def test_diagnose_and_features_read_a_manifest(recordings, capsys):
     table = pd.read_csv(recordings / "f.csv")
     assert table[["source", "label", "group", "file"]].values.tolist() == [
         ["inner", "inner", "ir", "inner.npy"], ["outer", "outer", "or", "outer.npy"]]
+    # two rigs' files of one name stay two: the path as the manifest gives it
+    (recordings / "rig2").mkdir()
+    (recordings / "rig2" / "inner.npy").write_bytes((recordings / "inner.npy").read_bytes())
+    pd.DataFrame({"path": ["inner.npy", "rig2/inner.npy"], "fs": 12_000, "rpm": 1797,
+                  "bearing": "6205"}).to_csv(recordings / "rigs.csv", index=False)
+    assert main(["features", str(recordings / "rigs.csv"), "--quiet", "--out",
+                 str(recordings / "g.csv")]) == 0
+    assert pd.read_csv(recordings / "g.csv")["file"].tolist() == ["inner.npy",
+                                                                  "rig2/inner.npy"]
     assert (table["bpfi_1"] > table["bpfo_1"]).tolist() == [True, False]
 
 

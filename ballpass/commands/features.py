@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import math
 import numbers
+import os
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -197,7 +198,10 @@ def _from_recordings(path: Path, args) -> list[Signal]:
             name = f"{name}_row{meta['manifest_row']}"
         columns = {k: meta[k] for k in _RECORDING_COLUMNS
                    if k in meta and not (k == "label" and meta[k] == "unknown")}
-        columns["file"] = Path(file).name  # the recording's, not the manifest's or folder's
+        # the recording's file, not the manifest's or the folder's name: as the manifest's
+        # path column gives it (rig1/a.wav and rig2/a.wav are two), else its name
+        columns["file"] = (os.path.relpath(file, path.parent) if "manifest_row" in meta
+                           else Path(file).name)
         rpm = args.rpm if args.rpm is not None else rec.rpm
         signals.append(Signal(name, rec.accel, rec.fs, args.bearing or rec.bearing, rpm,
                               columns))
