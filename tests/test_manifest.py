@@ -262,6 +262,22 @@ def test_spreadsheet_csv_files_with_a_byte_order_mark(folder, ir021):
     np.testing.assert_array_equal(X[0], ir021[:12_000])
 
 
+@pytest.mark.parametrize("sep", [";", "\t"])
+def test_a_spreadsheets_manifest_with_semicolons_and_capitals(folder, ir021, sep):
+    """A spreadsheet in a locale with decimal commas saves CSV with semicolons, and people
+    write `Path`, `FS`: such a table was read as a signal file ('3 numeric columns (fs,
+    rpm, bearing)'). It is the manifest it is, read as the comma one is."""
+    path = folder / "semi.csv"
+    table = pd.DataFrame([BASE | {"path": "rec.npy"}])
+    table.rename(columns=str.capitalize).rename(columns={"Fs": "FS"}).to_csv(
+        path, index=False, sep=sep)
+    assert path.read_text().startswith(f"FS{sep}Rpm{sep}")
+    assert is_manifest(path)
+    X, meta = load_manifest(path)
+    np.testing.assert_array_equal(X[0], ir021[:12_000])
+    assert meta["label"].tolist() == ["inner", "inner"] and set(meta["rpm"]) == {1797}
+
+
 def test_a_manifest_is_told_from_a_signal_table(folder):
     path = _manifest(folder, [BASE | {"path": "rec.npy"}])
     assert is_manifest(path)

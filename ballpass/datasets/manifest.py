@@ -56,7 +56,7 @@ from pathlib import Path
 
 from .._validation import check_segment
 from ..features._validation import check_fs
-from .recordings import Recording, RecordingMismatch, check_recording, read_recording
+from .recordings import _DELIMITERS, Recording, RecordingMismatch, check_recording, read_recording
 
 __all__ = ["LABELS", "REQUIRED", "OPTIONAL", "is_manifest", "read_manifest",
            "manifest_records", "load_manifest", "read_recordings"]
@@ -87,14 +87,26 @@ def is_manifest(path) -> bool:
         return False
     try:
         if path.suffix.lower() == ".csv":
-            with open(path, newline="", encoding="utf-8-sig") as fh:
-                first = next((line for line in fh if not line.startswith("#")), "")
-            return "path" in (name.strip().strip('"') for name in first.split(","))
+            return "path" in _csv_header(path)[1]
         import pyarrow.parquet as pq
 
-        return "path" in pq.read_schema(path).names
+        return "path" in (_column_name(name) for name in pq.read_schema(path).names)
     except (OSError, UnicodeDecodeError, ValueError):
         return False  # not a table: the signal readers say what is wrong
+
+
+def _column_name(name) -> str:
+    """A manifest's column as ballpass names it: ``Path``, ``FS `` and ``fs`` are one."""
+    return str(name).strip().strip('"').lower()
+
+
+def _csv_header(path: Path) -> tuple[str, list[str]]:
+    """The delimiter of a CSV table (comma, semicolon or tab, as for a plain CSV
+    recording: spreadsheets in many locales write semicolons) and its column names."""
+    with open(path, newline="", encoding="utf-8-sig") as fh:
+        first = next((line for line in fh if line.strip() and not line.startswith("#")), "")
+    sep = next((d for d in _DELIMITERS if d in first), ",")
+    return sep, [_column_name(name) for name in first.split(sep)]
 
 
 def _where(source: str, i: int, row) -> str:
@@ -180,13 +192,13 @@ def read_manifest(manifest, *, require_label: bool = False):
             raise ValueError(f"{path.name}: a manifest must be a .csv or .parquet table")
         try:
             table = (pd.read_parquet(path) if path.suffix.lower() == ".parquet"
-                     else pd.read_csv(path, comment="#", dtype=str, skipinitialspace=True,
-                                      encoding="utf-8-sig"))
+                     else pd.read_csv(path, sep=_csv_header(path)[0], comment="#", dtype=str,
+                                      skipinitialspace=True, encoding="utf-8-sig"))
         except (ValueError, OSError) as exc:
             reason = str(exc).splitlines()[0][:120] if str(exc) else type(exc).__name__
             raise ValueError(f"{path.name}: not a readable manifest table ({reason})") from None
         folder, source = path.parent, path.name
-    table = table.rename(columns=lambda c: str(c).strip())
+    table = table.rename(columns=_column_name)
     needed = REQUIRED + (("label",) if require_label else ())
     missing = [c for c in needed if c not in table.columns]
     if missing:
