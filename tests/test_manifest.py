@@ -135,7 +135,11 @@ def test_label_is_required_only_where_results_are_scored(folder):
                            "ball, got 'cracked'"),
     ({"fs": -5}, r"row 2 \(rec.npy\): fs \(Hz\) must be a finite number > 0, got '-5'"),
     ({"rpm": "fast"}, r"row 2 \(rec.npy\): rpm must be a finite number > 0, got 'fast'"),
-    ({"bearing": None}, r"row 2 \(rec.npy\): no bearing given"),
+    ({"bearing": None}, r"row 2 \(rec.npy\): no bearing given \(bearing: a name `ballpass "
+                        r"bearings` lists\)"),
+    # an empty cell said "no fs given", not what it needs
+    ({"fs": None, "rpm": " "}, r"row 2 \(rec.npy\): no fs, rpm given \(fs: sampling rate, "
+                               r"Hz > 0; rpm: shaft speed, rev/min > 0\)"),
 ])
 def test_a_bad_row_is_named_before_any_file_is_read(folder, change, message):
     """Row 1 names a file that does not exist: the table is checked whole before any

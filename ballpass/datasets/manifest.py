@@ -68,6 +68,10 @@ OPTIONAL = ("label", "variable", "column", "channel", "group", "load")
 #: Labels a manifest may give.
 LABELS = ("healthy", "inner", "outer", "ball")
 _TABLE_SUFFIXES = (".csv", ".parquet")
+#: What each needed column holds, for the message about an empty cell.
+_NEEDS = {"path": "the recording's file", "fs": "sampling rate, Hz > 0",
+          "rpm": "shaft speed, rev/min > 0", "bearing": "a name `ballpass bearings` lists",
+          "label": ", ".join(LABELS)}
 
 
 def is_manifest(path) -> bool:
@@ -211,7 +215,8 @@ def read_manifest(manifest, *, require_label: bool = False):
         where = _where(source, i, raw)
         absent = [c for c in needed if not _given(raw.get(c))]
         if absent:
-            raise ValueError(f"{where}: no {', '.join(absent)} given")
+            raise ValueError(f"{where}: no {', '.join(absent)} given ("
+                             + "; ".join(f"{c}: {_NEEDS[c]}" for c in absent) + ")")
         try:
             bearing = Bearing.catalog(str(raw["bearing"]).strip()).name
         except ValueError as exc:
