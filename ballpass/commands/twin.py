@@ -45,31 +45,23 @@ def add_parser(subparsers) -> None:
     p.set_defaults(func=run)
 
 
-#: The arguments of :func:`ballpass.datasets.twin.twin` that a refusal names first, and
-#: the command's names for them.
-_OPTIONS = {"rpm": "--rpm", "draws": "--draws", "duration_s": "--duration", "seed": "--seed",
-            "manifest": "MANIFEST"}
-
-
-def _as_typed(message: str) -> str:
-    """``message`` of a refusal with its leading argument named as on the command line."""
-    name, sep, rest = message.partition(" ")
-    for arg, option in _OPTIONS.items():
-        if name in (arg, arg + ":"):
-            return option + name[len(arg):] + sep + rest.removeprefix("= ")
-    return message
+#: The arguments of :func:`ballpass.datasets.twin.twin` a refusal may start with, and the
+#: command's names for them.
+OPTION_OF = {"rpm": "--rpm", "draws": "--draws", "duration_s": "--duration", "seed": "--seed",
+             "manifest": "MANIFEST"}
 
 
 def run(args) -> int:
     """Run ``ballpass twin``; returns the exit code."""
     from ..datasets.twin import twin
     from ._output import check_output_path
+    from .simulate import named_as_typed
 
     check_output_path(args.out, option="--out", suffixes=(".toml",))
     try:
         path = twin(args.manifest, rpm=args.rpm, out=args.out, duration_s=args.duration,
                     draws=args.draws, seed=args.seed)
-    except (ValueError, TypeError, FileNotFoundError) as exc:
-        raise type(exc)(_as_typed(str(exc))) from None
+    except (ValueError, FileNotFoundError) as exc:
+        raise named_as_typed(exc, OPTION_OF) from None
     print(f"wrote {path}; next: ballpass generate {path} --out DIR")
     return 0
