@@ -153,3 +153,33 @@ def test_benchmark_real_takes_a_manifest_and_needs_its_labels(recordings, tmp_pa
         recordings / "unlabelled.csv", index=False)
     assert main([*argv, str(recordings / "unlabelled.csv")]) == 2
     assert "unlabelled.csv: the manifest has no column label" in capsys.readouterr().err
+
+
+def test_benchmark_of_a_twin_leaves_out_the_recordings_it_was_built_from(recordings,
+                                                                          tmp_path, capsys):
+    """A twin's healthy rows are its recordings' segments: given to --real as well (as a
+    user following docs/twin.md does with a labelled table of the machine), its healthy
+    recording was scored on the data it was trained on. Left out, saying so; only it is
+    an error. Planted: no check, the healthy recording is among the predictions."""
+    np.save(recordings / "healthy.npy", np.random.default_rng(0).standard_normal(24_000))
+    pd.DataFrame({"path": ["healthy.npy"], "fs": 12_000, "rpm": 1797, "bearing": "6205"}
+                 ).to_csv(recordings / "healthy.csv", index=False)
+    table = pd.read_csv(recordings / "recordings.csv")
+    pd.concat([table, pd.DataFrame({"path": ["healthy.npy"], "fs": 12_000, "rpm": 1797,
+                                    "bearing": "6205", "label": "healthy",
+                                    "group": "machine"})]
+              ).to_csv(recordings / "labelled.csv", index=False)
+    grid = bp.datasets.twin(recordings / "healthy.csv", rpm=[1797], duration_s=0.25,
+                            draws=2, out=tmp_path / "twin.toml")
+    bp.datasets.generate(grid, tmp_path / "ds", progress=False)
+    argv = ["benchmark", str(tmp_path / "ds"), "--splits", "sim2real", "--models",
+            "envelope", "--quiet", "--out", str(tmp_path / "rep"), "--real"]
+    assert main([*argv, str(recordings / "labelled.csv")]) == 0
+    assert ("left out 1 real recording(s) the twin was built from (machine)"
+            in capsys.readouterr().err)
+    groups = set(pd.read_csv(tmp_path / "rep" / "predictions.csv")["group"])
+    assert groups == {"ir", "or"}
+    pd.DataFrame({"path": ["healthy.npy"], "fs": 12_000, "rpm": 1797, "bearing": "6205",
+                  "label": "healthy"}).to_csv(recordings / "own.csv", index=False)
+    assert main([*argv, str(recordings / "own.csv")]) == 2
+    assert "--real: every recording is one the twin was built from" in capsys.readouterr().err
