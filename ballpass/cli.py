@@ -58,6 +58,7 @@ def build_parser() -> argparse.ArgumentParser:
                 continue  # subcommand not installed in this build
             raise
         module.add_parser(sub)
+    parser.commands = sub.choices  # name -> its parser, to name its options in errors
     return parser
 
 
@@ -138,10 +139,23 @@ def _run(argv: list[str] | None) -> int:
         message = _message(exc)
         if message is None:
             raise  # a bug, not a bad input: keep the traceback
+        message = _as_typed(message, parser.commands[args.command])
         print(f"ballpass {args.command}: error: {message}", file=sys.stderr)
         return 2
     finally:
         warnings.formatwarning = previous
+
+
+def _as_typed(message: str, command: argparse.ArgumentParser) -> str:
+    """A library's refusal of an argument the command passed on (``"band must satisfy
+    ..."``), with the option the user typed put first (``"--band: band must ..."``)."""
+    import re
+
+    named = re.match(r"(\w+) must ", message)
+    for action in command._actions if named else ():
+        if action.dest == named[1] and action.option_strings:
+            return f"{max(action.option_strings, key=len)}: {message}"
+    return message
 
 
 def _message(exc: BaseException) -> str | None:

@@ -151,6 +151,10 @@ CASES = [
     (["twin", "healthy.csv", "--rpm", "900", "--out", "t.txt"], "--out must end in .toml"),
     (["diagnose", "sig.npz", "--baseline", "missing.npz"],
      "--baseline: no such file or folder: missing.npz"),
+    # the library's refusal of a value the command passed on named no option
+    (["features", "sig.npz", "--band", "5000", "1000"], "--band: band must satisfy 0 <= lo"),
+    (["plot", "sig.npz", "--band", "5000", "1000"], "--band: band must satisfy 0 <= lo"),
+    (["diagnose", "sig.npz", "--line-hz", "-1"], "--line-hz: line_hz must be None or a"),
 ]
 
 
