@@ -282,6 +282,20 @@ def test_a_spreadsheets_manifest_with_semicolons_and_capitals(folder, ir021, sep
     assert meta["label"].tolist() == ["inner", "inner"] and set(meta["rpm"]) == {1797}
 
 
+def test_empty_rows_a_spreadsheet_leaves_are_not_recordings(folder, ir021):
+    """A spreadsheet's CSV often ends in rows of bare separators (",,,"): they were
+    refused as 'row 3: no path, fs, rpm, bearing given'. They are skipped, the rows keep
+    their numbers, and a table of nothing else still lists no recording."""
+    path = folder / "sheet.csv"
+    path.write_text("path,fs,rpm,bearing\n,,,\nrec.npy,12000,1797,6205\n,,,\n")
+    X, meta = load_manifest(path)
+    np.testing.assert_array_equal(X[0], ir021[:12_000])
+    assert set(meta["manifest_row"]) == {2}
+    path.write_text("path,fs,rpm,bearing\n,,,\n")
+    with pytest.raises(ValueError, match="sheet.csv: the manifest lists no recording"):
+        load_manifest(path)
+
+
 def test_a_manifest_is_told_from_a_signal_table(folder):
     path = _manifest(folder, [BASE | {"path": "rec.npy"}])
     assert is_manifest(path)

@@ -208,10 +208,10 @@ def read_manifest(manifest, *, require_label: bool = False):
     if missing:
         raise ValueError(f"{source}: the manifest has no column {', '.join(missing)} "
                          f"(needed: {', '.join(needed)}; it has {', '.join(table.columns)})")
-    if table.empty:
-        raise ValueError(f"{source}: the manifest lists no recording")
     rows = []
     for i, raw in enumerate(table.to_dict("records")):
+        if not any(_given(value) for value in raw.values()):
+            continue  # an empty row (",,,"): spreadsheets write them after the table
         where = _where(source, i, raw)
         absent = [c for c in needed if not _given(raw.get(c))]
         if absent:
@@ -237,6 +237,8 @@ def read_manifest(manifest, *, require_label: bool = False):
             **{key: _text(raw.get(key)) for key in ("variable", "column", "channel", "group",
                                                      "load")},
         })
+    if not rows:
+        raise ValueError(f"{source}: the manifest lists no recording")
     return rows
 
 
