@@ -282,6 +282,27 @@ def test_a_spreadsheets_manifest_with_semicolons_and_capitals(folder, ir021, sep
     assert meta["label"].tolist() == ["inner", "inner"] and set(meta["rpm"]) == {1797}
 
 
+def test_decimal_commas_are_read_as_decimals_never_as_an_index(folder, ir021):
+    """A spreadsheet in a decimal-comma locale writes `-3,63` (one column under a header)
+    or `0,01;-3,63` (semicolons between values). The one-column file was read as two
+    comma-separated fields under one name: pandas took the integer parts as the row
+    index and the signal was the digits after the comma (an outer-race recording written
+    with 6 decimals was called healthy, without an error)."""
+    text = [f"{v:.9g}".replace(".", ",") for v in ir021]
+    (folder / "one.csv").write_text("accel_g\n" + "\n".join(text))
+    (folder / "two.csv").write_text("t;accel_g\n" + "\n".join(
+        f"{k / 12e3:.9g};{v}".replace(".", ",") for k, v in enumerate(text)))
+    one, = read_recording(folder / "one.csv", fs=12_000.0)
+    two, = read_recording(folder / "two.csv", fs=12_000.0, column="accel_g")
+    for rec in (one, two):  # 9 significant digits of a float32: exact
+        np.testing.assert_array_equal(rec.accel.astype(np.float32), ir021)
+    # more values than the header names: refused, not shifted into an index
+    (folder / "ragged.csv").write_text("a,b\n1,2,3\n4,5,6\n")
+    with pytest.raises(RecordingMismatch, match="the header names 2 column.s. but the first "
+                                                "row holds 3 value"):
+        read_recording(folder / "ragged.csv", fs=12_000.0)
+
+
 def test_empty_rows_a_spreadsheet_leaves_are_not_recordings(folder, ir021):
     """A spreadsheet's CSV often ends in rows of bare separators (",,,"): they were
     refused as 'row 3: no path, fs, rpm, bearing given'. They are skipped, the rows keep

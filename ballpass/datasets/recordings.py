@@ -46,6 +46,7 @@ Examples
 
 from __future__ import annotations
 
+import csv
 import math
 import struct
 import warnings
@@ -321,16 +322,21 @@ def _read_plain_csv(path: Path, fs, column, nrows: int | None = None) -> Recordi
 
     try:
         with open(path, newline="", encoding="utf-8-sig") as fh:
-            first = next((line for line in fh if line.strip() and not line.startswith("#")), "")
+            lines = [line for line in fh if line.strip() and not line.startswith("#")][:2]
     except (OSError, UnicodeDecodeError) as exc:
         raise ValueError(f"{path.name}: not a readable text file ({exc})") from None
-    if not first:
+    if not lines:
         raise ValueError(f"{path.name}: the file holds no rows")
-    sep = next((d for d in _DELIMITERS if d in first), ",")
-    header = None if all(_is_number(v) for v in first.strip().split(sep)) else 0
+    sep, decimal, header = _csv_layout(lines)
+    data = lines[1] if header == 0 and len(lines) > 1 else lines[0]
+    names, values = (len(next(csv.reader([line], delimiter=sep))) for line in (lines[0], data))
+    if names != values:  # pandas would take the surplus first values as the row index
+        raise RecordingMismatch(f"{path.name}: the header names {names} column(s) but the "
+                                f"first row holds {values} value(s) between {sep!r}; save "
+                                "it with one separator per column")
     try:
-        frame = pd.read_csv(path, sep=sep, header=header, comment="#", nrows=nrows,
-                            encoding="utf-8-sig")
+        frame = pd.read_csv(path, sep=sep, decimal=decimal, header=header, comment="#",
+                            nrows=nrows, encoding="utf-8-sig")
     except (ValueError, OSError) as exc:
         reason = str(exc).splitlines()[0][:120]
         raise ValueError(f"{path.name}: not a readable CSV file ({reason})") from None
@@ -354,6 +360,23 @@ def _read_plain_csv(path: Path, fs, column, nrows: int | None = None) -> Recordi
                          + _GIVE_FS)
     return Recording(_samples(frame[column].to_numpy(), f"{path.name}: column {column!r}"),
                      fs, path.stem, column)
+
+
+def _csv_layout(lines: list[str]) -> tuple[str, str, int | None]:
+    """Separator, decimal mark and header row (0, or None) of a plain CSV file from its
+    first one or two lines. Values are separated by commas, semicolons or tabs; with
+    semicolons or tabs, or one column under a header, a comma in the values is a
+    decimal comma (spreadsheets in many locales write ``-3,6;0,5``)."""
+    first = lines[0]
+    sep = next((d for d in _DELIMITERS if d in first), None)
+    header = None if all(_is_number(v.replace(",", ".")) for v in
+                         first.strip().split(sep or ",")) else 0
+    data = lines[1] if header == 0 and len(lines) > 1 else first
+    if sep == "," or "," not in data:
+        return sep or ",", ".", header
+    if sep is None:  # one column: its values hold no separator, the comma is a decimal
+        return ";", ",", header
+    return sep, ",", header
 
 
 def _is_number(text: str) -> bool:
