@@ -149,6 +149,10 @@ CASES = [
     (["twin", "missing.csv", "--rpm", "900", "--out", "t.toml"],
      "MANIFEST: manifest: no such file"),
     (["twin", "healthy.csv", "--rpm", "900", "--out", "t.txt"], "--out must end in .toml"),
+    (["twin", "healthy.npy", "--rpm", "900", "--out", "t.toml"],
+     "MANIFEST healthy.npy is a recording, not a table of them: list the machine's"),
+    (["twin", "other.mat", "--rpm", "900", "--out", "t.toml"],
+     "(a row: other.mat,<fs Hz>,<rpm>,<bearing>)"),
     (["diagnose", "sig.npz", "--baseline", "missing.npz"],
      "--baseline: no such file or folder: missing.npz"),
     # the library's refusal of a value the command passed on named no option
