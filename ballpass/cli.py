@@ -73,8 +73,17 @@ EXIT_INTERRUPTED = 130
 EXIT_BROKEN_PIPE = 141
 
 
+#: set by :func:`_interrupt`: a library that swallows the KeyboardInterrupt (numpy's
+#: comparison of structured arrays turns it into "Cannot compare structured arrays")
+#: still ends the command as interrupted, not with its error
+_stop_asked = False
+
+
 def _interrupt(signum, frame) -> None:
-    """SIGTERM handler: stop the command as Ctrl-C does (cleanly, workers stopped)."""
+    """SIGINT and SIGTERM handler: stop the command as Ctrl-C does (cleanly, workers
+    stopped), remembering that a stop was asked."""
+    global _stop_asked
+    _stop_asked = True
     raise KeyboardInterrupt
 
 
@@ -88,8 +97,15 @@ def main(argv: list[str] | None = None) -> int:
     import signal
     import threading
 
+    global _stop_asked
+    _stop_asked = False
     in_main = threading.current_thread() is threading.main_thread()
     previous = signal.signal(signal.SIGTERM, _interrupt) if in_main else None
+    # Ctrl-C as Python's own handler does it, but remembered; left alone when ignored
+    # (a background job) or handled by the caller
+    ctrl_c = in_main and signal.getsignal(signal.SIGINT) is signal.default_int_handler
+    if ctrl_c:
+        signal.signal(signal.SIGINT, _interrupt)
     try:
         code = _run(argv)
         sys.stdout.flush()        # a closed pipe shows here, not at interpreter exit
@@ -107,6 +123,8 @@ def main(argv: list[str] | None = None) -> int:
     finally:
         if in_main:
             signal.signal(signal.SIGTERM, previous)
+        if ctrl_c:
+            signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
 def _discard_stdout() -> None:
@@ -136,6 +154,8 @@ def _run(argv: list[str] | None) -> int:
     except BrokenPipeError:
         raise               # not a bad input: the reader of stdout went away
     except (ValueError, TypeError, OSError, RuntimeError, MemoryError) as exc:
+        if _stop_asked:  # the interrupt, turned into another error on its way up
+            raise KeyboardInterrupt from exc
         message = _message(exc)
         if message is None:
             raise  # a bug, not a bad input: keep the traceback
