@@ -30,11 +30,21 @@ SUBCOMMANDS = {
 }
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse's parser (its sub-parsers are of the same class), but a usage error is
+    one line, as every other bad input: what is wrong and where the options are listed,
+    without argparse's usage block before it."""
+
+    def error(self, message: str):
+        self.exit(2, f"{self.prog}: error: {message} (`{self.prog} --help` lists the "
+                     "options)\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
     """Return the top-level parser with every available subcommand."""
     from . import __version__
 
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="ballpass",
         description="Rolling-element-bearing vibration: simulate, analyse, diagnose, generate.",
     )
@@ -48,6 +58,7 @@ def build_parser() -> argparse.ArgumentParser:
                 continue  # subcommand not installed in this build
             raise
         module.add_parser(sub)
+    parser.commands = sub.choices  # name -> its parser, to name its options in errors
     return parser
 
 
@@ -62,8 +73,17 @@ EXIT_INTERRUPTED = 130
 EXIT_BROKEN_PIPE = 141
 
 
+#: set by :func:`_interrupt`: a library that swallows the KeyboardInterrupt (numpy's
+#: comparison of structured arrays turns it into "Cannot compare structured arrays")
+#: still ends the command as interrupted, not with its error
+_stop_asked = False
+
+
 def _interrupt(signum, frame) -> None:
-    """SIGTERM handler: stop the command as Ctrl-C does (cleanly, workers stopped)."""
+    """SIGINT and SIGTERM handler: stop the command as Ctrl-C does (cleanly, workers
+    stopped), remembering that a stop was asked."""
+    global _stop_asked
+    _stop_asked = True
     raise KeyboardInterrupt
 
 
@@ -77,8 +97,15 @@ def main(argv: list[str] | None = None) -> int:
     import signal
     import threading
 
+    global _stop_asked
+    _stop_asked = False
     in_main = threading.current_thread() is threading.main_thread()
     previous = signal.signal(signal.SIGTERM, _interrupt) if in_main else None
+    # Ctrl-C as Python's own handler does it, but remembered; left alone when ignored
+    # (a background job) or handled by the caller
+    ctrl_c = in_main and signal.getsignal(signal.SIGINT) is signal.default_int_handler
+    if ctrl_c:
+        signal.signal(signal.SIGINT, _interrupt)
     try:
         code = _run(argv)
         sys.stdout.flush()        # a closed pipe shows here, not at interpreter exit
@@ -96,6 +123,8 @@ def main(argv: list[str] | None = None) -> int:
     finally:
         if in_main:
             signal.signal(signal.SIGTERM, previous)
+        if ctrl_c:
+            signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
 def _discard_stdout() -> None:
@@ -125,13 +154,28 @@ def _run(argv: list[str] | None) -> int:
     except BrokenPipeError:
         raise               # not a bad input: the reader of stdout went away
     except (ValueError, TypeError, OSError, RuntimeError, MemoryError) as exc:
+        if _stop_asked:  # the interrupt, turned into another error on its way up
+            raise KeyboardInterrupt from exc
         message = _message(exc)
         if message is None:
             raise  # a bug, not a bad input: keep the traceback
+        message = _as_typed(message, parser.commands[args.command])
         print(f"ballpass {args.command}: error: {message}", file=sys.stderr)
         return 2
     finally:
         warnings.formatwarning = previous
+
+
+def _as_typed(message: str, command: argparse.ArgumentParser) -> str:
+    """A library's refusal of an argument the command passed on (``"band must satisfy
+    ..."``), with the option the user typed put first (``"--band: band must ..."``)."""
+    import re
+
+    named = re.match(r"(\w+) must ", message)
+    for action in command._actions if named else ():
+        if action.dest == named[1] and action.option_strings:
+            return f"{max(action.option_strings, key=len)}: {message}"
+    return message
 
 
 def _message(exc: BaseException) -> str | None:

@@ -51,6 +51,9 @@ def workdir(tmp_path, monkeypatch, dataset):
     (tmp_path / "broken").mkdir()
     shutil.copy(tmp_path / "truncated.mat", tmp_path / "broken")
     (tmp_path / "ds").symlink_to(dataset)
+    # a machine's healthy recording (2 s of noise) and its manifest, for `twin`
+    np.save(tmp_path / "healthy.npy", np.random.default_rng(0).standard_normal(24_000))
+    (tmp_path / "healthy.csv").write_text("path,fs,rpm,bearing\nhealthy.npy,12000,900,6205\n")
     monkeypatch.chdir(tmp_path)
     return tmp_path
 
@@ -66,7 +69,9 @@ CASES = [
     (SIM + ["--out", "x.npz", "--plot", "p.gif"], "--plot must end in"),
     (SIM + ["--out", "x.npz", "--resonance", "1e-3"], "resonance_hz"),
     (SIM + ["--out", "x.npz", "--duration", "0"], "duration_s"),
-    (SIM + ["--out", "x.npz", "--bearing", "nope"], "unknown bearing"),
+    (SIM + ["--out", "x.npz", "--bearing", "nope"], "--bearing: unknown bearing 'nope'"),
+    (SIM + ["--out", "x.npz", "--model", "nope"], "--model: model must be 'auto' or one of"),
+    (SIM + ["--out", "x.npz", "--solver", "rk9"], "--solver: solver must be 'auto' or one"),
     (SIM + ["--out", "x.npz", "--width", "-1"], "width_mm"),
     (["simulate", "--fault", "healthy", "--width", "5", "--out", "x.npz"],
      "--width describes a fault; a healthy bearing has none"),
@@ -129,7 +134,31 @@ CASES = [
     (["models", "--bearing", "6203"], "give --needs too"),
     (["simulate", "--needs", "gear_mesh", "--out", "x.npz"], "has no gear pair"),
     (["info", "nowhere"], "nowhere"),
-    (["generate", "missing.toml", "--out", "new"], "missing.toml"),
+    (["generate", "missing.toml", "--out", "new"], "GRID missing.toml: no such file"),
+    (["generate", "nowhere/grid", "--out", "new"], "GRID nowhere/grid: no such file"),
+    # found walking the README as a new user: the refusal named an argument of the
+    # library (rpm, draws, duration_s, seed, manifest) or none, not the one typed
+    (["twin", "healthy.csv", "--rpm", "-5", "--out", "t.toml"],
+     "--rpm: rpm must be shaft speeds > 0"),
+    (["twin", "healthy.csv", "--rpm", "900", "--draws", "0", "--out", "t.toml"],
+     "--draws: draws must be an int >= 1"),
+    (["twin", "healthy.csv", "--rpm", "900", "--duration", "10", "--out", "t.toml"],
+     "--duration: duration_s = 10 s is longer than the shortest recording (2 s)"),
+    (["twin", "healthy.csv", "--rpm", "900", "--seed", "-1", "--out", "t.toml"],
+     "--seed: seed must be an int >= 0"),
+    (["twin", "missing.csv", "--rpm", "900", "--out", "t.toml"],
+     "MANIFEST: manifest: no such file"),
+    (["twin", "healthy.csv", "--rpm", "900", "--out", "t.txt"], "--out must end in .toml"),
+    (["twin", "healthy.npy", "--rpm", "900", "--out", "t.toml"],
+     "MANIFEST healthy.npy is a recording, not a table of them: list the machine's"),
+    (["twin", "other.mat", "--rpm", "900", "--out", "t.toml"],
+     "(a row: other.mat,<fs Hz>,<rpm>,<bearing>)"),
+    (["diagnose", "sig.npz", "--baseline", "missing.npz"],
+     "--baseline: no such file or folder: missing.npz"),
+    # the library's refusal of a value the command passed on named no option
+    (["features", "sig.npz", "--band", "5000", "1000"], "--band: band must satisfy 0 <= lo"),
+    (["plot", "sig.npz", "--band", "5000", "1000"], "--band: band must satisfy 0 <= lo"),
+    (["diagnose", "sig.npz", "--line-hz", "-1"], "--line-hz: line_hz must be None or a"),
 ]
 
 
@@ -159,6 +188,23 @@ def test_jobs_is_refused_naming_the_option(capsys, argv):
     assert exit_.value.code == 2
     err = capsys.readouterr().err
     assert "argument --jobs" in err and "-1 (every core)" in err and "n_jobs" not in err
+
+
+@pytest.mark.parametrize(("argv", "says"), [
+    (["models", "--needs"], "argument --needs: expected at least one argument"),
+    (["features", "x.npz", "--channel", "XX"], "argument --channel: invalid choice: 'XX'"),
+    (["simulate", "--rpm", "fast"], "argument --rpm"),
+    (["generate"], "the following arguments are required: GRID"),
+    (["nonsense"], "argument COMMAND: invalid choice: 'nonsense'"),
+])
+def test_a_usage_error_is_one_line_too(capsys, argv, says):
+    """argparse printed its usage block before the error line: three to seven lines,
+    where the README promises one (found walking the README as a new user)."""
+    with pytest.raises(SystemExit) as exit_:
+        main(argv)
+    assert exit_.value.code == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and says in err and "--help` lists the options" in err, err
 
 
 def test_models_prints_nothing_before_refusing(capsys):

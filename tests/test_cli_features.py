@@ -173,7 +173,7 @@ def test_dataset_folder(tmp_path, monkeypatch, capsys):
     ("argv", "message"),
     [
         (["features", "signal.txt"], "no such file"),
-        (["features", "{tmp}"], "without manifest.json"),
+        (["features", "{tmp}"], "without _manifest.json"),
         (["features", "{sig}", "--out", "t.xlsx"], ".csv or .parquet"),
         (["features", "{sig}", "--band", "5000", "9000"], "band must satisfy"),
         (["features", "{odd}"], "x.xlsx: a recording must be a .npz, .parquet, .csv, .npy, "

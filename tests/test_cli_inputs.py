@@ -63,7 +63,8 @@ def test_plain_recordings_say_what_they_lack(recordings, capsys, monkeypatch):
     scipy.io.savemat("two.mat", {"acc": np.zeros(10), "tacho": np.ones(10)})
     cases = [
         (["inner.npy", "--rpm", "1797", "--bearing", "6205"],
-         "inner.npy: a .npy file does not state its sampling rate; give fs (Hz)"),
+         "inner.npy: a .npy file does not state its sampling rate; give fs > 0 Hz "
+         "(--fs / fs)"),
         (["inner.wav", "--fs", "48000", "--rpm", "1797", "--bearing", "6205"],
          "inner.wav: fs 48000 Hz given, but the file states 12000 Hz"),
         (["inner.csv", *PLAIN[:2]],
@@ -80,18 +81,46 @@ def test_plain_recordings_say_what_they_lack(recordings, capsys, monkeypatch):
 
 
 def test_diagnose_and_features_read_a_manifest(recordings, capsys):
-    """The manifest's rows are diagnosed with their labels, and the feature table keeps
-    its group and label columns."""
+    """The manifest's rows are diagnosed with their labels, and the tables keep their
+    group and label columns and name each row's recording file (not the manifest)."""
     manifest = str(recordings / "recordings.csv")
-    assert main(["diagnose", manifest, "--quiet"]) == 0
+    assert main(["diagnose", manifest, "--quiet", "--out", str(recordings / "v.csv")]) == 0
     lines = capsys.readouterr().out.splitlines()
     assert lines[0].startswith("inner (label: inner): inner (grade Y)")
     assert any(line.startswith("outer (label: outer): outer (grade Y)") for line in lines)
+    assert pd.read_csv(recordings / "v.csv")["file"].tolist() == ["inner.npy", "outer.npy"]
     assert main(["features", manifest, "--quiet", "--out", str(recordings / "f.csv")]) == 0
     table = pd.read_csv(recordings / "f.csv")
-    assert table[["source", "label", "group"]].values.tolist() == [
-        ["inner", "inner", "ir"], ["outer", "outer", "or"]]
+    assert table[["source", "label", "group", "file"]].values.tolist() == [
+        ["inner", "inner", "ir", "inner.npy"], ["outer", "outer", "or", "outer.npy"]]
+    # two rigs' files of one name stay two: the path as the manifest gives it
+    (recordings / "rig2").mkdir()
+    (recordings / "rig2" / "inner.npy").write_bytes((recordings / "inner.npy").read_bytes())
+    pd.DataFrame({"path": ["inner.npy", "rig2/inner.npy"], "fs": 12_000, "rpm": 1797,
+                  "bearing": "6205"}).to_csv(recordings / "rigs.csv", index=False)
+    assert main(["features", str(recordings / "rigs.csv"), "--quiet", "--out",
+                 str(recordings / "g.csv")]) == 0
+    assert pd.read_csv(recordings / "g.csv")["file"].tolist() == ["inner.npy",
+                                                                  "rig2/inner.npy"]
     assert (table["bpfi_1"] > table["bpfo_1"]).tolist() == [True, False]
+
+
+def test_a_folder_of_logger_mat_files_reads_as_its_files_do(recordings, capsys):
+    """A folder of .mat files that are not CWRU/MFPT (one variable each, as the HIT-SM
+    rig's): with --fs, every file is diagnosed as it is alone; without, one line says
+    what is missing. The folder skipped every such file as 'neither CWRU nor MFPT'."""
+    folder = recordings / "logger"
+    folder.mkdir()
+    scipy.io.savemat(folder / "a.mat", {"acc": _crop("IR021_0")})
+    scipy.io.savemat(folder / "b.mat", {"vib": _crop("OR021at6_0")})
+    assert main(["diagnose", str(folder), *PLAIN]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0].startswith("a: inner (grade Y)")
+    assert any(line.startswith("b: outer (grade Y)") for line in lines)
+    with pytest.warns(UserWarning, match="skipped a.mat: a generic .mat variable does not "
+                                         r"state its sampling rate; give fs > 0 Hz \(--fs"):
+        assert main(["diagnose", str(folder), *PLAIN[2:]]) == 2
+    assert "none of its .mat files could be read" in capsys.readouterr().err
 
 
 def test_a_manifest_ignores_options_it_states_per_row(recordings, capsys):
@@ -124,3 +153,33 @@ def test_benchmark_real_takes_a_manifest_and_needs_its_labels(recordings, tmp_pa
         recordings / "unlabelled.csv", index=False)
     assert main([*argv, str(recordings / "unlabelled.csv")]) == 2
     assert "unlabelled.csv: the manifest has no column label" in capsys.readouterr().err
+
+
+def test_benchmark_of_a_twin_leaves_out_the_recordings_it_was_built_from(recordings,
+                                                                          tmp_path, capsys):
+    """A twin's healthy rows are its recordings' segments: given to --real as well (as a
+    user following docs/twin.md does with a labelled table of the machine), its healthy
+    recording was scored on the data it was trained on. Left out, saying so; only it is
+    an error. Planted: no check, the healthy recording is among the predictions."""
+    np.save(recordings / "healthy.npy", np.random.default_rng(0).standard_normal(24_000))
+    pd.DataFrame({"path": ["healthy.npy"], "fs": 12_000, "rpm": 1797, "bearing": "6205"}
+                 ).to_csv(recordings / "healthy.csv", index=False)
+    table = pd.read_csv(recordings / "recordings.csv")
+    pd.concat([table, pd.DataFrame({"path": ["healthy.npy"], "fs": 12_000, "rpm": 1797,
+                                    "bearing": "6205", "label": "healthy",
+                                    "group": "machine"})]
+              ).to_csv(recordings / "labelled.csv", index=False)
+    grid = bp.datasets.twin(recordings / "healthy.csv", rpm=[1797], duration_s=0.25,
+                            draws=2, out=tmp_path / "twin.toml")
+    bp.datasets.generate(grid, tmp_path / "ds", progress=False)
+    argv = ["benchmark", str(tmp_path / "ds"), "--splits", "sim2real", "--models",
+            "envelope", "--quiet", "--out", str(tmp_path / "rep"), "--real"]
+    assert main([*argv, str(recordings / "labelled.csv")]) == 0
+    assert ("left out 1 real recording(s) the twin was built from (machine)"
+            in capsys.readouterr().err)
+    groups = set(pd.read_csv(tmp_path / "rep" / "predictions.csv")["group"])
+    assert groups == {"ir", "or"}
+    pd.DataFrame({"path": ["healthy.npy"], "fs": 12_000, "rpm": 1797, "bearing": "6205",
+                  "label": "healthy"}).to_csv(recordings / "own.csv", index=False)
+    assert main([*argv, str(recordings / "own.csv")]) == 2
+    assert "--real: every recording is one the twin was built from" in capsys.readouterr().err

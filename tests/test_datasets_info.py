@@ -1,9 +1,10 @@
 """``info``: what a dataset holds, broken down by condition and by fault size."""
 
+import numpy as np
 import pandas as pd
 
 from ballpass.cli import main
-from ballpass.datasets import generate, info
+from ballpass.datasets import generate, info, twin
 
 
 def test_faulty_rows_by_fault_size(tmp_path, capsys):
@@ -21,6 +22,7 @@ def test_faulty_rows_by_fault_size(tmp_path, capsys):
     assert main(["info", str(out)]) == 0
     printed = capsys.readouterr().out
     assert "faulty rows per fault size (mm) and label" in printed and "0.53" in printed
+    assert "float32, m/s^2\n" in printed  # simulated rows: SI units
 
 
 def test_a_healthy_dataset_has_no_fault_sizes(tmp_path):
@@ -29,3 +31,19 @@ def test_a_healthy_dataset_has_no_fault_sizes(tmp_path):
                      "resonance_hz": [3000]}}
     generate(grid, tmp_path / "ds", progress=False)
     assert info(tmp_path / "ds")["fault_sizes"] is None
+
+
+def test_a_twins_signals_are_in_its_recordings_units(tmp_path, capsys):
+    """A twin's rows are its machine's recordings, and faults scaled to them: info said
+    m/s^2 of them whatever the recordings' unit (the HIT-SM rig's is not stated). Its
+    line names the manifest instead; a simulated dataset's stays m/s^2."""
+    np.save(tmp_path / "healthy.npy", np.random.default_rng(0).standard_normal(12_000))
+    pd.DataFrame({"path": ["healthy.npy"], "fs": [12_000], "rpm": [900],
+                  "bearing": ["6205"]}).to_csv(tmp_path / "healthy.csv", index=False)
+    grid = twin(tmp_path / "healthy.csv", rpm=[900], out=tmp_path / "twin.toml",
+                duration_s=0.25, draws=1)
+    generate(grid, tmp_path / "ds", progress=False)
+    assert main(["info", str(tmp_path / "ds")]) == 0
+    line = next(li for li in capsys.readouterr().out.splitlines() if li.startswith("signals"))
+    assert line.endswith(f"float32, in the units of the recordings "
+                         f"{tmp_path / 'healthy.csv'} lists"), line

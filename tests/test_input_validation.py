@@ -1,6 +1,7 @@
 """Nonsense refused with a message naming the argument (issue 16, items 5 and 6), the
 documented behaviour where refusing would be wrong, and the CLI's progress and notices."""
 
+import logging
 import sys
 import warnings
 
@@ -102,6 +103,29 @@ def test_compile_notice_only_without_a_current_cache(tmp_path, monkeypatch, caps
     assert main(argv) == 0
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and err.startswith("ballpass: compiling the simulator")
+
+
+def test_an_empty_numba_cache_dir_is_announced(tmp_path, monkeypatch):
+    """With NUMBA_CACHE_DIR set numba keeps kernels there only; kernels in the package's
+    __pycache__ (there after any run of the tests) made the command say nothing while a
+    fresh NUMBA_CACHE_DIR compiled for 25 s (generate quick --jobs 2, 2-core machine)."""
+    assert main(["simulate", "--duration", "0.01", "--out", str(tmp_path / "s.npz")]) == 0
+    assert _output.kernels_cached()   # in __pycache__ (or the cache dir the run uses)
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "empty-cache"))
+    assert not _output.kernels_cached()
+
+
+def test_compile_notice_is_one_line_not_two(tmp_path, monkeypatch, capsys, caplog):
+    """A fresh install: the command's notice and the library's logger said the same
+    thing twice (found running the README's first command in a new virtualenv)."""
+    sim = bp.simulate  # the callable subpackage
+    monkeypatch.setattr(_output, "kernels_cached", lambda: False)
+    monkeypatch.setattr(sim, "has_compiled_kernels", lambda: False)
+    monkeypatch.setattr(sim, "_compile_checked", False)  # a new process
+    with caplog.at_level(logging.WARNING, logger="ballpass"):
+        assert main(["simulate", "--duration", "0.01", "--out", str(tmp_path / "s.npz")]) == 0
+    said = capsys.readouterr().err + "".join(r.getMessage() for r in caplog.records)
+    assert said.count("compiling") == 1, said
 
 
 def test_progress_bars_on_a_terminal_unless_quiet(monkeypatch, capsys):

@@ -135,7 +135,11 @@ def test_label_is_required_only_where_results_are_scored(folder):
                            "ball, got 'cracked'"),
     ({"fs": -5}, r"row 2 \(rec.npy\): fs \(Hz\) must be a finite number > 0, got '-5'"),
     ({"rpm": "fast"}, r"row 2 \(rec.npy\): rpm must be a finite number > 0, got 'fast'"),
-    ({"bearing": None}, r"row 2 \(rec.npy\): no bearing given"),
+    ({"bearing": None}, r"row 2 \(rec.npy\): no bearing given \(bearing: a name `ballpass "
+                        r"bearings` lists\)"),
+    # an empty cell said "no fs given", not what it needs
+    ({"fs": None, "rpm": " "}, r"row 2 \(rec.npy\): no fs, rpm given \(fs: sampling rate, "
+                               r"Hz > 0; rpm: shaft speed, rev/min > 0\)"),
 ])
 def test_a_bad_row_is_named_before_any_file_is_read(folder, change, message):
     """Row 1 names a file that does not exist: the table is checked whole before any
@@ -260,6 +264,57 @@ def test_spreadsheet_csv_files_with_a_byte_order_mark(folder, ir021):
     assert is_manifest(path)
     X, _ = load_manifest(path)
     np.testing.assert_array_equal(X[0], ir021[:12_000])
+
+
+@pytest.mark.parametrize("sep", [";", "\t"])
+def test_a_spreadsheets_manifest_with_semicolons_and_capitals(folder, ir021, sep):
+    """A spreadsheet in a locale with decimal commas saves CSV with semicolons, and people
+    write `Path`, `FS`: such a table was read as a signal file ('3 numeric columns (fs,
+    rpm, bearing)'). It is the manifest it is, read as the comma one is."""
+    path = folder / "semi.csv"
+    table = pd.DataFrame([BASE | {"path": "rec.npy"}])
+    table.rename(columns=str.capitalize).rename(columns={"Fs": "FS"}).to_csv(
+        path, index=False, sep=sep)
+    assert path.read_text().startswith(f"FS{sep}Rpm{sep}")
+    assert is_manifest(path)
+    X, meta = load_manifest(path)
+    np.testing.assert_array_equal(X[0], ir021[:12_000])
+    assert meta["label"].tolist() == ["inner", "inner"] and set(meta["rpm"]) == {1797}
+
+
+def test_decimal_commas_are_read_as_decimals_never_as_an_index(folder, ir021):
+    """A spreadsheet in a decimal-comma locale writes `-3,63` (one column under a header)
+    or `0,01;-3,63` (semicolons between values). The one-column file was read as two
+    comma-separated fields under one name: pandas took the integer parts as the row
+    index and the signal was the digits after the comma (an outer-race recording written
+    with 6 decimals was called healthy, without an error)."""
+    text = [f"{v:.9g}".replace(".", ",") for v in ir021]
+    (folder / "one.csv").write_text("accel_g\n" + "\n".join(text))
+    (folder / "two.csv").write_text("t;accel_g\n" + "\n".join(
+        f"{k / 12e3:.9g};{v}".replace(".", ",") for k, v in enumerate(text)))
+    one, = read_recording(folder / "one.csv", fs=12_000.0)
+    two, = read_recording(folder / "two.csv", fs=12_000.0, column="accel_g")
+    for rec in (one, two):  # 9 significant digits of a float32: exact
+        np.testing.assert_array_equal(rec.accel.astype(np.float32), ir021)
+    # more values than the header names: refused, not shifted into an index
+    (folder / "ragged.csv").write_text("a,b\n1,2,3\n4,5,6\n")
+    with pytest.raises(RecordingMismatch, match="the header names 2 column.s. but the first "
+                                                "row holds 3 value"):
+        read_recording(folder / "ragged.csv", fs=12_000.0)
+
+
+def test_empty_rows_a_spreadsheet_leaves_are_not_recordings(folder, ir021):
+    """A spreadsheet's CSV often ends in rows of bare separators (",,,"): they were
+    refused as 'row 3: no path, fs, rpm, bearing given'. They are skipped, the rows keep
+    their numbers, and a table of nothing else still lists no recording."""
+    path = folder / "sheet.csv"
+    path.write_text("path,fs,rpm,bearing\n,,,\nrec.npy,12000,1797,6205\n,,,\n")
+    X, meta = load_manifest(path)
+    np.testing.assert_array_equal(X[0], ir021[:12_000])
+    assert set(meta["manifest_row"]) == {2}
+    path.write_text("path,fs,rpm,bearing\n,,,\n")
+    with pytest.raises(ValueError, match="sheet.csv: the manifest lists no recording"):
+        load_manifest(path)
 
 
 def test_a_manifest_is_told_from_a_signal_table(folder):

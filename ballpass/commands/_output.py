@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import sys
 from pathlib import Path
 
@@ -62,12 +63,17 @@ def kernels_cached() -> bool:
 
     The simulator stamps each cache folder with the fingerprint of its sources
     (:mod:`ballpass.simulate._cache`) and deletes kernels of another fingerprint; numba
-    writes one index file (``*.nbi``) per cached function beside the stamp.
+    writes one index file (``*.nbi``) per cached function beside the stamp. With
+    ``NUMBA_CACHE_DIR`` set, only the folders below it count: numba uses no other.
     """
     from ..simulate._cache import STAMP_NAME, cache_dirs, source_fingerprint
 
     fingerprint = source_fingerprint()
-    for folder in cache_dirs():
+    folders = cache_dirs()
+    root = os.environ.get("NUMBA_CACHE_DIR")
+    if root:  # numba then reads and writes kernels there only, not in __pycache__
+        folders = [folder for folder in folders if folder.is_relative_to(Path(root))]
+    for folder in folders:
         try:
             if (folder / STAMP_NAME).read_text() == fingerprint and any(
                     folder.glob("*.nbi")):
@@ -78,10 +84,17 @@ def kernels_cached() -> bool:
 
 
 def compile_notice() -> None:
-    """Say once, on stderr, that the first simulation compiles the kernels."""
+    """Say once, on stderr, that the first simulation compiles the kernels.
+
+    Said before the work starts, so the library's own once-per-process notice on the
+    ``"ballpass"`` logger (at the first simulation) is marked as said: one line, not two.
+    """
     if not kernels_cached():
         print("ballpass: compiling the simulator's kernels (first run after an install or "
               "an update; about a minute, cached afterwards)", file=sys.stderr, flush=True)
+        from .. import simulate
+
+        simulate._compile_checked = True
 
 
 def format_records(records: list[dict], fmt: str, *, headers: dict | None = None,

@@ -156,7 +156,11 @@ def run(args) -> int:
     band = tuple(args.band) if args.band is not None else None
     thresholds = None
     if args.baseline is not None:
-        healthy = load_records(argparse.Namespace(**{**vars(args), "inputs": args.baseline}))
+        try:
+            healthy = load_records(argparse.Namespace(**{**vars(args),
+                                                         "inputs": args.baseline}))
+        except (ValueError, TypeError, FileNotFoundError) as exc:  # say which input it was
+            raise type(exc)(f"--baseline: {exc}") from None
         thresholds = BaselineThresholds(healthy, band, line_hz=args.line_hz)
         thresholds.check(records)
     results = verdict_rows(signals, band, progress=show_progress(args), segmented=segmented,

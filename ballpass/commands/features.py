@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import math
 import numbers
+import os
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -40,7 +41,8 @@ inputs:
                       label, variable, column, channel, group, load (docs/datasets.md).
                       Rows whose file cannot be read are skipped with a warning.
   DIR                 a dataset folder with _manifest.json (`ballpass generate`), or a
-                      folder of .mat recordings (unreadable ones skipped with a warning)
+                      folder of .mat recordings, each read as alone (a logger's with --fs;
+                      unreadable ones skipped with a warning)
 
 columns: source, channel, segment, start_s, fs, bearing, rpm, label (when known), the
 demodulation band chosen by the kurtogram (band_lo_hz, band_hi_hz, kurtogram_sk), the
@@ -82,7 +84,7 @@ def add_input_arguments(p: argparse.ArgumentParser,
         metavar="INPUT",
         help="recording (.csv/.npy/.wav/.mat, or .npz/.parquet from `ballpass simulate`), "
         "manifest table (.csv/.parquet with a path column) listing recordings, folder of "
-        "CWRU/MFPT .mat files, or dataset folder",
+        ".mat recordings (CWRU/MFPT; any other with --fs), or dataset folder",
     )
     p.add_argument(
         "--fs",
@@ -190,12 +192,16 @@ def _from_recordings(path: Path, args) -> list[Signal]:
         names.append(f"{rec.name}_{rec.channel}" if named else rec.name)
     repeated = Counter(names)
     signals = []
-    for name, (_, rec) in zip(names, found, strict=True):
+    for name, (file, rec) in zip(names, found, strict=True):
         meta = rec.columns()
         if repeated[name] > 1 and "manifest_row" in meta:  # one file on several rows
             name = f"{name}_row{meta['manifest_row']}"
         columns = {k: meta[k] for k in _RECORDING_COLUMNS
                    if k in meta and not (k == "label" and meta[k] == "unknown")}
+        # the recording's file, not the manifest's or the folder's name: as the manifest's
+        # path column gives it (rig1/a.wav and rig2/a.wav are two), else its name
+        columns["file"] = (os.path.relpath(file, path.parent) if "manifest_row" in meta
+                           else Path(file).name)
         rpm = args.rpm if args.rpm is not None else rec.rpm
         signals.append(Signal(name, rec.accel, rec.fs, args.bearing or rec.bearing, rpm,
                               columns))

@@ -56,8 +56,11 @@ def resolve_grid(text: str):
     from ..datasets import example_grid, example_grids
 
     path = Path(text)
-    if path.exists() or path.suffix or len(path.parts) != 1:
+    if path.exists():
         return text
+    if path.suffix or len(path.parts) != 1:
+        raise ValueError(f"GRID {text}: no such file (a grid is a TOML file or the name of "
+                         f"a shipped grid: {', '.join(example_grids())})")
     if text not in example_grids():
         raise ValueError(f"GRID {text!r} is neither a file nor a grid shipped with ballpass "
                          f"({', '.join(example_grids())}; `ballpass examples` lists them)")

@@ -28,14 +28,18 @@ def run(args) -> int:
     import pandas as pd
 
     from ..datasets import info
-    from ..datasets.store import human_bytes
+    from ..datasets.store import human_bytes, read_manifest
 
     d = info(args.dir)
+    machine = (read_manifest(args.dir) or {}).get("grid", {}).get("machine")
+    # a twin's rows are its machine's recordings and faults scaled to them: their unit
+    unit = ("m/s^2" if machine is None
+            else f"in the units of the recordings {machine['manifest']} lists")
     print(f"dataset   {d['path']}  (ballpass {d['ballpass_version']}, {d['status']})")
     print(f"rows      {d['n_rows']} of {d['n_rows_planned']}  ({d['n_runs']} runs, "
           f"{d['shards_complete']}/{d['shards_total']} shards)")
     print(f"signals   {d['signal_length']} samples at {d['fs']:g} Hz = "
-          f"{d['duration_s']:g} s, float32, m/s^2")
+          f"{d['duration_s']:g} s, float32, {unit}")
     print(f"size      {human_bytes(d['size_bytes'])} on disk"
           f"{'; with feature table' if d['features'] else ''}")
     for axis, description in d["drawn"].items():

@@ -87,7 +87,8 @@ OPTION_OF = {"rpm": "--rpm", "rpm_start": "--rpm", "rpm_end": "--rpm",
              "radial_load_n": "--load", "width_mm": "--width", "depth_mm": "--depth",
              "angle_deg": "--angle", "duration_s": "--duration", "fs": "--fs",
              "resonance_hz": "--resonance", "resonance_damping": "--damping",
-             "slip": "--slip", "snr_db": "--snr", "seed": "--seed", "torque_nm": "--torque"}
+             "slip": "--slip", "snr_db": "--snr", "seed": "--seed", "torque_nm": "--torque",
+             "model": "--model", "solver": "--solver", "dt": "--dt", "rtol": "--rtol"}
 
 
 def named_as_typed(exc: ValueError, option_of: dict = OPTION_OF) -> ValueError:
@@ -115,6 +116,10 @@ def _scene_from_args(args):
 
     if len(args.rpm) not in (1, 2):
         raise ValueError(f"--rpm takes one speed or two (a ramp), got {args.rpm}")
+    try:
+        bp.Bearing.catalog(args.bearing)
+    except ValueError as exc:
+        raise ValueError(f"--bearing: {exc}") from None
     rpm = args.rpm[0] if len(args.rpm) == 1 else tuple(args.rpm)
     shape = {"--width": args.width, "--depth": args.depth, "--angle": args.angle}
     fault = None
@@ -166,7 +171,11 @@ def run(args) -> int:
         args.plot, option="--plot", suffixes=FIGURE_SUFFIXES)
     scene = scene_from_args(args)
     compile_notice()
-    res = bp.simulate(scene, model=args.model, solver=args.solver, dt=args.dt, rtol=args.rtol)
+    try:   # the model and solver arguments are checked before the simulation starts
+        res = bp.simulate(scene, model=args.model, solver=args.solver, dt=args.dt,
+                          rtol=args.rtol)
+    except ValueError as exc:
+        raise named_as_typed(exc) from None
     freqs = res.truth.frequencies
     meta = {
         "bearing": scene.bearing.name,

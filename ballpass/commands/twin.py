@@ -45,13 +45,38 @@ def add_parser(subparsers) -> None:
     p.set_defaults(func=run)
 
 
+#: The arguments of :func:`ballpass.datasets.twin.twin` a refusal may start with, and the
+#: command's names for them.
+OPTION_OF = {"rpm": "--rpm", "draws": "--draws", "duration_s": "--duration", "seed": "--seed",
+             "manifest": "MANIFEST"}
+
+
+def _check_is_a_manifest(path: str) -> None:
+    """Refuse a recording given where its manifest is needed, saying how to list it."""
+    from pathlib import Path
+
+    from ..datasets.manifest import is_manifest
+    from ..datasets.recordings import RECORDING_SUFFIXES
+
+    file = Path(path)
+    if file.is_file() and file.suffix.lower() in RECORDING_SUFFIXES and not is_manifest(file):
+        raise ValueError(f"MANIFEST {path} is a recording, not a table of them: list the "
+                         "machine's healthy recordings in a .csv with the columns path, fs, "
+                         f"rpm, bearing (a row: {file.name},<fs Hz>,<rpm>,<bearing>)")
+
+
 def run(args) -> int:
     """Run ``ballpass twin``; returns the exit code."""
     from ..datasets.twin import twin
     from ._output import check_output_path
+    from .simulate import named_as_typed
 
-    check_output_path(args.out, option="--out")
-    path = twin(args.manifest, rpm=args.rpm, out=args.out, duration_s=args.duration,
-                draws=args.draws, seed=args.seed)
+    check_output_path(args.out, option="--out", suffixes=(".toml",))
+    _check_is_a_manifest(args.manifest)
+    try:
+        path = twin(args.manifest, rpm=args.rpm, out=args.out, duration_s=args.duration,
+                    draws=args.draws, seed=args.seed)
+    except (ValueError, FileNotFoundError) as exc:
+        raise named_as_typed(exc, OPTION_OF) from None
     print(f"wrote {path}; next: ballpass generate {path} --out DIR")
     return 0

@@ -56,7 +56,7 @@ from pathlib import Path
 
 from .._validation import check_segment
 from ..features._validation import check_fs
-from .recordings import Recording, RecordingMismatch, check_recording, read_recording
+from .recordings import _DELIMITERS, Recording, RecordingMismatch, check_recording, read_recording
 
 __all__ = ["LABELS", "REQUIRED", "OPTIONAL", "is_manifest", "read_manifest",
            "manifest_records", "load_manifest", "read_recordings"]
@@ -68,6 +68,10 @@ OPTIONAL = ("label", "variable", "column", "channel", "group", "load")
 #: Labels a manifest may give.
 LABELS = ("healthy", "inner", "outer", "ball")
 _TABLE_SUFFIXES = (".csv", ".parquet")
+#: What each needed column holds, for the message about an empty cell.
+_NEEDS = {"path": "the recording's file", "fs": "sampling rate, Hz > 0",
+          "rpm": "shaft speed, rev/min > 0", "bearing": "a name `ballpass bearings` lists",
+          "label": ", ".join(LABELS)}
 
 
 def is_manifest(path) -> bool:
@@ -87,14 +91,26 @@ def is_manifest(path) -> bool:
         return False
     try:
         if path.suffix.lower() == ".csv":
-            with open(path, newline="", encoding="utf-8-sig") as fh:
-                first = next((line for line in fh if not line.startswith("#")), "")
-            return "path" in (name.strip().strip('"') for name in first.split(","))
+            return "path" in _csv_header(path)[1]
         import pyarrow.parquet as pq
 
-        return "path" in pq.read_schema(path).names
+        return "path" in (_column_name(name) for name in pq.read_schema(path).names)
     except (OSError, UnicodeDecodeError, ValueError):
         return False  # not a table: the signal readers say what is wrong
+
+
+def _column_name(name) -> str:
+    """A manifest's column as ballpass names it: ``Path``, ``FS `` and ``fs`` are one."""
+    return str(name).strip().strip('"').lower()
+
+
+def _csv_header(path: Path) -> tuple[str, list[str]]:
+    """The delimiter of a CSV table (comma, semicolon or tab, as for a plain CSV
+    recording: spreadsheets in many locales write semicolons) and its column names."""
+    with open(path, newline="", encoding="utf-8-sig") as fh:
+        first = next((line for line in fh if line.strip() and not line.startswith("#")), "")
+    sep = next((d for d in _DELIMITERS if d in first), ",")
+    return sep, [_column_name(name) for name in first.split(sep)]
 
 
 def _where(source: str, i: int, row) -> str:
@@ -180,26 +196,27 @@ def read_manifest(manifest, *, require_label: bool = False):
             raise ValueError(f"{path.name}: a manifest must be a .csv or .parquet table")
         try:
             table = (pd.read_parquet(path) if path.suffix.lower() == ".parquet"
-                     else pd.read_csv(path, comment="#", dtype=str, skipinitialspace=True,
-                                      encoding="utf-8-sig"))
+                     else pd.read_csv(path, sep=_csv_header(path)[0], comment="#", dtype=str,
+                                      skipinitialspace=True, encoding="utf-8-sig"))
         except (ValueError, OSError) as exc:
             reason = str(exc).splitlines()[0][:120] if str(exc) else type(exc).__name__
             raise ValueError(f"{path.name}: not a readable manifest table ({reason})") from None
         folder, source = path.parent, path.name
-    table = table.rename(columns=lambda c: str(c).strip())
+    table = table.rename(columns=_column_name)
     needed = REQUIRED + (("label",) if require_label else ())
     missing = [c for c in needed if c not in table.columns]
     if missing:
         raise ValueError(f"{source}: the manifest has no column {', '.join(missing)} "
                          f"(needed: {', '.join(needed)}; it has {', '.join(table.columns)})")
-    if table.empty:
-        raise ValueError(f"{source}: the manifest lists no recording")
     rows = []
     for i, raw in enumerate(table.to_dict("records")):
+        if not any(_given(value) for value in raw.values()):
+            continue  # an empty row (",,,"): spreadsheets write them after the table
         where = _where(source, i, raw)
         absent = [c for c in needed if not _given(raw.get(c))]
         if absent:
-            raise ValueError(f"{where}: no {', '.join(absent)} given")
+            raise ValueError(f"{where}: no {', '.join(absent)} given ("
+                             + "; ".join(f"{c}: {_NEEDS[c]}" for c in absent) + ")")
         try:
             bearing = Bearing.catalog(str(raw["bearing"]).strip()).name
         except ValueError as exc:
@@ -220,6 +237,8 @@ def read_manifest(manifest, *, require_label: bool = False):
             **{key: _text(raw.get(key)) for key in ("variable", "column", "channel", "group",
                                                      "load")},
         })
+    if not rows:
+        raise ValueError(f"{source}: the manifest lists no recording")
     return rows
 
 
@@ -398,8 +417,9 @@ def read_recordings(source, *, fs=None, column=None, variable=None, channel: str
 
     * a manifest (:func:`is_manifest`): its rows (:func:`manifest_records`); ``fs``,
       ``column`` and ``variable`` are then the table's, per row;
-    * a folder: its ``.mat`` recordings (CWRU or MFPT; unreadable ones skipped with a
-      warning);
+    * a folder: its ``.mat`` recordings, each read as a single file is (CWRU, MFPT, or
+      with ``fs`` a logger's file of one variable or of ``variable``); unreadable ones
+      skipped with a warning;
     * a file: its recording(s) (:func:`ballpass.datasets.recordings.read_recording`).
 
     Parameters
@@ -423,8 +443,7 @@ def read_recordings(source, *, fs=None, column=None, variable=None, channel: str
     >>> [(p.name, rec.fs) for p, rec in read_recordings(path, fs=12_000)]
     [('rec.npy', 12000.0)]
     """
-    from .real import read_all, read_mat
-    from .recordings import from_real
+    from .real import read_all
 
     path = Path(source)
     if is_manifest(path):
@@ -442,11 +461,14 @@ def read_recordings(source, *, fs=None, column=None, variable=None, channel: str
                            if p.suffix.lower() in RECORDING_SUFFIXES)
             hint = (f"; give its signal files as inputs ({path / '*'}{Path(files[0]).suffix})"
                     if files else "")
-            raise ValueError(f"{path} is a folder without manifest.json or .mat files: "
+            raise ValueError(f"{path} is a folder without _manifest.json or .mat files: "
                              f"neither a dataset nor a folder of recordings{hint}")
-        found = read_all(path, lambda p: from_real(read_mat(p, channel=channel, fs=fs)))
+        # each file as a single one is read: CWRU, MFPT, or (with fs) any logger's .mat
+        found = read_all(path, lambda p: read_recording(p, fs=fs, variable=variable,
+                                                        mat_channel=channel))
         if not found:
-            raise ValueError(f"{path}: none of its .mat files could be read")
-        return found
+            raise ValueError(f"{path}: none of its .mat files could be read (the warnings "
+                             "above say why)")
+        return [(file, rec) for file, recs in found for rec in recs]
     return [(path, rec) for rec in read_recording(path, fs=fs, column=column,
                                                   variable=variable, mat_channel=channel)]

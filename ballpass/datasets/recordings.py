@@ -46,6 +46,7 @@ Examples
 
 from __future__ import annotations
 
+import csv
 import math
 import struct
 import warnings
@@ -65,6 +66,9 @@ RECORDING_SUFFIXES = (".npz", ".parquet", ".csv", ".npy", ".wav", ".mat")
 _DELIMITERS = (",", ";", "\t")
 #: Rows of a plain CSV file that :func:`check_recording` reads.
 _PROBE_ROWS = 16
+#: What a file that does not state its rate asks for: the rate, as the command-line
+#: option and as the manifest column.
+_GIVE_FS = "give fs > 0 Hz (--fs / fs)"
 
 
 class RecordingMismatch(ValueError):
@@ -169,7 +173,7 @@ def read_recording(path, *, fs=None, column=None, variable=None, channel=None,
     >>> read_recording(path)
     Traceback (most recent call last):
         ...
-    ValueError: rec.npy: a .npy file does not state its sampling rate; give fs (Hz)
+    ValueError: rec.npy: a .npy file does not state its sampling rate; give fs > 0 Hz (--fs / fs)
     """
     return _recordings(Path(path), fs, column, variable, channel, mat_channel, probe=False)
 
@@ -246,7 +250,7 @@ def _recordings(path: Path, fs, column, variable, channel, mat_channel: str, pro
     if stated is None:
         if fs is None:
             raise ValueError(f"{path.name}: a {suffix} file does not state its sampling "
-                             "rate; give fs (Hz)")
+                             "rate; " + _GIVE_FS)
         stated = fs
     _check_rate(path, fs, stated)
     picked = _pick(path, names, rows, channel)
@@ -318,16 +322,21 @@ def _read_plain_csv(path: Path, fs, column, nrows: int | None = None) -> Recordi
 
     try:
         with open(path, newline="", encoding="utf-8-sig") as fh:
-            first = next((line for line in fh if line.strip() and not line.startswith("#")), "")
+            lines = [line for line in fh if line.strip() and not line.startswith("#")][:2]
     except (OSError, UnicodeDecodeError) as exc:
         raise ValueError(f"{path.name}: not a readable text file ({exc})") from None
-    if not first:
+    if not lines:
         raise ValueError(f"{path.name}: the file holds no rows")
-    sep = next((d for d in _DELIMITERS if d in first), ",")
-    header = None if all(_is_number(v) for v in first.strip().split(sep)) else 0
+    sep, decimal, header = _csv_layout(lines)
+    data = lines[1] if header == 0 and len(lines) > 1 else lines[0]
+    names, values = (len(next(csv.reader([line], delimiter=sep))) for line in (lines[0], data))
+    if names != values:  # pandas would take the surplus first values as the row index
+        raise RecordingMismatch(f"{path.name}: the header names {names} column(s) but the "
+                                f"first row holds {values} value(s) between {sep!r}; save "
+                                "it with one separator per column")
     try:
-        frame = pd.read_csv(path, sep=sep, header=header, comment="#", nrows=nrows,
-                            encoding="utf-8-sig")
+        frame = pd.read_csv(path, sep=sep, decimal=decimal, header=header, comment="#",
+                            nrows=nrows, encoding="utf-8-sig")
     except (ValueError, OSError) as exc:
         reason = str(exc).splitlines()[0][:120]
         raise ValueError(f"{path.name}: not a readable CSV file ({reason})") from None
@@ -348,9 +357,26 @@ def _read_plain_csv(path: Path, fs, column, nrows: int | None = None) -> Recordi
         raise RecordingMismatch(f"{path.name}: column {column!r} is not numeric")
     if fs is None:
         raise ValueError(f"{path.name}: a plain .csv file does not state its sampling rate; "
-                         "give fs (Hz)")
+                         + _GIVE_FS)
     return Recording(_samples(frame[column].to_numpy(), f"{path.name}: column {column!r}"),
                      fs, path.stem, column)
+
+
+def _csv_layout(lines: list[str]) -> tuple[str, str, int | None]:
+    """Separator, decimal mark and header row (0, or None) of a plain CSV file from its
+    first one or two lines. Values are separated by commas, semicolons or tabs; with
+    semicolons or tabs, or one column under a header, a comma in the values is a
+    decimal comma (spreadsheets in many locales write ``-3,6;0,5``)."""
+    first = lines[0]
+    sep = next((d for d in _DELIMITERS if d in first), None)
+    header = None if all(_is_number(v.replace(",", ".")) for v in
+                         first.strip().split(sep or ",")) else 0
+    data = lines[1] if header == 0 and len(lines) > 1 else first
+    if sep == "," or "," not in data:
+        return sep or ",", ".", header
+    if sep is None:  # one column: its values hold no separator, the comma is a decimal
+        return ";", ",", header
+    return sep, ",", header
 
 
 def _is_number(text: str) -> bool:
@@ -436,7 +462,7 @@ def _read_mat(path: Path, fs, variable, channel, mat_channel: str, probe: bool =
         raise RecordingMismatch(f"{path.name}: no variable {variable!r}")
     if fs is None:
         raise ValueError(f"{path.name}: a generic .mat variable does not state its sampling "
-                         "rate; give fs (Hz)")
+                         "rate; " + _GIVE_FS)
     return Recording(_samples(data[variable], f"{path.name}: {variable}"), fs, path.stem,
                      str(variable))
 
@@ -463,5 +489,5 @@ def _probe_mat(path: Path, names, fs, variable, channel: str) -> list[str] | Non
         raise RecordingMismatch(f"{path.name}: no variable {variable!r}; it holds {held}")
     if fs is None:
         raise ValueError(f"{path.name}: a generic .mat variable does not state its sampling "
-                         "rate; give fs (Hz)")
+                         "rate; " + _GIVE_FS)
     return [str(variable)]
