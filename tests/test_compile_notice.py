@@ -49,3 +49,21 @@ def test_has_compiled_kernels_reads_the_cache_folders(monkeypatch, tmp_path):
     assert not _cache.has_compiled_kernels()
     (tmp_path / "k.nbi").write_bytes(b"")
     assert _cache.has_compiled_kernels()
+
+
+def test_a_user_cache_folder_is_the_only_one_numba_reads(monkeypatch, tmp_path):
+    """With ``NUMBA_CACHE_DIR`` set numba reads its kernels there only, so kernels left in
+    the package's ``__pycache__`` do not count: an empty user folder means a compile is
+    coming and its notice is due (planted: counting ``__pycache__`` too; fails)."""
+    package = tmp_path / "pkg"
+    (package / "__pycache__").mkdir(parents=True)
+    (package / "kernels.py").write_text("")
+    (package / "__pycache__" / "kernels.f-1.py311.nbi").write_bytes(b"")
+    monkeypatch.delenv("NUMBA_CACHE_DIR", raising=False)
+    assert _cache.has_compiled_kernels(package)
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "user"))
+    assert not _cache.has_compiled_kernels(package)
+    mirror = tmp_path / "user" / package.relative_to(package.anchor)
+    mirror.mkdir(parents=True)
+    (mirror / "kernels.f-1.py311.nbi").write_bytes(b"")
+    assert _cache.has_compiled_kernels(package)

@@ -382,6 +382,16 @@ def test_the_edges_spread_an_impact_and_regenerate(machine, tmp_path):
     np.testing.assert_array_equal(regenerate(meta.iloc[-1]), X[-1])
 
 
+def test_the_datasets_manifest_states_the_recordings_unit(dataset):
+    """A twin's signals are in its recordings' unit, so its manifest does not claim m/s^2
+    as a simulated dataset's does (planted: the simulated units always; fails)."""
+    from ballpass.datasets.store import read_manifest
+
+    _, out, *_ = dataset
+    unit = read_manifest(out)["units"]["signal"]
+    assert unit != "m/s^2" and "healthy.csv" in unit
+
+
 def test_the_learned_path_is_stored(dataset):
     _, out, *_ = dataset
     stored = json.loads((Path(out) / MACHINE_FILE).read_text())

@@ -295,8 +295,16 @@ def _new_manifest(grid: Grid, fingerprint: dict) -> dict:
         "created": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
         "status": "running", "grid": grid.as_dict(), "root_seed": grid.dataset["seed"],
         "n_runs": grid.n_runs, "n_rows": grid.n_rows, "fs": grid.dataset["fs"],
-        "signal_length": grid.signal_length, "units": UNITS, "shards": shards,
+        "signal_length": grid.signal_length, "units": _units(grid), "shards": shards,
     }
+
+
+def _units(grid: Grid) -> dict:
+    """The dataset's units: a twin's signals are its machine's recordings and faults
+    scaled to them, in whatever unit those recordings are (not m/s^2)."""
+    if grid.machine is None:
+        return UNITS
+    return {**UNITS, "signal": f"the unit of the recordings {grid.machine['manifest']} lists"}
 
 
 def _verify(folder: Path, shard: dict, key: str) -> bool:

@@ -128,6 +128,8 @@ def has_compiled_kernels(package_dir: Path = PACKAGE_DIR) -> bool:
     -------
     bool
     """
-    return any(
-        any(folder.glob("*.nbi")) for folder in cache_dirs(package_dir) if folder.is_dir()
-    )
+    folders = cache_dirs(package_dir)
+    root = os.environ.get("NUMBA_CACHE_DIR")
+    if root:   # numba's locator of a user-given folder comes first: it reads only there
+        folders = [f for f in folders if Path(root) in f.parents]
+    return any(any(folder.glob("*.nbi")) for folder in folders if folder.is_dir())
