@@ -692,7 +692,7 @@ def read_grid(source) -> Grid:
     and scenes (its ball faults strike on every revolution, as before). The axis is
     refused without a ``"ball"`` fault (it would change nothing). Scenes with
     ``engagement < 1`` need a model that represents ``intermittent_faults`` (sr5,
-    sr4, gearbox; ``model = "auto"`` picks one); :func:`~ballpass.datasets.generate`
+    sr4, gearbox, impulse; ``model = "auto"`` picks one); :func:`~ballpass.datasets.generate`
     refuses, before any work, a model that would ignore it. List the engagements to
     cover, give a range table, e.g. ``{start = 0.2, stop = 0.7, step = 0.1}``, or draw
     them per run, ``{uniform = [0.2, 0.7]}`` (docs/sim2real.md recommends 0.2-0.7 for
