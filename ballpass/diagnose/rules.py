@@ -175,7 +175,8 @@ class Explanation:
 
     def __str__(self) -> str:
         head = (
-            f"{self.label} (grade {self.grade}) at {self.rpm:.1f} rpm; evidence (threshold): "
+            f"{self.label} (grade {self.grade}) at {round(self.rpm, 1):g} rpm; "
+            "evidence (threshold): "
             + ", ".join(
                 f"{f} {self.evidence_db[f]:.1f} dB ({self.threshold_db[f]:.1f})"
                 for f in FAULT_FAMILIES
@@ -588,7 +589,7 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
         >>> why.label, max(why.evidence_db.values()) < why.threshold_db["outer"]
         ('healthy', True)
         >>> print(why)                                            # doctest: +ELLIPSIS
-        healthy (grade ...) at 1797.0 rpm; evidence (threshold): outer ... dB (6.0), ...
+        healthy (grade ...) at 1797 rpm; evidence (threshold): outer ... dB (6.0), ...
         """
         import pandas as pd
 
