@@ -420,7 +420,6 @@ def _run(scene: Scene, solver: str, *, resonator: bool, dt=None, rtol=None, atol
     out, states, info = raw.output, raw.states, raw.info
     out = add_modes(scene, out, 1.0 / raw.h_out)
     h_out = raw.h_out
-    n_sensors = len(scene.sensors)
 
     accel = add_noise(scene, to_output_rate(out, n_samples, oversample))
     check_finite(scene, accel, "sr5" if resonator else "sr4")
@@ -443,15 +442,7 @@ def _run(scene: Scene, solver: str, *, resonator: bool, dt=None, rtol=None, atol
     info["compile_time_s"] = compile_s
     if bm.film_m:
         info["ehl_film_m"] = bm.film_m
-    return SimulationResult(
-        accel=accel[0] if n_sensors == 1 else accel,
-        fs=scene.fs,
-        t=t,
-        scene=scene,
-        sensor_names=tuple(s.name for s in scene.sensors),
-        truth=truth,
-        info=info,
-    )
+    return SimulationResult.of_scene(scene, accel, t, truth, info)
 
 
 def _run_sr5(scene: Scene, solver: str, **kwargs) -> SimulationResult:

@@ -327,9 +327,7 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None,
     info = {"solver": solver, "dt_s": step, "n_steps": int((n_out - 1) * n_sub),
             "n_rejected": 0, "internal_fs": 1.0 / h_out,
             "wall_time_s": time.perf_counter() - t_wall}
-    return SimulationResult(accel=accel[0] if n_sensors == 1 else accel, fs=scene.fs, t=t,
-                            scene=scene, sensor_names=tuple(s.name for s in scene.sensors),
-                            truth=truth, info=info)
+    return SimulationResult.of_scene(scene, accel, t, truth, info)
 
 
 def _accepts(scene: Scene) -> str | None:
