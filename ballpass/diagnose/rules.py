@@ -31,7 +31,7 @@ from sklearn.utils.validation import check_array
 
 from .._params import keep_params
 from ..features._validation import check_fs, check_nonnegative, check_rpm
-from ..features.bands import as_bearing
+from ..features.bands import _highest_fault_order, as_bearing
 from ..features.separation import check_separate, separated_rows
 from ._names import LABELS
 from .ball import cage_note, unmodulated_comb_db
@@ -374,8 +374,7 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
                 f"Hz and {speed.min():g} rpm), got {X.shape[1]} samples ({duration:.3g} s)")
         harmonics = self.harmonics
         if isinstance(harmonics, numbers.Integral) and harmonics >= 1:
-            top = speed.max() / 60.0 * (harmonics * max(orders.bpfo, orders.bpfi,
-                                                         orders.ball_defect) + 1.0)
+            top = speed.max() / 60.0 * _highest_fault_order(bearing, harmonics)
             if top >= 0.5 * fs:
                 raise ValueError(
                     f"rpm = {speed.max():g} puts the fault lines up to {top:.0f} Hz "
