@@ -29,7 +29,7 @@ import numpy as np
 from sklearn.base import BaseEstimator, ClassifierMixin
 from sklearn.utils.validation import check_array
 
-from .._params import keep_params
+from .._params import StatelessMixin, keep_params
 from ..features._validation import check_fs, check_nonnegative, check_rpm
 from ..features.bands import _highest_fault_order, as_bearing
 from ..features.separation import check_separate, separated_rows
@@ -227,7 +227,7 @@ def _role(fault: str, side: int) -> str:
     return "sideband" if FAULT_FAMILIES[fault][2] > 0 else "refuting sideband"
 
 
-class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
+class EnvelopeDiagnoser(StatelessMixin, ClassifierMixin, BaseEstimator):
     """Physics-based bearing diagnosis from the squared envelope spectrum.
 
     Predicts ``"healthy"``, ``"outer"``, ``"inner"`` or ``"ball"`` from the evidence of
@@ -337,12 +337,6 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
 
     def __sklearn_is_fitted__(self) -> bool:
         return True
-
-    def __sklearn_tags__(self):
-        tags = super().__sklearn_tags__()
-        tags.requires_fit = False
-        tags.target_tags.required = False
-        return tags
 
     # ------------------------------------------------------------ checks
     def _checked(self, X, rpm):
