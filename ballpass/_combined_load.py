@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._contact import _monotone_root
+from ._contact import _load_zone_integral, _monotone_root
 from ._validation import check_number
 
 __all__ = ["CombinedLoadDistribution", "combined_load_distribution", "axial_integral"]
@@ -100,17 +100,11 @@ def axial_integral(epsilon: float, load_exponent: float = 1.5) -> float:
     >>> round(axial_integral(1e9), 6)     # all balls alike
     1.0
     """
-    from scipy.integrate import quad
+    return _load_zone_integral(epsilon, load_exponent, _axial_integrand)
 
-    eps = check_number("epsilon", epsilon, 0.0, lo_open=True)
-    n = check_number("load_exponent", load_exponent, 0.0, lo_open=True)
-    limit = math.pi if eps >= 1.0 else math.acos(1.0 - 2.0 * eps)
 
-    def integrand(psi: float) -> float:
-        return max(1.0 - math.sin(0.5 * psi) ** 2 / eps, 0.0) ** n
-
-    value, _ = quad(integrand, 0.0, limit, epsabs=0.0, epsrel=1e-12, limit=200)
-    return value / math.pi
+def _axial_integrand(psi: float, eps: float, n: float) -> float:
+    return max(1.0 - math.sin(0.5 * psi) ** 2 / eps, 0.0) ** n
 
 
 def combined_load_distribution(bearing, radial_load_n: float, axial_load_n: float

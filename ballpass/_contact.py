@@ -324,23 +324,49 @@ def stribeck_integral(epsilon: float, load_exponent: float = 1.5) -> float:
     >>> round(1 / stribeck_integral(0.5), 2)      # Stribeck's 4.37
     4.37
     """
+    return _load_zone_integral(epsilon, load_exponent, _radial_integrand)
+
+
+def _radial_integrand(psi: float, eps: float, n: float) -> float:
+    drop = math.sin(0.5 * psi) ** 2 / eps  # (1 - cos psi) / (2 eps), without cancellation
+    if eps >= 1.0:
+        # full ring: the integral of cos over [0, pi] vanishes, so integrate
+        # (g^n - 1) cos psi, which keeps its accuracy as eps -> inf (J_r ~ n / (4 eps))
+        return math.expm1(n * math.log1p(-drop)) * math.cos(psi) if drop < 1.0 else (
+            -math.cos(psi)
+        )
+    return max(1.0 - drop, 0.0) ** n * math.cos(psi)
+
+
+def _load_zone_integral(epsilon: float, load_exponent: float, integrand) -> float:
+    """Harris's load integrals: ``(1/pi) int_0^psi_l integrand(psi, eps, n) dpsi``.
+
+    The radial (:func:`stribeck_integral`) and axial (:func:`axial_integral`) integrals
+    share the checks of their arguments, the load zone ``psi_l = arccos(1 - 2 eps)``
+    (pi when eps >= 1) and the quadrature (relative tolerance 1e-12); the integrand,
+    even in psi, is integrated over half the zone.
+
+    Parameters
+    ----------
+    epsilon : float
+        Load-distribution factor eps, > 0.
+    load_exponent : float
+        n, > 0 (1.5 for balls, 10/9 for rollers).
+    integrand : callable
+        ``integrand(psi, eps, n) -> float``, psi in rad.
+
+    Returns
+    -------
+    float
+        The integral, dimensionless.
+    """
     from scipy.integrate import quad
 
     eps = check_number("epsilon", epsilon, 0.0, lo_open=True)
     n = check_number("load_exponent", load_exponent, 0.0, lo_open=True)
     limit = math.pi if eps >= 1.0 else math.acos(1.0 - 2.0 * eps)
-
-    def integrand(psi: float) -> float:
-        drop = math.sin(0.5 * psi) ** 2 / eps  # (1 - cos psi) / (2 eps), without cancellation
-        if eps >= 1.0:
-            # full ring: the integral of cos over [0, pi] vanishes, so integrate
-            # (g^n - 1) cos psi, which keeps its accuracy as eps -> inf (J_r ~ n / (4 eps))
-            return math.expm1(n * math.log1p(-drop)) * math.cos(psi) if drop < 1.0 else (
-                -math.cos(psi)
-            )
-        return max(1.0 - drop, 0.0) ** n * math.cos(psi)
-
-    value, _ = quad(integrand, 0.0, limit, epsabs=0.0, epsrel=1e-12, limit=200)
+    value, _ = quad(integrand, 0.0, limit, args=(eps, n), epsabs=0.0, epsrel=1e-12,
+                    limit=200)
     return value / math.pi
 
 

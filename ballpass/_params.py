@@ -1,4 +1,5 @@
-"""Storing a scikit-learn estimator's constructor arguments."""
+"""scikit-learn conventions the estimators share: constructor arguments kept as given,
+and the tags of an estimator that learns nothing."""
 
 from __future__ import annotations
 
@@ -29,3 +30,30 @@ def keep_params(estimator, arguments: dict) -> None:
     for name, value in arguments.items():
         if name != "self":
             setattr(estimator, name, value)
+
+
+class StatelessMixin:
+    """Tags of an estimator that learns nothing from ``fit``: it needs no fit and no
+    target (``requires_fit`` and ``target_tags.required`` False).
+
+    Put it first among the bases, left of scikit-learn's mixins and ``BaseEstimator``,
+    whose tags it amends.
+
+    Examples
+    --------
+    >>> from sklearn.base import BaseEstimator, TransformerMixin
+    >>> from sklearn.utils import get_tags
+    >>> from ballpass._params import StatelessMixin
+    >>> class Identity(StatelessMixin, TransformerMixin, BaseEstimator):
+    ...     def transform(self, X):
+    ...         return X
+    >>> tags = get_tags(Identity())
+    >>> tags.requires_fit, tags.target_tags.required
+    (False, False)
+    """
+
+    def __sklearn_tags__(self):
+        tags = super().__sklearn_tags__()
+        tags.requires_fit = False
+        tags.target_tags.required = False
+        return tags

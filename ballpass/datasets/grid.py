@@ -845,15 +845,20 @@ def _n_values(values) -> int:
     return 1 if isinstance(values, Distribution) else len(values)
 
 
+def _sizes(axes: dict) -> str:
+    """The grid's size for a refusal, e.g. ``"4 fault x 100 rpm"``: the axes that add
+    points, sensors left out (they add channels, not runs); empty for one point."""
+    return " x ".join(f"{_n_values(v)} {k}" for k, v in axes.items()
+                      if _n_values(v) > 1 and k != "sensor")
+
+
 def _check_count(dataset: dict, axes: dict) -> None:
     """Refuse a grid of more than :data:`MAX_RUNS` runs before expanding it."""
     n_points = count_points(axes)
     n_runs = n_points * dataset["repeats"] * dataset.get("draws", 1)
     if n_runs > MAX_RUNS:
-        sizes = " x ".join(f"{_n_values(v)} {k}" for k, v in axes.items()
-                           if _n_values(v) > 1 and k != "sensor")
         raise ValueError(
-            f"the grid has {n_runs:.3g} runs ({sizes or '1 point'}, x {dataset['repeats']} "
+            f"the grid has {n_runs:.3g} runs ({_sizes(axes) or '1 point'}, x {dataset['repeats']} "
             f"repeats x {dataset.get('draws', 1)} draws); a dataset holds at most "
             f"{MAX_RUNS:,} runs. Use fewer values or "
             "repeats, or split the study into several datasets.")
@@ -863,10 +868,8 @@ def _check_points(axes: dict) -> None:
     """Refuse more than :data:`MAX_POINTS` listed grid points before building them."""
     n_points = count_points(axes)
     if n_points > MAX_POINTS:
-        sizes = " x ".join(f"{_n_values(v)} {k}" for k, v in axes.items()
-                           if _n_values(v) > 1 and k != "sensor")
         raise ValueError(
-            f"the grid lists {n_points:.3g} points ({sizes}); at most {MAX_POINTS:,} are "
+            f"the grid lists {n_points:.3g} points ({_sizes(axes)}); at most {MAX_POINTS:,} are "
             "checked one by one. List fewer values, or draw an axis from a distribution "
             "(e.g. rpm = { uniform = [600, 1800] } with [dataset] draws = N), whose values "
             "are checked once at their extremes.")

@@ -272,6 +272,14 @@ def _path(path) -> Path:
     return path
 
 
+def _check_channel(channel) -> str:
+    """A CWRU accelerometer, any case: ``"DE"`` (drive end), ``"FE"`` (fan end) or
+    ``"BA"`` (base), upper case; a ValueError naming them otherwise."""
+    channel = str(channel).upper()
+    if channel not in ("DE", "FE", "BA"):
+        raise ValueError(f"channel must be 'DE', 'FE' or 'BA', got {channel!r}")
+    return channel
+
 def load_cwru_mat(path, channel: str = "DE", fs: float | None = None) -> CwruRecord:
     """Load one channel of a CWRU ``.mat`` file in m/s^2, with fs, rpm and label.
 
@@ -305,9 +313,7 @@ def load_cwru_mat(path, channel: str = "DE", fs: float | None = None) -> CwruRec
     >>> rec.fs, rec.rpm, rec.rpm_source, rec.label                    # doctest: +SKIP
     (12000.0, 1796.0, 'file', 'outer')
     """
-    channel = str(channel).upper()
-    if channel not in ("DE", "FE", "BA"):
-        raise ValueError(f"channel must be 'DE', 'FE' or 'BA', got {channel!r}")
+    channel = _check_channel(channel)
     if fs is not None:
         fs = check_fs(fs)
     path = _path(path)
@@ -558,9 +564,7 @@ def load_cwru(paths, fs: float = 12_000.0, segment_s: float = 1.0, channel: str 
     """
     fs = check_fs(fs)
     length = check_segment(segment_s, fs)
-    channel = str(channel).upper()
-    if channel not in ("DE", "FE", "BA"):
-        raise ValueError(f"channel must be 'DE', 'FE' or 'BA', got {channel!r}")
+    channel = _check_channel(channel)
     if source_fs is not None:
         source_fs = check_fs(source_fs)
 

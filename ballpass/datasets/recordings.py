@@ -248,10 +248,7 @@ def _recordings(path: Path, fs, column, variable, channel, mat_channel: str, pro
     else:
         return _read_signal_file(path, fs, channel)
     if stated is None:
-        if fs is None:
-            raise ValueError(f"{path.name}: a {suffix} file does not state its sampling "
-                             "rate; " + _GIVE_FS)
-        stated = fs
+        stated = _rate_given(path, fs, f"{suffix} file")
     _check_rate(path, fs, stated)
     picked = _pick(path, names, rows, channel)
     if probe:
@@ -266,6 +263,15 @@ def from_real(rec) -> Recording:
     columns = rec.columns()
     return Recording(rec.accel, float(rec.fs), rec.name, str(columns["channel"]),
                      rpm=float(rec.rpm), bearing=rec.bearing, label=rec.label, info=columns)
+
+
+def _rate_given(path: Path, fs, what: str):
+    """``fs`` (Hz) for a ``what`` (e.g. ``"plain .csv file"``) that does not state its
+    sampling rate; a ValueError asking for it when None."""
+    if fs is None:
+        raise ValueError(f"{path.name}: a {what} does not state its sampling rate; "
+                         + _GIVE_FS)
+    return fs
 
 
 def _check_rate(path: Path, fs, stated: float) -> None:
@@ -355,9 +361,7 @@ def _read_plain_csv(path: Path, fs, column, nrows: int | None = None) -> Recordi
                                 f"{', '.join(frame.columns)}")
     if column not in numeric:
         raise RecordingMismatch(f"{path.name}: column {column!r} is not numeric")
-    if fs is None:
-        raise ValueError(f"{path.name}: a plain .csv file does not state its sampling rate; "
-                         + _GIVE_FS)
+    fs = _rate_given(path, fs, "plain .csv file")
     return Recording(_samples(frame[column].to_numpy(), f"{path.name}: column {column!r}"),
                      fs, path.stem, column)
 
@@ -460,9 +464,7 @@ def _read_mat(path: Path, fs, variable, channel, mat_channel: str, probe: bool =
     data = _loadmat(path)
     if variable not in data:
         raise RecordingMismatch(f"{path.name}: no variable {variable!r}")
-    if fs is None:
-        raise ValueError(f"{path.name}: a generic .mat variable does not state its sampling "
-                         "rate; " + _GIVE_FS)
+    fs = _rate_given(path, fs, "generic .mat variable")
     return Recording(_samples(data[variable], f"{path.name}: {variable}"), fs, path.stem,
                      str(variable))
 
@@ -487,7 +489,5 @@ def _probe_mat(path: Path, names, fs, variable, channel: str) -> list[str] | Non
     if variable not in names:
         held = ", ".join(names[:8]) + (", ..." if len(names) > 8 else "") or "nothing"
         raise RecordingMismatch(f"{path.name}: no variable {variable!r}; it holds {held}")
-    if fs is None:
-        raise ValueError(f"{path.name}: a generic .mat variable does not state its sampling "
-                         "rate; " + _GIVE_FS)
+    _rate_given(path, fs, "generic .mat variable")
     return [str(variable)]

@@ -80,7 +80,7 @@ from ..features._validation import (
     check_nonnegative,
     check_positive_int,
     check_rpm,
-    check_signal,
+    check_signals,
     to_unit_scale,
 )
 from ..features.bands import _check_reach, as_bearing
@@ -740,10 +740,7 @@ def envelope_evidence(
     True
     """
     fs = check_fs(fs)
-    xv = check_signal(x)
-    if xv.ndim > 2:
-        raise ValueError(f"x must be (n_signals, n_samples) or (n_samples,), got {xv.shape}")
-    xv = np.atleast_2d(xv)
+    xv = check_signals(x)
     bearing = as_bearing(bearing)
     harmonics = check_positive_int("harmonics", harmonics, 1)
     slip = check_nonnegative("slip", slip)

@@ -48,7 +48,7 @@ import numpy as np
 from sklearn.base import BaseEstimator, TransformerMixin
 from sklearn.utils.validation import check_is_fitted, validate_data
 
-from .._params import keep_params
+from .._params import StatelessMixin, keep_params
 from ..features import envelope_spectrum
 from ..features._validation import check_fs, check_positive_int, check_rpm
 from .evidence import FAULT_FAMILIES, envelope_evidence, family_lines
@@ -83,7 +83,7 @@ def _order_edges(max_order: float, order_step: float) -> np.ndarray:
     return order_step * np.arange(1, n + 2)
 
 
-class EvidenceTransformer(TransformerMixin, BaseEstimator):
+class EvidenceTransformer(StatelessMixin, TransformerMixin, BaseEstimator):
     """Fault-family evidence and order-normalized SES of each signal (no absolute units).
 
     ``(n_signals, n_samples) -> (n_signals, n_features)``; see the module notes for the
@@ -222,7 +222,5 @@ class EvidenceTransformer(TransformerMixin, BaseEstimator):
 
     def __sklearn_tags__(self):
         tags = super().__sklearn_tags__()
-        tags.requires_fit = False
-        tags.target_tags.required = False
         tags.input_tags.allow_nan = False
         return tags

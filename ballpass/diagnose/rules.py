@@ -29,9 +29,9 @@ import numpy as np
 from sklearn.base import BaseEstimator, ClassifierMixin
 from sklearn.utils.validation import check_array
 
-from .._params import keep_params
+from .._params import StatelessMixin, keep_params
 from ..features._validation import check_fs, check_nonnegative, check_rpm
-from ..features.bands import as_bearing
+from ..features.bands import _highest_fault_order, as_bearing
 from ..features.separation import check_separate, separated_rows
 from ._names import LABELS
 from .ball import cage_note, unmodulated_comb_db
@@ -228,7 +228,7 @@ def _role(fault: str, side: int) -> str:
     return "sideband" if FAULT_FAMILIES[fault][2] > 0 else "refuting sideband"
 
 
-class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
+class EnvelopeDiagnoser(StatelessMixin, ClassifierMixin, BaseEstimator):
     """Physics-based bearing diagnosis from the squared envelope spectrum.
 
     Predicts ``"healthy"``, ``"outer"``, ``"inner"`` or ``"ball"`` from the evidence of
@@ -339,12 +339,6 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
     def __sklearn_is_fitted__(self) -> bool:
         return True
 
-    def __sklearn_tags__(self):
-        tags = super().__sklearn_tags__()
-        tags.requires_fit = False
-        tags.target_tags.required = False
-        return tags
-
     # ------------------------------------------------------------ checks
     def _checked(self, X, rpm):
         """Validated (X, rpm per row, fs, bearing) or a ValueError before any work."""
@@ -375,8 +369,7 @@ class EnvelopeDiagnoser(ClassifierMixin, BaseEstimator):
                 f"Hz and {speed.min():g} rpm), got {X.shape[1]} samples ({duration:.3g} s)")
         harmonics = self.harmonics
         if isinstance(harmonics, numbers.Integral) and harmonics >= 1:
-            top = speed.max() / 60.0 * (harmonics * max(orders.bpfo, orders.bpfi,
-                                                         orders.ball_defect) + 1.0)
+            top = speed.max() / 60.0 * _highest_fault_order(bearing, harmonics)
             if top >= 0.5 * fs:
                 raise ValueError(
                     f"rpm = {speed.max():g} puts the fault lines up to {top:.0f} Hz "

@@ -51,6 +51,16 @@ def check_signal(x, axis: int = -1, *, name: str = "x", min_samples: int = 2,
     return arr
 
 
+
+def check_signals(x) -> np.ndarray:
+    """Return ``x`` of shape (n_samples,) or (n_signals, n_samples) as a float64 array
+    of shape (n_signals, n_samples), checked as by :func:`check_signal`; a ValueError
+    naming both shapes for more dimensions."""
+    xv = np.atleast_2d(check_signal(x))
+    if xv.ndim != 2:
+        raise ValueError(f"x must be (n_signals, n_samples) or (n_samples,), got {xv.shape}")
+    return xv
+
 def to_unit_scale(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """``x`` (samples last) scaled so that each signal's largest magnitude lies in
     [0.25, 1), and the exponent ``k`` (int, shape (..., 1)) with ``x = scaled * 2**k``.

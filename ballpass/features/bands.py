@@ -286,10 +286,16 @@ def highest_fault_line(bearing, rpm, fs: float, harmonics: int = 3) -> np.ndarra
     >>> round(float(highest_fault_line(bp.Bearing.catalog("6205"), 1797.0, 12_000.0)))
     517
     """
-    per_order = bearing.frequencies(1.0)  # every defect frequency scales with the speed
-    orders = harmonics * max(per_order.bpfo, per_order.bpfi, per_order.ball_defect) + 1.0
+    orders = _highest_fault_order(bearing, harmonics)
     shaft_hz = np.asarray(rpm, dtype=float) / 60.0
     return np.minimum(orders * shaft_hz, np.nextafter(fs / 2, 0))
+
+
+def _highest_fault_order(bearing, harmonics: int) -> float:
+    """Order (multiple of the shaft speed) of :func:`highest_fault_line`, uncapped:
+    ``harmonics`` times the highest defect order (BPFO, BPFI, 2xBSF) plus one."""
+    per_order = bearing.frequencies(1.0)  # every defect frequency scales with the speed
+    return harmonics * max(per_order.bpfo, per_order.bpfi, per_order.ball_defect) + 1.0
 
 
 def fault_band_features(

@@ -40,7 +40,7 @@ import math
 import numpy as np
 import scipy.fft
 
-from ._validation import check_band, check_fs, check_positive_int, check_signal
+from ._validation import check_band, check_fs, check_positive_int, check_signals
 
 __all__ = ["enhanced_envelope_spectrum", "default_nperseg"]
 
@@ -110,9 +110,7 @@ def enhanced_envelope_spectrum(x, fs: float, band, *, max_alpha: float,
     37
     """
     fs = check_fs(fs)
-    xv = np.atleast_2d(check_signal(x))
-    if xv.ndim != 2:
-        raise ValueError(f"x must be (n_signals, n_samples) or (n_samples,), got {xv.shape}")
+    xv = check_signals(x)
     lo, hi = check_band(band, fs)
     nw = default_nperseg(fs) if nperseg is None else check_positive_int("nperseg", nperseg, 16)
     n = xv.shape[-1]

@@ -25,7 +25,7 @@ import numpy as np
 import scipy.fft
 import scipy.signal
 
-from ._validation import check_band, check_fs, check_signal
+from ._validation import check_band, check_fs, check_signals
 from .envelope import _window
 
 __all__ = ["BandDemodulator", "STOP_GAIN", "butterworth_gain"]
@@ -83,9 +83,7 @@ class BandDemodulator:
     def __init__(self, x, fs: float, *, max_hz=None, prewhiten: bool = False,
                  order: int = 4):
         self.fs = check_fs(fs)
-        xv = np.atleast_2d(check_signal(x))
-        if xv.ndim != 2:
-            raise ValueError(f"x must be (n_signals, n_samples) or (n_samples,), got {xv.shape}")
+        xv = check_signals(x)
         self.n = xv.shape[-1]
         self.df = self.fs / self.n
         spectrum = scipy.fft.rfft(xv - xv.mean(axis=-1, keepdims=True), axis=-1)

@@ -216,6 +216,46 @@ def _envelope(
     return power if squared else np.sqrt(power)
 
 
+def _checked_envelope(x, fs, band, squared, prewhiten, order, fault_hz, axis):
+    """Check the arguments of an envelope function and form the envelope of ``x``.
+
+    The step :func:`envelope`, :func:`envelope_spectrum` and
+    :func:`ballpass.features.order_envelope_spectrum` share: ``fs``, ``x`` and ``order``
+    are checked in that order (``squared``, ``prewhiten`` and ``band`` by
+    :func:`_envelope`), and ``x`` is scaled exactly to unit size first, so no overflow
+    occurs on the way.
+
+    Parameters
+    ----------
+    x : array_like, shape (..., n_samples)
+        Signal(s), any unit.
+    fs, band, squared, prewhiten, order, fault_hz, axis
+        As in :func:`envelope`.
+
+    Returns
+    -------
+    fs : float
+        The checked sampling frequency, Hz.
+    e : ndarray, shape (..., n_samples)
+        Envelope of the scaled ``x``, samples last.
+    restore : callable
+        ``restore(a)`` for ``a`` of shape (..., m) computed linearly from ``e`` (the
+        envelope itself, its spectrum): ``a`` in the unit of the envelope (unit of
+        ``x``; squared: unit^2; pre-whitened: dimensionless), last axis moved to
+        ``axis``.
+    """
+    fs = check_fs(fs)
+    xv, k = to_unit_scale(check_signal(x, axis))
+    order = check_positive_int("order", order, 1, MAX_FILTER_ORDER)
+    e = _envelope(xv, fs, band, squared, prewhiten, order, fault_hz)
+    unit_power = 0 if prewhiten else 2 if squared else 1   # pre-whitened: dimensionless
+
+    def restore(a: np.ndarray) -> np.ndarray:
+        return np.moveaxis(from_unit_scale(a, k, unit_power), -1, axis)
+
+    return fs, e, restore
+
+
 @functools.lru_cache(maxsize=32)
 def _cached_window(window, n: int) -> np.ndarray:
     w = scipy.signal.get_window(window, n)
@@ -299,12 +339,8 @@ def envelope(
     >>> bool(np.allclose(e, 1 + 0.5 * np.cos(2 * np.pi * 10 * t)))
     True
     """
-    fs = check_fs(fs)
-    xv, k = to_unit_scale(check_signal(x, axis))   # exact: no overflow on the way
-    order = check_positive_int("order", order, 1, MAX_FILTER_ORDER)
-    e = _envelope(xv, fs, band, squared, prewhiten, order, fault_hz)
-    unit_power = 0 if prewhiten else 2 if squared else 1   # pre-whitened: dimensionless
-    return np.moveaxis(from_unit_scale(e, k, unit_power), -1, axis)
+    _, e, restore = _checked_envelope(x, fs, band, squared, prewhiten, order, fault_hz, axis)
+    return restore(e)
 
 
 def envelope_spectrum(
@@ -374,13 +410,9 @@ def envelope_spectrum(
     >>> float(f[10]), round(float(ses[10]), 6), round(float(ses[20]), 6)  # 2 m A^2, m^2 A^2/2
     (10.0, 4.0, 0.5)
     """
-    fs = check_fs(fs)
-    xv, k = to_unit_scale(check_signal(x, axis))   # exact: no overflow on the way
-    order = check_positive_int("order", order, 1, MAX_FILTER_ORDER)
-    e = _envelope(xv, fs, band, squared, prewhiten, order, fault_hz)
+    fs, e, restore = _checked_envelope(x, fs, band, squared, prewhiten, order, fault_hz, axis)
     freqs, amp = _amplitude_spectrum(e, window, fs)
-    unit_power = 0 if prewhiten else 2 if squared else 1   # pre-whitened: dimensionless
-    return freqs, np.moveaxis(from_unit_scale(amp, k, unit_power), -1, axis)
+    return freqs, restore(amp)
 
 
 def squared_envelope_spectrum(x, fs: float, band=None, **kwargs) -> tuple[np.ndarray, np.ndarray]:

@@ -528,11 +528,10 @@ def spectral_kurtosis(
     if noverlap >= nperseg:
         raise ValueError(f"noverlap must be < nperseg = {nperseg}, got {noverlap}")
     n = x.shape[-1]
+    too_short = (f"x must span at least two full segments of nperseg = {nperseg} samples "
+                 f"(hop {nperseg - noverlap}), got {n} samples")
     if nperseg > n:  # before the window is built: nperseg = 10**9 would allocate 8 GB
-        raise ValueError(
-            f"x must span at least two full segments of nperseg = {nperseg} samples "
-            f"(hop {nperseg - noverlap}), got {n} samples"
-        )
+        raise ValueError(too_short)
     if isinstance(window, (str, tuple)):
         win = scipy.signal.get_window(window, nperseg)
     else:
@@ -540,11 +539,8 @@ def spectral_kurtosis(
     if win.shape != (nperseg,):
         raise ValueError(f"window must have nperseg = {nperseg} samples, got shape {win.shape}")
     stft = scipy.signal.ShortTimeFFT(win, hop=nperseg - noverlap, fs=fs, fft_mode="onesided")
-    if n < nperseg or stft.upper_border_begin(n)[1] - stft.lower_border_end[1] < 2:
-        raise ValueError(
-            f"x must span at least two full segments of nperseg = {nperseg} samples "
-            f"(hop {nperseg - noverlap}), got {n} samples"
-        )
+    if stft.upper_border_begin(n)[1] - stft.lower_border_end[1] < 2:
+        raise ValueError(too_short)
     p0, p1 = stft.lower_border_end[1], stft.upper_border_begin(n)[1]
     s = stft.stft(x, p0=p0, p1=p1, axis=-1)  # (..., n_freqs, n_segments)
     p = s.real**2 + s.imag**2

@@ -23,15 +23,8 @@ import scipy.integrate
 import scipy.interpolate
 
 from .._resources import available_memory, human_bytes
-from ._validation import (
-    MAX_FILTER_ORDER,
-    check_fs,
-    check_positive_int,
-    check_signal,
-    from_unit_scale,
-    to_unit_scale,
-)
-from .envelope import _amplitude_spectrum, _envelope
+from ._validation import check_fs, check_positive_int, check_signal
+from .envelope import _amplitude_spectrum, _checked_envelope
 
 __all__ = ["shaft_revolutions", "order_track", "order_envelope_spectrum"]
 
@@ -251,11 +244,7 @@ def order_envelope_spectrum(
     >>> round(float(o[np.argmax(amp)]), 1)
     3.5
     """
-    fs = check_fs(fs)
-    xv, k = to_unit_scale(check_signal(x, axis))   # exact: no overflow on the way
-    order = check_positive_int("order", order, 1, MAX_FILTER_ORDER)
-    e = _envelope(xv, fs, band, squared, prewhiten, order)
+    fs, e, restore = _checked_envelope(x, fs, band, squared, prewhiten, order, None, axis)
     _, e_angle, spr = _order_track(e, fs, rpm, tacho, pulses_per_rev, samples_per_rev)
     orders, amp = _amplitude_spectrum(e_angle, window, float(spr))
-    unit_power = 0 if prewhiten else 2 if squared else 1   # pre-whitened: dimensionless
-    return orders, np.moveaxis(from_unit_scale(amp, k, unit_power), -1, axis)
+    return orders, restore(amp)

@@ -14,7 +14,7 @@ import numpy as np
 from sklearn.base import BaseEstimator, TransformerMixin
 from sklearn.utils.validation import check_is_fitted, validate_data
 
-from .._params import keep_params
+from .._params import StatelessMixin, keep_params
 from ._validation import check_fs, check_rpm
 from .bands import fault_band_features, fault_band_names
 from .indicators import INDICATORS, indicators
@@ -33,7 +33,7 @@ def _signals(estimator, X, *, reset: bool) -> np.ndarray:
     return X
 
 
-class IndicatorTransformer(TransformerMixin, BaseEstimator):
+class IndicatorTransformer(StatelessMixin, TransformerMixin, BaseEstimator):
     """Statistical indicators of each signal: ``(n_signals, n_samples) -> (n_signals, k)``.
 
     Parameters
@@ -83,14 +83,8 @@ class IndicatorTransformer(TransformerMixin, BaseEstimator):
         """Indicator names, ndarray of str."""
         return np.asarray(self._names(), dtype=object)
 
-    def __sklearn_tags__(self):
-        tags = super().__sklearn_tags__()
-        tags.requires_fit = False
-        tags.target_tags.required = False
-        return tags
 
-
-class FaultBandTransformer(TransformerMixin, BaseEstimator):
+class FaultBandTransformer(StatelessMixin, TransformerMixin, BaseEstimator):
     """Fault-band SES levels of each signal, dB: ``(n_signals, n_samples) -> (n_signals, k)``.
 
     Parameters
@@ -201,9 +195,3 @@ class FaultBandTransformer(TransformerMixin, BaseEstimator):
     def get_feature_names_out(self, input_features=None):
         """Feature names (:func:`ballpass.features.fault_band_names`), ndarray of str."""
         return np.asarray(fault_band_names(self.harmonics), dtype=object)
-
-    def __sklearn_tags__(self):
-        tags = super().__sklearn_tags__()
-        tags.requires_fit = False
-        tags.target_tags.required = False
-        return tags

@@ -3,6 +3,8 @@ anti-alias decimation and AC coupling, measurement noise, the ground-truth time 
 
 from __future__ import annotations
 
+import math
+import warnings
 from functools import lru_cache
 
 import numpy as np
@@ -18,6 +20,7 @@ __all__ = [
     "to_output_rate",
     "add_noise",
     "check_finite",
+    "divisor_step",
 ]
 
 #: internal output rate = OVERSAMPLE * fs before the anti-alias decimation
@@ -150,6 +153,36 @@ def decimate(out: np.ndarray, oversample: int) -> np.ndarray:
         _decimate_line(np.ascontiguousarray(out[:, i]), h, oversample, accel[i])
     return accel
 
+
+def divisor_step(h_out: float, dt_req: float, dt) -> tuple[int, float]:
+    """The fixed step of a solver that ends every step on the output grid.
+
+    Parameters
+    ----------
+    h_out : float
+        Spacing of the internal output grid, s.
+    dt_req : float
+        Step wanted, s: ``dt`` when given, else the model's default.
+    dt : float or None
+        The step the caller gave, s; a ``UserWarning`` (pointing at the caller of
+        :func:`ballpass.simulate`) says so when it had to be rounded by more than 1e-6
+        of itself.
+
+    Returns
+    -------
+    n_sub : int
+        Steps per output interval, ``ceil(h_out / dt_req)`` (1e-9 below it: a ``dt``
+        meant as an exact divisor does not round up), at least 1.
+    step : float
+        ``h_out / n_sub``, s: the largest divisor of ``h_out`` not above ``dt_req``.
+    """
+    n_sub = max(1, math.ceil(h_out / dt_req - 1e-9))
+    step = h_out / n_sub
+    if dt is not None and abs(step - dt) > 1e-6 * dt:
+        warnings.warn(f"dt={dt:g} s rounded to {step:.6g} s, a divisor of the internal output "
+                      f"spacing {h_out:.6g} s; res.info['dt_s'] holds the step used",
+                      stacklevel=5)
+    return n_sub, step
 
 def to_output_rate(out: np.ndarray, n_samples: int, oversample: int) -> np.ndarray:
     """Internal-grid output (n_out, n_sensors) to what a sensor delivers: anti-alias

@@ -239,6 +239,15 @@ class RawIntegration:
     info: dict
 
 
+def _rk4_grid(dt: float, h_out: float) -> tuple[int, int]:
+    """``(mult, n_sub)`` of the RK4 step :func:`integrate` makes of ``dt`` (s): the step
+    ``h_out * mult / n_sub`` ends on the output grid of spacing ``h_out`` (s), a
+    multiple of it (``n_sub = 1``) or a divisor (``mult = 1``); the 1e-9 keeps a ``dt``
+    meant as an exact multiple or divisor from rounding the other way."""
+    if dt >= h_out:
+        return math.floor(dt / h_out + 1e-9), 1
+    return 1, math.ceil(h_out / dt - 1e-9)
+
 def integrate(bm: BearingModel, solver: str, *, h_out: float, n_out: int,
               dt: float | None = None, rtol: float | None = None, atol: float | None = None,
               keep_states: bool = False) -> RawIntegration:
@@ -295,12 +304,7 @@ def integrate(bm: BearingModel, solver: str, *, h_out: float, n_out: int,
     info = {"solver": solver, "internal_fs": 1.0 / h_out, "n_events": int(ev_before.shape[0])}
     if solver == "rk4":
         dt_req = dt if dt is not None else DT_SR5_OMEGA / omega
-        # step ends on the output grid: a multiple or a divisor of h_out (1e-9: a dt
-        # meant as an exact multiple/divisor must not round the other way)
-        if dt_req >= h_out:
-            mult, n_sub = math.floor(dt_req / h_out + 1e-9), 1
-        else:
-            mult, n_sub = 1, math.ceil(h_out / dt_req - 1e-9)
+        mult, n_sub = _rk4_grid(dt_req, h_out)
         work = _I.rk4_start(bm.y0, *bm.model, bm.n_res, h_out, mult, n_sub, n_out,
                             split_before, out, states)
         status, n_steps, t_fail = _I.run_chunked(
@@ -420,7 +424,6 @@ def _run(scene: Scene, solver: str, *, resonator: bool, dt=None, rtol=None, atol
     out, states, info = raw.output, raw.states, raw.info
     out = add_modes(scene, out, 1.0 / raw.h_out)
     h_out = raw.h_out
-    n_sensors = len(scene.sensors)
 
     accel = add_noise(scene, to_output_rate(out, n_samples, oversample))
     check_finite(scene, accel, "sr5" if resonator else "sr4")
@@ -443,15 +446,7 @@ def _run(scene: Scene, solver: str, *, resonator: bool, dt=None, rtol=None, atol
     info["compile_time_s"] = compile_s
     if bm.film_m:
         info["ehl_film_m"] = bm.film_m
-    return SimulationResult(
-        accel=accel[0] if n_sensors == 1 else accel,
-        fs=scene.fs,
-        t=t,
-        scene=scene,
-        sensor_names=tuple(s.name for s in scene.sensors),
-        truth=truth,
-        info=info,
-    )
+    return SimulationResult.of_scene(scene, accel, t, truth, info)
 
 
 def _run_sr5(scene: Scene, solver: str, **kwargs) -> SimulationResult:

@@ -61,7 +61,6 @@ from __future__ import annotations
 
 import math
 import time
-import warnings
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -72,7 +71,14 @@ from ..scene import Scene
 from . import _gear_kernels as G
 from . import _kernels as K
 from ._registry import Model
-from ._shared import OVERSAMPLE, SimulationUnstableError, add_noise, check_finite, to_output_rate
+from ._shared import (
+    OVERSAMPLE,
+    SimulationUnstableError,
+    add_noise,
+    check_finite,
+    divisor_step,
+    to_output_rate,
+)
 from ._sr5_driver import DT_DEFAULT_OMEGA, SR5, _edge_names, _events, add_modes
 from .result import FaultCrossings, GroundTruth, SimulationResult
 from .sr5 import BearingModel, SR5Parameters, build_model
@@ -268,12 +274,7 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None,
     n_out = n_samples * oversample
     h_out = 1.0 / (scene.fs * oversample)
     dt_req = dt if dt is not None else DT_DEFAULT_OMEGA / gm.omega_max
-    n_sub = max(1, math.ceil(h_out / dt_req - 1e-9))
-    step = h_out / n_sub
-    if dt is not None and abs(step - dt) > 1e-6 * dt:
-        warnings.warn(f"dt={dt:g} s rounded to {step:.6g} s, a divisor of the internal output "
-                      f"spacing {h_out:.6g} s; res.info['dt_s'] holds the step used",
-                      stacklevel=4)
+    n_sub, step = divisor_step(h_out, dt_req, dt)
     bound = np.full(G.N_STATE, 1e4 * float(np.max(np.abs(gm.y0[:4]))) + 1e-3)
     bound[[4, 6, 7, 12, 14, 15]] = 1e6  # angles (rad) and angular rates (rad/s)
     bound[8:12] = 1e4 * float(bm.scale[4]) + 1.0
@@ -327,9 +328,7 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None,
     info = {"solver": solver, "dt_s": step, "n_steps": int((n_out - 1) * n_sub),
             "n_rejected": 0, "internal_fs": 1.0 / h_out,
             "wall_time_s": time.perf_counter() - t_wall}
-    return SimulationResult(accel=accel[0] if n_sensors == 1 else accel, fs=scene.fs, t=t,
-                            scene=scene, sensor_names=tuple(s.name for s in scene.sensors),
-                            truth=truth, info=info)
+    return SimulationResult.of_scene(scene, accel, t, truth, info)
 
 
 def _accepts(scene: Scene) -> str | None:

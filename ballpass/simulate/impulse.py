@@ -433,10 +433,7 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
         scene, t, FaultCrossings(time_s=before, fault=fault, element=elem, edge=edges))
     info = {"solver": solver, "n_impacts": int(t_hit.size), "n_events": int(before.size),
             "wall_time_s": time.perf_counter() - t_wall}
-    return SimulationResult(accel=accel[0] if len(scene.sensors) == 1 else accel,
-                            fs=scene.fs, t=t, scene=scene,
-                            sensor_names=tuple(s.name for s in scene.sensors),
-                            truth=truth, info=info)
+    return SimulationResult.of_scene(scene, accel, t, truth, info)
 
 
 def _impacts(scene: Scene, params: ImpulseParameters | None = None):

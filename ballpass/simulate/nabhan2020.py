@@ -369,10 +369,7 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
     truth = GroundTruth.of_scene(scene, t, _crossings(scene, p))
     info = {"solver": solver, "dt": grid / n_sub, "steps": n_out * n_sub,
             "wall_time_s": time.perf_counter() - t_wall}
-    return SimulationResult(accel=accel[0] if len(scene.sensors) == 1 else accel,
-                            fs=scene.fs, t=t, scene=scene,
-                            sensor_names=tuple(s.name for s in scene.sensors),
-                            truth=truth, info=info)
+    return SimulationResult.of_scene(scene, accel, t, truth, info)
 
 
 def _accepts(scene: Scene) -> str | None:

@@ -287,6 +287,17 @@ class SimulationResult:
     truth: GroundTruth
     info: dict = field(default_factory=dict)
 
+    @classmethod
+    def of_scene(cls, scene: Scene, accel: np.ndarray, t: np.ndarray | Deferred,
+                 truth: GroundTruth, info: dict) -> SimulationResult:
+        """The result every model returns: ``accel`` of shape (n_sensors, n_samples),
+        m/s^2, kept 2-D for several sensors and reduced to (n_samples,) for one, with
+        the scene's rate and sensor names, sample times ``t`` (s, or a
+        :class:`Deferred` of them), the ground truth and the model's ``info``."""
+        return cls(accel=accel[0] if len(scene.sensors) == 1 else accel, fs=scene.fs, t=t,
+                   scene=scene, sensor_names=tuple(s.name for s in scene.sensors),
+                   truth=truth, info=info)
+
     @property
     def velocity(self) -> np.ndarray:
         """Velocity at the sensors, m/s, shape of ``accel``: what the electrodynamic

@@ -98,7 +98,6 @@ from __future__ import annotations
 
 import math
 import time
-import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -115,6 +114,7 @@ from ._shared import (
     add_noise,
     check_finite,
     check_solver_args,
+    divisor_step,
     stiffness_and_load_zone,
     to_output_rate,
 )
@@ -681,12 +681,7 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
     elif solver == "newmark":
         dt_req = dt if dt is not None else min(DT_NEWMARK_OMEGA / bound.omega,
                                                bound.t_impact / RAMP_STEPS)
-        n_sub = max(1, math.ceil(h_out / dt_req - 1e-9))
-        step = h_out / n_sub
-        if dt is not None and abs(step - dt) > 1e-6 * dt:
-            warnings.warn(f"dt={dt:g} s rounded to {step:.6g} s, a divisor of the internal "
-                          f"output spacing {h_out:.6g} s; res.info['dt_s'] holds the step used",
-                          stacklevel=4)
+        n_sub, step = divisor_step(h_out, dt_req, dt)
         xs = np.empty((n_out, 2))
         vs = np.empty((n_out, 2))
         acc = np.empty((n_out, 2))
@@ -743,10 +738,7 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
         displacement=displacement,
     )
     info["wall_time_s"] = time.perf_counter() - t_wall
-    return SimulationResult(
-        accel=accel[0] if len(scene.sensors) == 1 else accel,
-        fs=scene.fs, t=t, scene=scene, sensor_names=tuple(s.name for s in scene.sensors),
-        truth=truth, info=info)
+    return SimulationResult.of_scene(scene, accel, t, truth, info)
 
 
 #: the registry entry

@@ -36,7 +36,7 @@ from ..scene import Scene
 from . import _kernels as _K
 from ._shared import OVERSAMPLE
 from ._shared import to_output_rate as _to_output_rate
-from ._sr5_driver import _core_omega, _split_times, build, integrate
+from ._sr5_driver import _core_omega, _rk4_grid, _split_times, build, integrate
 
 if TYPE_CHECKING:  # pandas is imported when a table is made, not with the simulator
     import pandas as pd
@@ -307,13 +307,6 @@ def work_precision(scene: Scene, *, model: str = "auto", rk4_dt=None, dopri5_rto
                        reference_wall_s=ref_wall, duration_s=scene.duration_s,
                        band_hz=judge.band, lines=judge.level_names)
     return table
-
-
-def _rk4_grid(dt: float, h_out: float) -> tuple[int, int]:
-    """(mult, n_sub) of the RK4 step :func:`ballpass.simulate.integrate` makes of dt."""
-    if dt >= h_out:
-        return math.floor(dt / h_out + 1e-9), 1
-    return 1, math.ceil(h_out / dt - 1e-9)
 
 
 def _front(group: pd.DataFrame, error: str) -> tuple[np.ndarray, np.ndarray]:
