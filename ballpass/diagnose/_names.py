@@ -48,7 +48,7 @@ RECOMMENDED = ("random_forest", "combined")
 #: `combined` features, the highest mean three-class balanced accuracy on the HIT-SM
 #: rig's recordings, each of its three healthy recordings in turn the twin's input, three
 #: twins each (docs/twin.md); never chosen on a test set.
-RECOMMENDED_TWIN = ("gradient_boosting", "dimensionless")
+RECOMMENDED_TWIN = ("random_forest", "dimensionless")
 
 #: Model name -> description: the physics-based diagnoser and the learned pipelines.
 MODELS = {
