@@ -56,7 +56,8 @@ PHENOMENA: dict[str, str] = {
                   "contact angles that grow with it and a load zone that widens to the "
                   "whole ring",
     "intermittent_faults": "ball defects that meet the races on some revolutions only, "
-                           "as a ball's spin axis wanders (Fault(engagement<1) or spin_drift_deg>0)",
+                           "as a ball's spin axis wanders (Fault(engagement<1) or "
+                           "Fault(spin_drift_deg>0))",
 }
 
 #: what a scene that states no needs asks for: the envelope signature (with its
