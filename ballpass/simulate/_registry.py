@@ -49,7 +49,7 @@ class Model:
     >>> from ballpass.simulate import MODELS
     >>> m = MODELS["impulse"]
     >>> m.name, m.default_solver, sorted(m.represents)
-    ('impulse', 'analytic', ['envelope', 'varying_speed'])
+    ('impulse', 'analytic', ['envelope', 'intermittent_faults', 'varying_speed'])
     """
 
     name: str
