@@ -339,3 +339,17 @@ def test_resonator_propagator_is_exact_for_cubic_input(w_tau):
     got = prop[0, :2] @ x0[:2] + c @ prop[0, 2:]
     scale = np.array([1.0 / w**2, 1.0 / w])
     np.testing.assert_allclose(got / scale, expected / scale, rtol=0, atol=1e-11)
+
+
+@pytest.mark.parametrize("call", ["module", "function"])
+def test_a_rounded_step_warns_at_the_users_line(call):
+    """The dt-rounding warning names the caller's file, whether sr5 is reached through
+    the callable module ``bp.simulate(...)`` or ``ballpass.simulate.simulate(...)``: one
+    more frame on the first path (planted: a fixed stacklevel; one of the two fails)."""
+    from ballpass.simulate import simulate
+
+    run = bp.simulate if call == "module" else simulate
+    sc = bp.Scene(bearing="6205", rpm=1797.0, duration_s=0.01, fs=12_000.0, resonance_hz=3000.0)
+    with pytest.warns(UserWarning, match="rounded to") as caught:
+        run(sc, model="sr5", solver="rk4", dt=1.6e-5)
+    assert [w.filename for w in caught if "rounded to" in str(w.message)] == [__file__]

@@ -4,13 +4,13 @@ anti-alias decimation and AC coupling, measurement noise, the ground-truth time 
 from __future__ import annotations
 
 import math
-import warnings
 from functools import lru_cache
 
 import numpy as np
 from numba import njit
 from scipy import signal as _signal
 
+from .._warnings import warn_user
 from ..scene import Scene
 
 __all__ = [
@@ -179,9 +179,8 @@ def divisor_step(h_out: float, dt_req: float, dt) -> tuple[int, float]:
     n_sub = max(1, math.ceil(h_out / dt_req - 1e-9))
     step = h_out / n_sub
     if dt is not None and abs(step - dt) > 1e-6 * dt:
-        warnings.warn(f"dt={dt:g} s rounded to {step:.6g} s, a divisor of the internal output "
-                      f"spacing {h_out:.6g} s; res.info['dt_s'] holds the step used",
-                      stacklevel=5)
+        warn_user(f"dt={dt:g} s rounded to {step:.6g} s, a divisor of the internal output "
+                  f"spacing {h_out:.6g} s; res.info['dt_s'] holds the step used")
     return n_sub, step
 
 def to_output_rate(out: np.ndarray, n_samples: int, oversample: int) -> np.ndarray:

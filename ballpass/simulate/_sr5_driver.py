@@ -23,6 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
+from .._warnings import warn_user
 from ..phenomena import DEFAULT_NEEDS
 from ..scene import Scene
 from . import _integrators as _I
@@ -312,9 +313,9 @@ def integrate(bm: BearingModel, solver: str, *, h_out: float, n_out: int,
             split_after, t_ramp, t_impact, bound, out, states, *work)
         step = h_out * mult / n_sub
         if dt is not None and abs(step - dt) > 1e-6 * dt:
-            warnings.warn(f"dt={dt:g} s rounded to {step:.6g} s so that the steps end on the "
-                          f"internal output grid (spacing {h_out:.6g} s); res.info['dt_s'] "
-                          "holds the step used", stacklevel=5)
+            warn_user(f"dt={dt:g} s rounded to {step:.6g} s so that the steps end on the "
+                      f"internal output grid (spacing {h_out:.6g} s); res.info['dt_s'] "
+                      "holds the step used")
         info.update(n_steps=int(n_steps), n_rejected=0, dt_s=step)
         step_text = f"dt = {step:.3g} s"
     else:
