@@ -787,9 +787,9 @@ def _machine_table(raw: dict, source, axes: dict) -> dict | None:
         raise ValueError("a twin's grid (with [machine]) needs grid.level_db, the fault's RMS "
                          "over the background's, dB, e.g. level_db = { uniform = [-10, 15] }")
     edges = axes.get("impact_edges", [0.0])
-    values = edges.params if isinstance(edges, Distribution) and edges.kind == "choice" else (
-        None if isinstance(edges, Distribution) else edges)
-    if values is None or any(v not in (0.0, 1.0) for v in values):
+    drawn = isinstance(edges, Distribution)
+    if (drawn and edges.kind != "choice") or any(
+            v not in (0.0, 1.0) for v in (edges.params if drawn else edges)):
         raise ValueError(f"grid.impact_edges must list 0 (a passage is one point impact) "
                          f"and/or 1 (its Hertzian entry and exit edges), or draw them with "
                          f"{{ choice = [0, 1] }}; got {edges}")
