@@ -41,6 +41,13 @@ Nakhaeinejad & Bryant's operating point (ER-16K, 35 Hz, 110 N) with a 1.0 x 0.5 
   6205 reference scene with Kramer's damping time halved and quartered (the overdamped
   contact root lambda_max scales with it, the fastest oscillation does not), each
   against its own 24-step run.
+* Routes to 50x sr5 (benchmarks/_multibody_routes.py): the most each cheaper
+  evaluation could save (the integration with a part of the right-hand side changed
+  or dropped in a copy of the kernels, against the unchanged kernels), two steps per
+  interval side by side with three, and why two lose accuracy (the loads at the grid
+  points against the force the steps apply; the short-horizon error's elastic and
+  damping shares); the cost each route would reach from the ratio of
+  docs/results/models_cost.csv.
 
 Writes ``docs/results/multibody_speed.md`` and ``docs/results/multibody_work_precision.png``.
 
@@ -56,6 +63,7 @@ import math
 import time
 
 import _machine  # benchmarks/_machine.py (scripts run from their folder)
+import _multibody_routes as routes
 import numpy as np
 from _paths import RESULTS_DIR as RESULTS
 from numba import njit
@@ -325,6 +333,125 @@ def step_limit(duration_s):
     return rows
 
 
+def routes_section(c, wp, ceilings, two, exp_err, cited, args):
+    """The page's section on the routes to 50x sr5 (benchmarks/_multibody_routes.py)."""
+    ref_name = "6205 inner (reference)"
+    outside = next(row[8] for row in c if row[0] == ref_name)
+    ratio = {name: med for name, med, _lo, _hi in ceilings}
+    lines = [
+        "",
+        "## Routes to 50x sr5",
+        "",
+        "6205 reference scene, 0.05 s. CPU time of the integration with a part of the "
+        "right-hand side changed or dropped in a copy of the kernels (the changed models "
+        "are not the bearing's: each saving is the most that making the part cheaper "
+        "could give), and with two RK4 steps per 5.2 us interval instead of three, against "
+        f"the unchanged kernels at the default step, medians of {args.repeats} interleaved "
+        "runs (min-max):",
+        "",
+        "| change | integration time against the default |",
+        "|---|---|",
+    ]
+    for name, med, lo, hi in ceilings:
+        lines.append(f"| {name} | {med:.3f} ({lo:.3f}-{hi:.3f}) |")
+    wall = {(r["scene"], r["solver"], r["n_sub"]): r["wall"] for r in wp}
+    default_n = next(r["n_sub"] for r in wp
+                     if r["scene"] == ref_name and r["solver"] == "rk4" and r["default"])
+    base = wall[ref_name, "rk4", default_n]
+    two_n = ratio["two RK4 steps per interval (default kernels)"]
+    law = ratio["traction law dropped (target 0.1 Q: no exponential, no division)"]
+    sensor = ratio["sensor weighting dropped (outer contacts not added to the sensor)"]
+    projected = [
+        ("today (RK4, three steps per interval)", 1.0),
+        ("traction law and sensor weighting free (three steps)", law * sensor),
+        ("two RK4 steps per interval", two_n),
+        ("two RK4 steps, traction law and sensor weighting free", two_n * law * sensor),
+        ("rosw, two steps per interval (work-precision wall times)",
+         wall[ref_name, "rosw", 2] / base),
+        ("rosw, one step per interval (work-precision wall times)",
+         wall[ref_name, "rosw", 1] / base),
+    ]
+    lines += [
+        "",
+        f"What each route would reach from the cost the model registry cites ({cited:.0f}x "
+        "sr5, docs/results/models_cost.csv), the share outside the integration "
+        f"({outside:.1%}, cost table) left as it is; savings of two changes multiplied:",
+        "",
+        "| route | integration against today | projected cost against sr5 |",
+        "|---|---|---|",
+    ]
+    for name, r in projected:
+        lines.append(f"| {name} | {r:.2f} | {cited * (outside + (1.0 - outside) * r):.0f}x |")
+    lines += [
+        "",
+        "Why two RK4 steps per interval lose (a Python RK4 on the model's right-hand side, "
+        f"against {N_REF} steps): *short* the inner loads at the recorded grid points over "
+        "the first 2 ms (relative L2), in full, their elastic share K delta^1.5 (from the "
+        "positions) and Kramer's damping share (from the closing speed), and in full with "
+        "the damping share taken as the mean of its RK4 quadratures over the two steps "
+        "around the point; *balance* the mean outer-minus-inner load of a ball over "
+        f"{args.wp_duration / 5:g} s (after the first fifth) from the loads at the grid "
+        "points (what the model records) and from their RK4 quadrature over each step "
+        f"(the force the step applies), against the {N_REF}-step run's:",
+        "",
+        "| scene | n | short, full | elastic share | damping share | full, damping "
+        "share two-step mean | balance at the points N (reference) | balance by the "
+        "steps' quadrature N (reference) |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
+    for r in two:
+        lines.append(f"| {r['scene']} | {r['n']} | {r['full']:.1e} | {r['elastic']:.1e} | "
+                     f"{r['damping']:.1e} | {r['two_step']:.1e} | {r['mean_point']:.5f} "
+                     f"({r['ref_point']:.5f}) | {r['mean_quad']:.5f} ({r['ref_quad']:.5f}) |")
+    t2 = {(r["scene"], r["n"]): r for r in two}
+    rosw1 = [r["err_out"] for r in wp if r["solver"] == "rosw" and r["n_sub"] == 1]
+    z2 = next(r["lambda_dt"] for r in wp
+              if r["scene"] == ref_name and r["solver"] == "rk4" and r["n_sub"] == 2)
+    f2, f3 = t2[ref_name, 2], t2[ref_name, 3]
+    h2, h3 = t2["6205 healthy", 2], t2["6205 healthy", 3]
+    lines += [
+        "",
+        "Reading. Cheaper evaluation: inside the integration the traction law's exponential "
+        f"costs {1.0 - ratio['traction law: its exponential replaced by a division']:.0%} "
+        "more than a division would and the whole law (exponential and division) "
+        f"{1.0 - law:.0%}, the sensor weighting {1.0 - sensor:.0%}; written out in the "
+        "kernel (a 2^(-j/128) table and a degree-5 polynomial, relative error "
+        f"{exp_err:.1e}) the exponential is slower than libm's "
+        f"({ratio[routes.INLINE]:.2f}x): with both parts free three steps per interval "
+        f"would still cost {cited * (outside + (1.0 - outside) * law * sensor):.0f}x. "
+        f"Fewer steps: two per interval take {two_n:.2f}x the integration time, "
+        f"{cited * (outside + (1.0 - outside) * two_n):.0f}x sr5 alone and "
+        f"{cited * (outside + (1.0 - outside) * two_n * law * sensor):.0f}x with both "
+        "parts free; the Rosenbrock-W solver at two steps "
+        f"costs {wall[ref_name, 'rosw', 2] / base:.2f}x today's integration (each of its "
+        "steps dearer than RK4's), so cutting its steps at the notch events could buy "
+        "its accuracy back on the faulted scene but not the cost, and at one step per "
+        f"interval its sensor signal is off by {min(rosw1):.0e} to {max(rosw1):.0e} "
+        "over the first 2 ms (work-precision). What two "
+        "RK4 steps lose: the centrifugal balance at the grid points is off "
+        f"({f2['mean_point']:.4f} N against {f2['ref_point']:.4f} N on the faulted 6205, "
+        f"{h2['mean_point']:.4f} against {h2['ref_point']:.4f} healthy) while the force "
+        f"the steps apply balances as the reference's ({f2['mean_quad']:.5f} against "
+        f"{f2['ref_quad']:.5f} N, {h2['mean_quad']:.5f} against {h2['ref_quad']:.5f}): "
+        "the motion is right on average, the loads recorded at the step ends carry the "
+        f"overdamped radial mode (lambda_max dt = {z2:.1f}, which RK4 damps by "
+        f"{1 - z2 + z2**2 / 2 - z2**3 / 6 + z2**4 / 24:.2f} per step instead of "
+        f"exp(-{z2:.1f}) = {math.exp(-z2):.2f}) in the closing speed, the damping share "
+        f"({f2['damping']:.1e} of the short-horizon error against the elastic share's "
+        f"{f2['elastic']:.1e}; three steps: {f3['damping']:.1e} and {f3['elastic']:.1e}). "
+        "Recording the damping share as the mean of the two steps around the point "
+        f"takes two steps to {f2['two_step']:.1e} (faulted) and {h2['two_step']:.1e} "
+        f"(healthy), still above three steps' {f3['full']:.1e} and {h3['full']:.1e} as "
+        f"recorded today: the elastic share (positions: {f2['elastic']:.1e} and "
+        f"{h2['elastic']:.1e} against {f3['elastic']:.1e} and {h3['elastic']:.1e}) is "
+        "lost too. So 50x at no loss of accuracy takes two steps per interval with the "
+        "overdamped radial mode integrated exactly within the RK4 stages (and the "
+        "evaluation's two free parts), which none of the solvers here does; the default "
+        "stays three RK4 steps.",
+    ]
+    return lines
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeats", type=int, default=5)
@@ -340,6 +467,13 @@ def main() -> None:
     wp = work_precision(args.wp_duration)
     limit = step_limit(args.wp_duration)
     lines_f = fault_lines(args.lines_duration)
+    ref_name = "6205 inner (reference)"
+    ceilings = routes.evaluation_ceilings(scene(SCENES[ref_name], 0.05), 1.0 / (4 * FS),
+                                          args.repeats)
+    two = routes.two_steps({k: scene(SCENES[k], 0.01) for k in (ref_name, "6205 healthy")},
+                           1.0 / (4 * FS), N_REF, mean_s=args.wp_duration / 5)
+    exp_err = routes.inline_exp_error()
+    cited = routes.cited_ratio()
     lines = [
         "# Multibody speed against sr5, its spectrum, and its work-precision",
         "",
@@ -386,12 +520,10 @@ def main() -> None:
         "decimation) is in the cost table above. The cost is the number of evaluations "
         "times the evaluation: RK4 takes four per step and three steps per 5.2 us grid "
         "interval on the 6205 (the step the accuracy needs, below), 2.3 million "
-        f"evaluations per simulated second. The dearest part, the traction "
-        f"({1.0 - parts[2][1] / full:.0%} of an evaluation), is an exponential and a "
-        "division per loaded contact, the law itself; fewer evaluations would pay more, "
-        "but two steps per interval (n = 2 below) are stable and yet lose accuracy (the "
-        "centrifugal balance and the short-horizon loads): it takes an integrator that "
-        "treats the loaded balls' contact modes implicitly.",
+        f"evaluations per simulated second. The traction is "
+        f"{1.0 - parts[2][1] / full:.0%} of an evaluation at a fixed state; what its "
+        "law's exponential and division cost inside the integration, and what fewer "
+        "steps would give, is in \"routes to 50x\" below.",
     ]
     lines += [
         "",
@@ -550,6 +682,7 @@ def main() -> None:
         "solver (work-precision above) treats those blocks implicitly: it takes two "
         "steps at the 6205's healthy accuracy, but not at the faulted scene's.",
     ]
+    lines += routes_section(c, wp, ceilings, two, exp_err, cited, args)
     RESULTS.mkdir(exist_ok=True)
     text = "\n".join(lines) + "\n"
     atomic_write(RESULTS / "multibody_speed.md", lambda tmp: tmp.write_text(text))

@@ -1002,7 +1002,10 @@ MULTIBODY = Model(
     # The Rosenbrock-W solver is not the default: 63x against RK4's 72x side by side
     # (docs/results/multibody_speed.md), less accurate on faulted scenes. Nor are
     # quasi-static balls (MultibodyParameters(balls="quasistatic"), about 0.85x the
-    # dynamic balls' cost at their default step): their fault lines are weaker
+    # dynamic balls' cost at their default step): their fault lines are weaker. What
+    # each route to 50x can give: docs/results/multibody_speed.md, "routes to 50x sr5"
+    # (a cheaper evaluation 55x at most; two RK4 steps per interval 53x, less accurate
+    # in the short-horizon loads)
     relative_cost=76.0,
     solvers=tuple(SOLVERS),
     fixed_step_solvers=tuple(SOLVERS),
