@@ -263,7 +263,8 @@ def test_a_passage_lasts_the_defect_width_over_the_rolling_speed(kind):
     from ballpass.datasets.twin import passage_times
 
     scene = _outer_scene(fault=bp.Fault(kind, width_mm=1.0, depth_mm=0.3))
-    passage_s, edge_s, drop = passage_times(scene)
+    # a ball defect's passage lasts as long on either race (its own surface speed)
+    passage_s, edge_s, drop = passage_times(scene, "outer" if kind == "ball" else None)
     crossings = bp.simulate(scene, model="impulse").truth.fault_crossings
     edges = np.asarray(crossings.edge)
     # a passage: a crossing and the same element's next one of the other edge (an
@@ -282,12 +283,13 @@ def test_a_passage_lasts_the_defect_width_over_the_rolling_speed(kind):
 
 
 def test_the_edge_lasts_while_the_ball_regains_its_deflection():
-    """The edge: x_c / v with x_c = sqrt(2 R delta), delta the most loaded element's
-    Hertzian deflection, here taken independently from the force the impulse model
-    releases at the load line into a defect deeper than the deflection, dQ = K delta^1.5
-    (impact_amplitudes, K of the bearing's Hertz stiffness). Same formulas, another path
-    through the code: 1e-9. Planted: the ball's diameter for its radius (a factor
-    sqrt 2) fails."""
+    """The edge: x_c / v with x_c = sqrt(2 r delta), r = 1 / (1/R_b - 1/R_o) the
+    relative radius of the ball in the concave outer race, delta the most loaded
+    element's Hertzian deflection, here taken independently from the force the impulse
+    model releases at the load line into a defect deeper than the deflection,
+    dQ = K delta^1.5 (impact_amplitudes, K of the bearing's Hertz stiffness). Same
+    formulas, another path through the code: 1e-9. Planted: the ball's diameter for its
+    radius (a factor sqrt 2) fails; the ball's radius alone (a factor 0.91) fails."""
     import ballpass as bp
     from ballpass.datasets.twin import passage_times
     from ballpass.simulate.impulse import impact_amplitudes
@@ -299,7 +301,8 @@ def test_the_edge_lasts_while_the_ball_regains_its_deflection():
     delta = (dq / b.hertz_stiffness()) ** (1 / 1.5)
     speed = 3.0e-3 / passage_s
     assert drop == 1.0   # the 1 mm deep, 3 mm wide defect takes the whole load
-    assert edge_s == pytest.approx(math.sqrt(b.element_diameter_m * delta) / speed, rel=1e-9)
+    r = 1.0 / (2.0 / b.element_diameter_m - 2.0 / (b.pitch_diameter_m + b.element_diameter_m))
+    assert edge_s == pytest.approx(math.sqrt(2.0 * r * delta) / speed, rel=1e-9)
 
 
 def test_the_edge_kernel_is_the_hertzian_load_return():
