@@ -237,7 +237,7 @@ def test_seed003_defect_lines():
         # ... and below the kinematic ceiling of a rotor on its rollers: the roller drops
         # at most h into the notch, which is under a roller Z w / (2 pi r_i) of the time,
         # and a non-negative pulse train's line is at most twice its mean
-        # (docs/seed003.md): 0.69 um. A defect acting deeper than a roller can reach (the
+        # (docs/seed003.md): 0.88 um. A defect acting deeper than a roller can reach (the
         # paper's 0.5 mm profile height) breaks it
         b = scene.bearing
         fault = scene.faults[0]
