@@ -114,11 +114,12 @@ def _accel_error(res, ref):
 
 @pytest.mark.parametrize("solver", [
     # Known defect, measured: with the notch's drop set by the inner race's curvature
-    # too (8.6 um instead of the roller's own 6.8 um) the rotor leaves every roller
-    # after each passage and lands between rk4's breaks; the default rk4 step then errs
-    # 1.7e-2 here (0.91e-2 at 0.2 / omega_c, 2.2e-2 at 0.25, 0.29e-2 at 0.1: not
-    # fourth order), and 0.65 on a 0.444 mm notch of the old 6.8 um drop. Landings are
-    # not restarted on; until they are, rk4 fails the bound on this scene.
+    # too (8.6 um instead of the roller's own 6.8 um) the rotor bounces off all its
+    # rollers for moments in the first 2 ms (after the passage at t = 0) and the default
+    # rk4 step errs 1.7e-2 here, the error appearing 3-5 ms in (0.91e-2 at 0.2 / omega_c,
+    # 2.2e-2 at 0.25, 0.29e-2 at 0.1: not fourth order); 0.65 on a 0.444 mm notch of the
+    # old 6.8 um drop, so the pass before was luck. rk4 does not restart on contact
+    # closures (the landings); until it does, it fails the bound on this scene.
     pytest.param("rk4", marks=pytest.mark.xfail(strict=True, reason="rk4 does not restart "
                                                 "on the rotor's landings")),
     "newmark"])
