@@ -179,14 +179,17 @@ def write_multibody(rows: list[dict], spectra: dict, duration: float) -> list[st
         "sidebands at the shaft and cage rates. In the multibody the load a notch meets "
         "is the dynamic one (the shaft and the balls ring after each passage; a ball "
         "out of the load zone is held by its centrifugal load alone), which spreads the "
-        "sidebands: SES correlation with either model 0.3-0.7 for inner and ball faults "
+        "sidebands: SES correlation with either model 0.3-0.75 for inner and ball faults "
         "(0.3 for the ball fault at 600 rpm, the value that moved most, from 0.5, when "
         "the start of the run changed by 1e-12 of the loads: a faulted multibody run is "
-        "that sensitive to its start, docs/physics/multibody.md), "
+        "that sensitive to its start, docs/physics/multibody.md; the ball fault at 1797 "
+        "and 3000 rpm rose from 0.5-0.65 to 0.6-0.75 when sr5's and impulse's ball defect "
+        "took the races' curvature, striking the inner race deeper than the outer as the "
+        "multibody's does), "
         "against 0.9 for the outer fault at 1797 and 3000 rpm, whose stationary notch "
         "gives all three the same unmodulated comb.",
-        "* **Level.** The impulse model only rings the resonance at the exits (0.2-0.9 "
-        "of the multibody's RMS); sr5 is 1.1-3.4 times the multibody's: its massless "
+        "* **Level.** The impulse model only rings the resonance at the exits (0.2-0.8 "
+        "of the multibody's RMS); sr5 is 1.3-3.0 times the multibody's: its massless "
         "elements pass every load step to the housing at once, where the multibody's "
         "balls and 1 kg housing on 4e10 N/m (Nakhaeinejad & Bryant (2011) Table 1) filter them.",
     ]

@@ -155,7 +155,8 @@ def line_ceiling() -> pd.DataFrame:
     from the kinematics alone (no model run).
 
     While a roller is in the notch the rotor can drop at most the roller's geometric
-    drop h (``Fault.effective_depth_mm``: a 9.25 mm cylinder into a 0.5 mm wide notch)
+    drop h (``Fault.effective_depth_mm``: a 9.25 mm cylinder bridging a 0.5 mm wide notch
+    in the convex inner race)
     and, supported by gravity alone, at most the free fall g tau^2 / 2 in the notch
     crossing time tau. The notch is under some roller a fraction Z w / (2 pi r_i) of the
     time (Z rollers meet it per inner-ring turn, each for w / (2 pi r_i) of the turn).
@@ -395,6 +396,8 @@ def page(d: dict) -> str:
         r_m=_span(measured, "{:.2g}") + "x",
         seed_range=_span(seed.line_um, "{:.1f}"),
         ceil_range=_span(d["ceiling"]["ceiling_um"]),
+        drop=f"{d['ceiling']['drop_um'].iloc[0]:.1f}",
+        any_drop=f"{d['ceiling']['ceiling_any_drop_um'].iloc[0]:.2f}",
         reg_range=_span(regular.line_um),
         s_range=_span(speed.spread_x_um, "{:.0f}"))
     return PAGE.format(**values, **_chaos(d))

@@ -252,8 +252,12 @@ SETUP = {
              "two mesh harmonics (not printed: assumed); runout 5 µm on both wheels (assumed)",
     "speed": "2000 rpm: mesh 500 Hz, pinion 33.33 Hz, gear 15.63 Hz (15/32) or 17.24 Hz "
              "(15/29)",
-    "faults": "inner race: the paper's 4 × 2 mm spall (the ball drops 0.35 mm) and a small "
-              "0.5 × 0.1 mm one (5 µm drop)",
+    "faults": "inner race: the paper's 4 × 2 mm spall (the ball drops {:.2f} mm onto the inner "
+              "race) and a small 0.5 × 0.1 mm one ({:.1f} µm drop)".format(
+                  bp.Fault("inner", width_mm=4.0, depth_mm=2.0).effective_depth_mm(
+                      bp.Bearing.catalog("6208")),
+                  1e3 * bp.Fault("inner", width_mm=0.5, depth_mm=0.1).effective_depth_mm(
+                      bp.Bearing.catalog("6208"))),
     "resonance": "the Sawalhi–Randall 15 kHz / 5 %, and 3 kHz (where mesh harmonics fall in "
                  "the demodulation band)",
 }

@@ -102,10 +102,13 @@ def test_scene_conventions():
     assert ramp.speed.rpm_at(0.05, ramp.duration_s) == pytest.approx(900.0)
     # the shaft angle is the integral of the speed: mean speed times duration
     assert ramp.speed.shaft_angle(0.1, 0.1) == pytest.approx(2 * math.pi * 900.0 / 60 * 0.1)
-    # ball-drop limit: a 0.5 mm notch 1 mm deep lets a 7.94 mm ball drop only 7.9 um
+    # drop limit: a 0.5 mm notch 1 mm deep lets a 7.94 mm ball in the concave outer race
+    # (radius (39.04 + 7.94) / 2 mm) drop only the difference of their sagittas, 6.5 um
+    # (tests/test_effective_depth.py checks the geometry)
     f = bp.Fault("outer", width_mm=0.5, depth_mm=1.0)
+    sagitta = lambda r: r - math.sqrt(r * r - 0.25**2)  # noqa: E731
     assert f.effective_depth_mm(bp.Bearing.catalog("6205")) == pytest.approx(
-        0.5 * 7.94 * (1 - math.sqrt(1 - (0.5 / 7.94) ** 2)))
+        sagitta(3.97) - sagitta(23.49))
     wide = bp.Fault("outer", width_mm=9.0, depth_mm=0.2)
     assert wide.effective_depth_mm(bp.Bearing.catalog("6205")) == 0.2
 

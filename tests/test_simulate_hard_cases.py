@@ -204,9 +204,10 @@ def test_fault_wider_than_the_ball_unloads_it_completely(edge):
 
 
 def test_depth_beyond_the_ball_drop_limit_changes_nothing():
-    # a 0.5 mm wide notch lets the 7.94 mm ball drop 7.9 um: 0.5 mm and 2 mm deep
-    # notches are the same to it
-    drop = 0.5 * 7.94 * (1.0 - math.sqrt(1.0 - (0.5 / 7.94) ** 2))
+    # a 0.5 mm wide notch in the outer race (radius 23.49 mm) lets the 7.94 mm ball
+    # drop the difference of their sagittas, 6.5 um: 0.5 mm and 2 mm deep notches are
+    # the same to it
+    drop = sum(sign * (r - math.sqrt(r * r - 0.25**2)) for sign, r in ((1, 3.97), (-1, 23.49)))
     shallow = scene(fault=bp.Fault("outer", width_mm=0.5, depth_mm=0.5))
     deep = scene(fault=bp.Fault("outer", width_mm=0.5, depth_mm=2.0))
     assert shallow.fault.effective_depth_mm(shallow.bearing) == pytest.approx(drop)

@@ -263,7 +263,8 @@ def test_a_passage_lasts_the_defect_width_over_the_rolling_speed(kind):
     from ballpass.datasets.twin import passage_times
 
     scene = _outer_scene(fault=bp.Fault(kind, width_mm=1.0, depth_mm=0.3))
-    passage_s, edge_s, drop = passage_times(scene)
+    # a ball defect's passage lasts as long on either race (its own surface speed)
+    passage_s, edge_s, drop = passage_times(scene, "outer" if kind == "ball" else None)
     crossings = bp.simulate(scene, model="impulse").truth.fault_crossings
     edges = np.asarray(crossings.edge)
     # a passage: a crossing and the same element's next one of the other edge (an
@@ -282,12 +283,13 @@ def test_a_passage_lasts_the_defect_width_over_the_rolling_speed(kind):
 
 
 def test_the_edge_lasts_while_the_ball_regains_its_deflection():
-    """The edge: x_c / v with x_c = sqrt(2 R delta), delta the most loaded element's
-    Hertzian deflection, here taken independently from the force the impulse model
-    releases at the load line into a defect deeper than the deflection, dQ = K delta^1.5
-    (impact_amplitudes, K of the bearing's Hertz stiffness). Same formulas, another path
-    through the code: 1e-9. Planted: the ball's diameter for its radius (a factor
-    sqrt 2) fails."""
+    """The edge: x_c / v with x_c = sqrt(2 r delta), r = 1 / (1/R_b - 1/R_o) the
+    relative radius of the ball in the concave outer race, delta the most loaded
+    element's Hertzian deflection, here taken independently from the force the impulse
+    model releases at the load line into a defect deeper than the deflection,
+    dQ = K delta^1.5 (impact_amplitudes, K of the bearing's Hertz stiffness). Same
+    formulas, another path through the code: 1e-9. Planted: the ball's diameter for its
+    radius (a factor sqrt 2) fails; the ball's radius alone (a factor 0.91) fails."""
     import ballpass as bp
     from ballpass.datasets.twin import passage_times
     from ballpass.simulate.impulse import impact_amplitudes
@@ -299,7 +301,37 @@ def test_the_edge_lasts_while_the_ball_regains_its_deflection():
     delta = (dq / b.hertz_stiffness()) ** (1 / 1.5)
     speed = 3.0e-3 / passage_s
     assert drop == 1.0   # the 1 mm deep, 3 mm wide defect takes the whole load
-    assert edge_s == pytest.approx(math.sqrt(b.element_diameter_m * delta) / speed, rel=1e-9)
+    r = 1.0 / (2.0 / b.element_diameter_m - 2.0 / (b.pitch_diameter_m + b.element_diameter_m))
+    assert edge_s == pytest.approx(math.sqrt(2.0 * r * delta) / speed, rel=1e-9)
+
+
+def test_a_ball_defects_edges_follow_the_race_it_strikes():
+    """A 1 mm ball defect at 500 N drops (40 um on the inner race, 26 um on the outer)
+    beyond the most loaded ball's deflection delta: the ball loses its whole load on
+    either race (drop share 1) and regains it over x_c = sqrt(2 r delta), r =
+    1 / (1/R_b +- 1/R_race) the pair's relative radius: the inner edge is
+    sqrt(r_i / r_o) = 0.82x the outer one, the passage the same. delta independently
+    from the force the impulse model releases at the load line into a deep defect, as
+    above (1e-9). Without a race the ball defect is refused. Planted: the ball's own
+    radius for r (both edges alike) fails."""
+    import ballpass as bp
+    from ballpass.datasets.twin import passage_times
+    from ballpass.simulate.impulse import impact_amplitudes
+
+    scene = _outer_scene(fault=bp.Fault("ball", width_mm=1.0, depth_mm=0.3), gravity=False)
+    b = scene.bearing
+    rb = 0.5 * b.element_diameter_m
+    delta = (impact_amplitudes(scene, np.zeros(1), np.full(1, 1e-3))[0]
+             / b.hertz_stiffness()) ** (1 / 1.5)
+    (p_in, e_in, d_in), (p_out, e_out, d_out) = (passage_times(scene, "inner"),
+                                                 passage_times(scene, "outer"))
+    assert p_in == p_out and d_in == d_out == 1.0
+    speed = 1e-3 / p_in
+    for edge, r in ((e_in, 1 / (1 / rb + 1 / b.inner_race_radius_m)),
+                    (e_out, 1 / (1 / rb - 1 / b.outer_race_radius_m))):
+        assert edge == pytest.approx(math.sqrt(2 * r * delta) / speed, rel=1e-9)
+    with pytest.raises(ValueError, match="race must be 'inner' or 'outer'"):
+        passage_times(scene)
 
 
 def test_the_edge_kernel_is_the_hertzian_load_return():

@@ -26,10 +26,11 @@ impact to the next by ``impact_correlation``, 0 by default). With ``impact_edges
 a passage is what the ball goes through over a defect of width w at the
 rolling speed v: the load leaves over the entry edge and comes back over the exit edge,
 w / v later (the entry and exit of Sawalhi & Randall 2008), each edge as long as a ball
-pivoting on a sharp edge takes to lose or regain its Hertzian deflection
-(:func:`passage_times`, :func:`edge_kernel`); with 0, one point impact at the exit,
-split linearly between the two samples around its time (the twin before the axis).
-The twin's grid draws one of the two per row: they bracket a real passage (the
+pivoting on a sharp edge takes to lose or regain its Hertzian deflection, with the
+curvature of the race it strikes (a ball defect's inner-race strikes drop deeper than
+its outer-race ones: :func:`passage_times`, :func:`edge_kernel`); with 0, one point
+impact at the exit, split linearly between the two samples around its time (the twin
+before the axis). The twin's grid draws one of the two per row: they bracket a real passage (the
 quasi-static edges put less energy high in the band than a real exit, the point impact
 is more impulsive than the rig's faults). The train drives ``1 / A(z)``;
 the result is scaled so that its RMS over the row is ``level_db`` above the RMS of the
@@ -299,7 +300,7 @@ def _impact_sizes(rng: np.random.Generator, n: int, spread, correlation=None) ->
     return np.exp(spread * g - 0.5 * spread**2)
 
 
-def passage_times(scene) -> tuple[float, float, float]:
+def passage_times(scene, race: str | None = None) -> tuple[float, float, float]:
     """How long one defect passage and each of its edges last, s.
 
     A defect of width w (along the rolling direction) passes the contact at the speed
@@ -308,16 +309,22 @@ def passage_times(scene) -> tuple[float, float, float]:
     the raceway radii (d_p +- d) / 2 and the rates of
     :meth:`ballpass.Bearing.frequencies`; the passage lasts w / v (the time from the
     entry crossing to the exit crossing of the impulse model's kinematics, without
-    slip). A ball of radius R = d / 2 pivoting over a sharp edge drops by x^2 / (2 R)
-    at a distance x from it, so its contact deflection delta (the Stribeck deflection
-    of the most loaded element, :func:`ballpass.simulate.impulse.impact_amplitudes`),
-    or the defect's effective depth h when smaller, goes or comes back over
-    x_c = sqrt(2 R min(delta, h)) (at most w / 2): the edge lasts x_c / v.
+    slip). Two surfaces pivoting over a sharp edge part by x^2 / (2 r) at a distance x
+    from it, r = 1 / (1/R_b +- 1/R_race) their relative radius in the rolling plane
+    (R_b = d/2, + on the convex inner race, - in the concave outer race: the
+    curvature of :meth:`ballpass.Fault.effective_depth_mm`), so the contact deflection
+    delta (the Stribeck deflection of the most loaded element,
+    :func:`ballpass.simulate.impulse.impact_amplitudes`), or the defect's effective
+    depth h against that race when smaller, goes or comes back over
+    x_c = sqrt(2 r min(delta, h)) (at most w / 2): the edge lasts x_c / v.
 
     Parameters
     ----------
     scene : Scene
         A scene with one fault, at constant speed.
+    race : {"inner", "outer"} or None, optional
+        The race struck: a race fault's own (None); required for a ball fault, which
+        strikes both.
 
     Returns
     -------
@@ -330,19 +337,23 @@ def passage_times(scene) -> tuple[float, float, float]:
     from ..simulate.impulse import _DEFAULTS, _load_zone
 
     fault, b = scene.faults[0], scene.bearing
+    depth = fault.effective_depth_mm(b, race) * 1e-3   # refuses a race it cannot strike
+    race = race or fault.kind
     shaft_hz = scene.speed.rpm_start / 60.0
     rates = b.frequencies(shaft_hz)
     radius = 0.5 * b.element_diameter_m
     speed = {"outer": b.outer_race_radius_m * 2 * math.pi * rates.ftf,
              "inner": b.inner_race_radius_m * 2 * math.pi * (shaft_hz - rates.ftf),
              "ball": radius * 2 * math.pi * rates.bsf}[fault.kind]
+    relative = 1.0 / (1.0 / radius + (1.0 / b.inner_race_radius_m if race == "inner"
+                                      else -1.0 / b.outer_race_radius_m))
     width = fault.width_mm * 1e-3
     _, zone = _load_zone(scene, _DEFAULTS)
     delta = (zone.deflection_m - b.radial_clearance_m) * math.cos(b.contact_angle_rad)
-    drop = min(delta, fault.effective_depth_mm(b) * 1e-3)
+    drop = min(delta, depth)
     if not drop > 0:
         return width / speed, 0.0, 0.0
-    reach = min(math.sqrt(2.0 * radius * drop), 0.5 * width)
+    reach = min(math.sqrt(2.0 * relative * drop), 0.5 * width)
     return width / speed, reach / speed, drop / delta
 
 
@@ -435,13 +446,22 @@ def twin_signal(run, scene) -> tuple[np.ndarray, dict, dict]:
         columns.update(group=rec.name, rpm=rec.rpm, rpm_start=rec.rpm, rpm_end=rec.rpm,
                        radial_load_n=math.nan, slip=math.nan, clearance_um=math.nan)
     else:
-        times, steps, _ = _impacts(scene)
+        times, steps, (before, _fault, face, _edges) = _impacts(scene)
         steps = steps[0] * _impact_sizes(rng, times.size, run.columns.get("impact_spread"),
                                          run.columns.get("impact_correlation"))
         if run.columns.get("impact_edges", 0.0) == 1.0:
-            passage_s, edge_s, drop = passage_times(scene)
-            edge = edge_kernel(edge_s, scene.fs, scene.bearing.load_exponent, drop or 1.0)
-            train = _passage_train(times, steps, n, scene.fs, passage_s, edge)
+            # the race each impact strikes: a ball defect's face (0 outer, 1 inner) at
+            # its exit crossing, each race with its own edges
+            kind = scene.faults[0].kind
+            races = (np.where(face[np.searchsorted(before, times)] == 1, "inner", "outer")
+                     if kind == "ball" else np.full(times.size, kind))
+            train = np.zeros(n)
+            for race in np.unique(races):
+                passage_s, edge_s, drop = passage_times(scene, str(race))
+                edge = edge_kernel(edge_s, scene.fs, scene.bearing.load_exponent, drop or 1.0)
+                struck = races == race
+                train += _passage_train(times[struck], steps[struck], n, scene.fs, passage_s,
+                                        edge)
         else:   # one point impact per passage (the twin before impact_edges)
             train = _pulse_train(times, steps, n, scene.fs)
         fault = scipy.signal.lfilter([1.0], rec.a, train)

@@ -53,13 +53,16 @@ N_PARAMS = 26
 # shape (RAMP_COSINE or RAMP_LINEAR), engagement probability per spin revolution (ball
 # defects) and the seed of those draws; for a ball defect whose spin axis drifts
 # (:func:`strike_share`): sin of the drift range (0 = no drift), the ball radius and the
-# pit radius, both over the contact ellipse's semi-axis across the track.
+# pit radius, both over the contact ellipse's semi-axis across the track. F_DEPTH is a
+# race defect's depth; a ball defect's F_DEPTH is its depth where it strikes the outer
+# race and F_DEPTH_IN where it strikes the inner race (the mating surfaces' curvature
+# sets each, :meth:`ballpass.Fault.effective_depth_mm`; F_DEPTH_IN is 0 on other rows).
 # Waviness rows (kinds KIND_WAVY_*) reuse the columns: F_CENTRE the phase (rad), F_HALF
 # the order, F_DEPTH the amplitude (m), F_ELEM the ball (KIND_WAVY_BALL).
 F_KIND, F_CENTRE, F_HALF, F_DEPTH, F_RAMP, F_ELEM, F_PSI0 = 0, 1, 2, 3, 4, 5, 6
 F_SHAPE, F_ENGAGE, F_SEED = 7, 8, 9
-F_DRIFT, F_BALL_A, F_PIT_A = 10, 11, 12
-N_FCOLS = 13
+F_DRIFT, F_BALL_A, F_PIT_A, F_DEPTH_IN = 10, 11, 12, 13
+N_FCOLS = 14
 RAMP_COSINE, RAMP_LINEAR = 0, 1
 # columns of the sensor table: angle (rad), attenuation kappa, cos and sin of the angle
 S_ANG, S_ATT, S_COS, S_SIN = 0, 1, 2, 3
@@ -411,9 +414,9 @@ def fault_depths(t, p, faults, kin, cage_rate, rates):
     element e: its spin phase advances at the ball spin rate relative to the cage
     (rolling without slip on the element's own path), facing the outer race at phase 0
     and the inner race at phase pi; it meets the races only on the spin revolutions
-    drawn by :func:`engaged`, as deep as :func:`strike_share` gives. Waviness rows:
-    :func:`waviness`; the film row:
-    :func:`film`.
+    drawn by :func:`engaged`, as deep as :func:`strike_share` gives, of its depth
+    against that race (F_DEPTH facing the outer race, F_DEPTH_IN the inner). Waviness
+    rows: :func:`waviness`; the film row: :func:`film`.
     """
     z = int(p[P_Z])
     rates = rates or p[P_CD] != 0.0
@@ -435,7 +438,6 @@ def fault_depths(t, p, faults, kin, cage_rate, rates):
             inside = 1.0
             continue
         half = faults[i, F_HALF]
-        depth = faults[i, F_DEPTH]
         ramp = faults[i, F_RAMP]
         shape = faults[i, F_SHAPE]
         dr = path_rate(faults, i, p, cage_rate, w)
@@ -450,13 +452,15 @@ def fault_depths(t, p, faults, kin, cage_rate, rates):
                 share = strike_share(faults, i, spin)
                 if share == 0.0:
                     continue
-                kin[K_DEPTH, e] += profile(off, half, share * depth, ramp, shape)
-                slope = profile_slope(off, half, share * depth, ramp, shape)
+                depth = share * faults[i, F_DEPTH_IN if face == 1 else F_DEPTH]
+                kin[K_DEPTH, e] += profile(off, half, depth, ramp, shape)
+                slope = profile_slope(off, half, depth, ramp, shape)
                 if slope != 0.0:
                     on_ramp = 1.0
                 if rates:
                     kin[K_DDEPTH, e] += dr * slope
         else:
+            depth = faults[i, F_DEPTH]
             ref = race_reference(faults, i, th)
             # Only the element nearest the centre (at most half a spacing away) and
             # those within `side` spacings of it can be inside: the k-th neighbour is

@@ -189,7 +189,7 @@ def _ramp_times(bm: BearingModel) -> tuple[float, float]:
         if row[_K.F_RAMP] > 0.0:
             t = row[_K.F_RAMP] * 2.0 * row[_K.F_HALF] / rate[int(row[_K.F_KIND])]
             every = min(every, t)
-            if row[_K.F_DEPTH] > bm.static_deflection:
+            if max(row[_K.F_DEPTH], row[_K.F_DEPTH_IN]) > bm.static_deflection:
                 deep = min(deep, t)
     return every, deep
 

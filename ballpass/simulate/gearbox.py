@@ -80,7 +80,7 @@ from ._shared import (
     to_output_rate,
 )
 from ._sr5_driver import DT_DEFAULT_OMEGA, SR5, _edge_names, _events, add_modes
-from .result import FaultCrossings, GroundTruth, SimulationResult
+from .result import FaultCrossings, GroundTruth, SimulationResult, effective_depths_mm
 from .sr5 import BearingModel, SR5Parameters, build_model
 
 __all__ = ["GEARBOX", "GearTruth", "GearboxModel", "build_gearbox"]
@@ -321,7 +321,7 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None,
         fault_crossings=FaultCrossings(time_s=ev_before.copy(), fault=ev_fault,
                                        element=ev_elem,
                                        edge=_edge_names(bm, ev_fault, ev_level)),
-        effective_depth_mm=tuple(f.effective_depth_mm(scene.bearing) for f in scene.faults),
+        effective_depth_mm=effective_depths_mm(scene),
         contact_forces=contact, element_angles=angles, displacement=displacement,
         gear=gear_truth,
     )

@@ -26,8 +26,10 @@ so a run-up keeps them at their kinematic orders; the resonance rings in time, a
 quasi-static Stribeck load of :meth:`ballpass.Bearing.load_distribution` (shaft
 displacement x, y under F_r plus the shaft weight), with contact deflection
 delta(psi) = (x cos psi + y sin psi - c) cos(alpha) and load Q = K delta^n. Entering a
-defect of effective depth h (ball-drop limit, :meth:`ballpass.Fault.effective_depth_mm`)
-its deflection falls to delta - h, so the force released is
+defect of effective depth h (the drop of the mating surfaces over its width,
+:meth:`ballpass.Fault.effective_depth_mm`; a ball defect's against the race it strikes,
+deeper on the inner race than on the outer) its deflection falls to delta - h, so the
+force released is
 
     dQ(psi) = K max(delta, 0)^n - K max(delta - h, 0)^n,
 
@@ -226,8 +228,9 @@ def _impact_steps(before, fault, elem, level, exit_level, faults, p, walk, depth
     :func:`_impacts`): the crossings whose level is their fault's ``exit_level``, the
     angle of the element that meets the defect there (for a ball defect its carrier,
     column F_ELEM; for a race defect the element of the path), the force it releases
-    (:func:`_released`, defect depth ``depth`` per fault) and its step at each sensor,
-    w cos(psi - theta) dQ / m_h with w = exp(-kappa (1 - cos(psi - theta)))."""
+    (:func:`_released`, defect depth ``depth[fault, face]``: a ball defect's face 0
+    strikes the outer race, face 1 the inner; a race defect's column 0) and its step at
+    each sensor, w cos(psi - theta) dQ / m_h with w = exp(-kappa (1 - cos(psi - theta)))."""
     n = 0
     for c in range(before.shape[0]):
         if level[c] == exit_level[fault[c]]:
@@ -245,11 +248,14 @@ def _impact_steps(before, fault, elem, level, exit_level, faults, p, walk, depth
         # element j's angle as K.element_angles puts it, without the other elements
         psi = K.cage_angle(before[c], p, walk)[0] + step * j
         share = 1.0
+        h = depth[i, 0]
         if ball:
-            # the revolution's strike, as sr5's fault depths take it
+            # the revolution's strike, as sr5's fault depths take it, on the race the
+            # path's face meets
             share = K.strike_share(faults, i, faults[i, K.F_CENTRE]
                                    + p[K.P_SPIN] * (psi - faults[i, K.F_PSI0]))
-        dq = _released(psi, share * depth[i], zone) / housing_mass
+            h = depth[i, elem[c]]
+        dq = _released(psi, share * h, zone) / housing_mass
         for s in range(sensors.shape[0]):
             cos_rel = math.cos(psi - sensors[s, K.S_ANG])
             steps[s, k] = math.exp(-sensors[s, K.S_ATT] * (1.0 - cos_rel)) * cos_rel * dq
@@ -472,7 +478,11 @@ def _impacts(scene: Scene, params: ImpulseParameters | None = None):
     # the last level a path crosses, the first for an inner-race defect (its paths run
     # backwards through it, see _edge_names)
     inner = np.array([f.kind == "inner" for f in scene.faults], dtype=bool)
-    depth = np.array([f.effective_depth_mm(scene.bearing) * 1e-3 for f in scene.faults])
+    # the depth of each fault's strikes: its race's; a ball defect's against the outer
+    # race (face 0) and the inner race (face 1)
+    depth = np.array([[f.effective_depth_mm(scene.bearing, r) * 1e-3
+                       for r in (("outer", "inner") if f.kind == "ball" else (f.kind,) * 2)]
+                      for f in scene.faults]).reshape(-1, 2)
     t_hit, steps = _impact_steps(before, fault, elem, level, np.where(inner, 0, 3),
                                  bm.faults, bm.p, bm.walk, depth, _zone(scene, load_zone, kh),
                                  bm.sensors, params.housing_mass)

@@ -51,7 +51,9 @@ Assumptions and every choice the paper leaves open:
   it in parallel with the bearing (about half at 500 N for a 6004). Gravity acts along
   the load line on every mass when ``Scene.gravity`` (the paper's M g terms).
 * **Notch.** Sharp edges: the ball drops by h = min(depth, d_b/2 (1 - sqrt(1 -
-  (w/d_b)^2))) (eq. 26 with d_b, :meth:`ballpass.Fault.effective_depth_mm`) while its
+  (w/d_b)^2))) (eq. 26 with d_b, :func:`notch_depth_mm`: the ball's own sagitta, as the
+  paper specifies; the other models take the inner race's curvature too,
+  :meth:`ballpass.Fault.effective_depth_mm`, 1.26x deeper on a 6205) while its
   angle is within w / r_i of the notch's leading edge, r_i the inner raceway radius;
   the notch turns with the shaft (eq. 23). ``Fault.edge`` and ``ramp_fraction`` are not
   used: the paper's notch is rectangular.
@@ -82,12 +84,14 @@ from dataclasses import dataclass, fields
 import numba
 import numpy as np
 
-from ..scene import Scene
+from ..bearing import Bearing
+from ..scene import Fault, Scene
 from ._registry import Model
 from ._shared import OVERSAMPLE, add_noise, check_finite, to_output_rate
 from .result import FaultCrossings, GroundTruth, SimulationResult
 
-__all__ = ["Nabhan2020Parameters", "NABHAN2020", "static_equilibrium", "DOF_NAMES"]
+__all__ = ["Nabhan2020Parameters", "NABHAN2020", "static_equilibrium", "DOF_NAMES",
+           "notch_depth_mm"]
 
 #: the 7 coordinates of the state (positions, then the same velocities)
 DOF_NAMES = ("u_i", "v_i", "u_b", "v_b", "u_o", "v_o", "u_s")
@@ -245,6 +249,27 @@ def _integrate(y0, p, t0, dt, n_sub, n_out, cos_s, sin_s):  # pragma: no cover -
     return out, y
 
 
+def notch_depth_mm(fault: Fault, bearing: Bearing) -> float:
+    """Depth the ball drops into ``fault``, mm, as Nabhan & Rashed (2020) eq. 26
+    specifies it (with the ball diameter d_b in place of the printed pitch diameter):
+    min(h, d_b/2 (1 - sqrt(1 - (w/d_b)^2))) for w < d_b, else h. The ball's own
+    sagitta over the width w, without the race's curvature
+    (:meth:`ballpass.Fault.effective_depth_mm` adds it).
+
+    Examples
+    --------
+    >>> import ballpass as bp
+    >>> from ballpass.simulate.nabhan2020 import notch_depth_mm
+    >>> b = bp.Bearing.catalog("6205")                       # ball diameter 7.94 mm
+    >>> round(notch_depth_mm(bp.Fault("inner", width_mm=0.5, depth_mm=0.2), b), 4)
+    0.0079
+    """
+    d, w = bearing.element_diameter_mm, fault.width_mm
+    if w >= d:
+        return fault.depth_mm
+    return min(fault.depth_mm, 0.5 * d * (1.0 - math.sqrt(1.0 - (w / d) ** 2)))
+
+
 def parameter_vector(scene: Scene, params: Nabhan2020Parameters) -> np.ndarray:
     """The kernel's parameter vector for ``scene`` (see :func:`_accelerations`)."""
     b = scene.bearing
@@ -254,7 +279,7 @@ def parameter_vector(scene: Scene, params: Nabhan2020Parameters) -> np.ndarray:
     notches = []
     for f in scene.faults:
         span = f.width_mm * 1e-3 / b.inner_race_radius_m
-        notches += [math.radians(f.angle_deg), span, f.effective_depth_mm(b) * 1e-3]
+        notches += [math.radians(f.angle_deg), span, notch_depth_mm(f, b) * 1e-3]
     g = _G if scene.gravity else 0.0
     head = [scene.radial_load_n, g, params.inner_mass, params.inner_stiffness,
             params.inner_damping, b.n_elements * params.ball_mass, params.outer_mass,
@@ -366,7 +391,8 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
     check_finite(scene, accel, "nabhan2020")
     accel = add_noise(scene, accel)
     t = np.arange(scene.n_samples) / scene.fs
-    truth = GroundTruth.of_scene(scene, t, _crossings(scene, p))
+    truth = GroundTruth.of_scene(scene, t, _crossings(scene, p),
+                                 tuple(notch_depth_mm(f, scene.bearing) for f in scene.faults))
     info = {"solver": solver, "dt": grid / n_sub, "steps": n_out * n_sub,
             "wall_time_s": time.perf_counter() - t_wall}
     return SimulationResult.of_scene(scene, accel, t, truth, info)

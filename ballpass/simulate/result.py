@@ -138,7 +138,11 @@ class GroundTruth:
     fault_crossings : FaultCrossings
         When each fault edge was crossed.
     effective_depth_mm : tuple of float
-        Depth each element could actually drop into each fault (ball-drop limit), mm.
+        Depth the mating surfaces drop into each fault, mm
+        (:meth:`ballpass.Fault.effective_depth_mm`): a race fault's against its own
+        race; a ball fault's against the inner race, the deeper of its two strikes
+        (its outer-race strike is ``fault.effective_depth_mm(bearing, "outer")``). The
+        ``nabhan2020`` model reports the ball's own sagitta its paper specifies.
     contact_forces : ndarray (n_elements, n_samples) or None
         Contact load of each rolling element at each output sample, N (on request).
     element_angles : ndarray (n_elements, n_samples) or None
@@ -224,12 +228,13 @@ class GroundTruth:
 
     @classmethod
     def of_scene(cls, scene: Scene, t: np.ndarray | Deferred, crossings: FaultCrossings,
+                 effective_depth_mm: tuple[float, ...] | None = None,
                  **outputs) -> GroundTruth:
         """The ground truth every model shares, from the scene (label, faults,
-        frequencies, tachometer, speed, effective depths) at sample times ``t`` (s, or
-        a :class:`Deferred` of them), plus the model's crossings and optional outputs
-        (``contact_forces`` ...). The tachometer and the speed are computed on their
-        first read."""
+        frequencies, tachometer, speed, effective depths: :func:`effective_depths_mm`
+        unless a model gives its own) at sample times ``t`` (s, or a :class:`Deferred`
+        of them), plus the model's crossings and optional outputs (``contact_forces``
+        ...). The tachometer and the speed are computed on their first read."""
         return cls(
             label=scene.label,
             faults=scene.faults,
@@ -237,9 +242,28 @@ class GroundTruth:
             shaft_angle=Deferred(_shaft_angle, scene, t),
             rpm=Deferred(_rpm, scene, t),
             fault_crossings=crossings,
-            effective_depth_mm=tuple(f.effective_depth_mm(scene.bearing) for f in scene.faults),
+            effective_depth_mm=(effective_depths_mm(scene) if effective_depth_mm is None
+                                else effective_depth_mm),
             **outputs,
         )
+
+
+def effective_depths_mm(scene: Scene) -> tuple[float, ...]:
+    """:attr:`GroundTruth.effective_depth_mm` of ``scene``'s faults, mm: a race fault's
+    drop against its own race, a ball fault's against the inner race (the deeper of
+    its two strikes).
+
+    Examples
+    --------
+    >>> import ballpass as bp
+    >>> from ballpass.simulate.result import effective_depths_mm
+    >>> ball = bp.Fault("ball", width_mm=0.53, depth_mm=0.2)
+    >>> scene = bp.Scene("6205", fault=ball)
+    >>> effective_depths_mm(scene) == (ball.effective_depth_mm(scene.bearing, "inner"),)
+    True
+    """
+    return tuple(f.effective_depth_mm(scene.bearing, "inner" if f.kind == "ball" else None)
+                 for f in scene.faults)
 
 
 @dataclass(frozen=True)

@@ -55,10 +55,11 @@ Assumptions (where the paper is silent or garbled):
   (no centrifugal load, the paper's eq. 10 is dropped) and the roller-race contacts are
   lumped into one series contact.
 * Defects are the :class:`~ballpass.Fault` depth profiles shared with ``sr5``: a
-  notch of effective depth min(h, d/2 (1 - sqrt(1 - (w/d)^2))) (the drop of a
-  cylinder of diameter d into a notch of width w is the same as a ball's), sharp or
-  with half-cosine ramps; inner-race defects turn with the shaft, roller defects spin
-  at the roller spin frequency and meet both races. The paper's sinusoidal roller
+  notch of effective depth min(h, drop), the drop of the mating surfaces over the
+  notch's width in the rolling plane (:meth:`ballpass.Fault.effective_depth_mm`: a
+  cylinder of diameter d drops as a ball does), sharp or with half-cosine ramps;
+  inner-race defects turn with the shaft, roller defects spin at the roller spin
+  frequency and meet both races, the inner one deeper. The paper's sinusoidal roller
   profile (eqs. 4-5) is not used: its constants A_1, R_r/D_L are undefined there.
 * Roller tilt: only a prescribed misalignment gamma (``Rotor2Parameters``); the paper's
   thrust-driven tilt needs an axial load the Scene does not have.
@@ -252,8 +253,10 @@ def _defect_depth(j, phi, theta, n_faults, p):
         if kind == _K.KIND_BALL:
             if int(p[r + _K.F_ELEM]) == j:
                 spin = p[r + _K.F_CENTRE] + p[_K.P_SPIN] * (phi - p[r + _K.F_PSI0])
+                # facing the outer race at spin phase 0, the inner (deeper) at pi
                 depth += _K.profile(_K.wrap_pi(spin), half, d, ramp)
-                depth += _K.profile(_K.wrap_pi(spin - math.pi), half, d, ramp)
+                depth += _K.profile(_K.wrap_pi(spin - math.pi), half,
+                                    p[r + _K.F_DEPTH_IN], ramp)
         else:
             centre = p[r + _K.F_CENTRE]
             if kind == _K.KIND_INNER:
@@ -535,7 +538,8 @@ def _bind(scene: Scene, params: Rotor2Parameters) -> _Bound:
             _K.KIND_BALL: p[_K.P_SPIN] * cage_ratio * w_max}
     static = (ld.q_max_n / kh) ** (1.0 / b.load_exponent)
     t_impact = min((2.0 * row[_K.F_HALF] * (row[_K.F_RAMP] or 1.0) / rate[int(row[_K.F_KIND])]
-                    for row in faults if row[_K.F_DEPTH] > static), default=math.inf)
+                    for row in faults if max(row[_K.F_DEPTH], row[_K.F_DEPTH_IN]) > static),
+                   default=math.inf)
     # duration of each fault's ramps (0: sharp edges)
     t_ramp = np.array([2.0 * row[_K.F_HALF] * row[_K.F_RAMP] / rate[int(row[_K.F_KIND])]
                        for row in faults])

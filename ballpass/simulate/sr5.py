@@ -12,7 +12,9 @@ gravity and radial load that the print omits, and eq. 11 — the sprung mass —
 The radial load F_r and gravity act along the load line u (angle 0 = centre of the load
 zone). Element angles psi_j follow the cage kinematics with random slip (see
 :func:`._kernels.element_angles`); d_j(t) is the extra clearance opened by the defects
-(``ramped`` or ``sharp`` edges, depth limited by the ball-drop geometry).
+(``ramped`` or ``sharp`` edges, depth limited by the drop of the mating surfaces over
+the defect, :meth:`ballpass.Fault.effective_depth_mm`: a ball defect strikes the inner
+race deeper than the outer).
 The cage carries a random walk for slip (:func:`._kernels.element_angles`).
 
 ``sr5`` adds, for every sensor, Sawalhi & Randall's high-frequency resonator (the
@@ -285,27 +287,39 @@ def _reference_load_n(bearing, bearing_load: float) -> float:
     return max(STRIBECK_FACTOR * bearing_load / bearing.n_elements, 1.0)
 
 
-def _pit_depth_m(scene: Scene, fault, kh: float, bearing_load: float) -> float:
-    """Extra clearance (m) equivalent to a round pit that unloads a contact partly.
+def _pit_depth_m(scene: Scene, fault, kh: float, bearing_load: float, race: str) -> float:
+    """Extra clearance (m) equivalent to a round pit that unloads a contact on ``race``
+    partly.
 
     The contact on the pit keeps the share 1 - f of its load (f from
-    :meth:`ballpass.Fault.pit_unloading`, with the ellipse of the most loaded element,
-    Stribeck's Q_max). At that element's deflection delta_ref = (Q_max / K)^(1/n) the
-    same load follows from an extra clearance h = delta_ref (1 - (1 - f)^(1/n)); the
-    depth used is min(h, the ball-drop depth of :meth:`ballpass.Fault.effective_depth_mm`).
-    An equivalent clearance, exact at the reference load only: a lighter contact is
-    unloaded a little more, a heavier one a little less.
+    :meth:`ballpass.Fault.pit_unloading`, with the ellipse of the most loaded element's
+    contact on that race, Stribeck's Q_max). At that element's deflection
+    delta_ref = (Q_max / K)^(1/n) the same load follows from an extra clearance
+    h = delta_ref (1 - (1 - f)^(1/n)); the depth used is min(h, the drop of the mating
+    surfaces over the pit's width, :meth:`ballpass.Fault.effective_depth_mm` against
+    ``race``), the bound for a pit that unloads the contact fully. An equivalent
+    clearance, exact at the reference load only: a lighter contact is unloaded a little
+    more, a heavier one a little less.
     """
     b = scene.bearing
     n = b.load_exponent
     q_ref = _reference_load_n(b, bearing_load)
-    race = "outer" if fault.kind == "ball" else fault.kind
     share = fault.pit_unloading(_ellipse_half_width_m(b, race, q_ref) * 1e3)
-    drop = fault.effective_depth_mm(b) * 1e-3
+    drop = fault.effective_depth_mm(b, race) * 1e-3
     if share >= 1.0:
         return drop
     delta_ref = (q_ref / kh) ** (1.0 / n)
     return min(drop, delta_ref * (1.0 - (1.0 - share) ** (1.0 / n)))
+
+
+def _depths_m(scene: Scene, fault, kh: float, bearing_load: float) -> tuple[float, float]:
+    """Depths (m) of a fault's strikes: a race fault against its own race (twice); a
+    ball fault against the outer race, then the inner (fault-table columns F_DEPTH and
+    F_DEPTH_IN)."""
+    races = ("outer", "inner") if fault.kind == "ball" else (fault.kind, fault.kind)
+    if fault.geometry == "pit":
+        return tuple(_pit_depth_m(scene, fault, kh, bearing_load, r) for r in races)
+    return tuple(fault.effective_depth_mm(scene.bearing, r) * 1e-3 for r in races)
 
 
 _WAVY_KINDS = {"outer": K.KIND_WAVY_OUTER, "inner": K.KIND_WAVY_INNER, "ball": K.KIND_WAVY_BALL}
@@ -358,10 +372,7 @@ def _fault_table(scene: Scene, psi0: np.ndarray, kh: float | None = None,
         rng = rng or np.random.default_rng(np.random.SeedSequence(scene.seed).spawn(4)[3])
     rows, levels = [], []
     for f in scene.faults:
-        if f.geometry == "pit":
-            depth_m = _pit_depth_m(scene, f, kh, bearing_load)
-        else:
-            depth_m = f.effective_depth_mm(b) * 1e-3
+        depth_m, depth_in = _depths_m(scene, f, kh, bearing_load)
         width_m = f.width_mm * 1e-3
         if f.kind == "ball":
             radius = 0.5 * b.element_diameter_m
@@ -378,6 +389,8 @@ def _fault_table(scene: Scene, psi0: np.ndarray, kh: float | None = None,
             kind, math.radians(f.angle_deg), half, depth_m, ramp, f.element,
             psi0[f.element] if f.kind == "ball" else 0.0, shape, f.engagement,
             float(rng.integers(1, 2**20)) if seeds else 0.0)
+        if f.kind == "ball":
+            row[K.F_DEPTH_IN] = depth_in
         if f.spin_drift_deg > 0.0:
             row[[K.F_DRIFT, K.F_BALL_A, K.F_PIT_A]] = _drift_columns(scene, f, bearing_load)
         rows.append(row)
@@ -650,7 +663,8 @@ def _static_state(scene: Scene, params: SR5Parameters, model: tuple, n_res: int,
     load = bearing_load + params.pedestal_mass * g
 
     # scales: contact deflection, its velocity at the contact frequency, resonator
-    x_scale = max(abs(du), abs(c), float(np.max(faults[:, K.F_DEPTH], initial=0.0)), 1e-7)
+    x_scale = max(abs(du), abs(c), float(np.max(faults[:, [K.F_DEPTH, K.F_DEPTH_IN]],
+                                                  initial=0.0)), 1e-7)
     if p[K.P_AX] != 0.0:
         # an axial load compresses every contact by itself: its normal approach sets
         # the contact frequency (and so the default step)

@@ -1,5 +1,8 @@
-"""Write ``impulse_reference.npz``: the impulse model's output on a few scenes, from the
-code before its fixed cost was cut (commit 09c66d7), for tests/test_impulse_reference.py.
+"""Write ``impulse_reference.npz``: the impulse model's output on a few scenes, for
+tests/test_impulse_reference.py. First written by the code before its fixed cost was
+cut (commit 09c66d7); rewritten when the defects' depths took the race's curvature
+(``Fault.effective_depth_mm`` against the race struck), which changed every scene's
+impact sizes, and nothing else (crossing times, elements and edges as before).
 
     PYTHONPATH=. python tests/data/make_impulse_reference.py
 """
