@@ -122,25 +122,24 @@ OUTER_SIDEBAND_MARGIN_DB = 6.0
 #: at the best of the candidate speeds; the whole CWRU records read 22-37 dB, the
 #: MFPT records 15 dB.
 MIN_COMB_DB = 10.0
-#: A speed proposed by the shaft-harmonic comb that a fault's own comb could explain
-#: (:func:`ballpass.diagnose.speed.fault_comb`) is used unless the strongest family's
+#: A speed proposed by the shaft-harmonic comb is used unless the strongest family's
 #: evidence falls by at least this much there (dB, a factor 2 in SES power): a
-#: correction that loses a fault is a fault's own comb taken for the shaft's. A
-#: correction no fault comb explains is used as it is: at a wrong stated speed the
-#: search reads the machine's own lines where the fault lines would be, and a healthy
-#: machine's evidence can be the higher there (the CWRU healthy recording's fan-end
-#: channel stated 2 % slow reads 9.7 dB of outer-race evidence, 5.6 dB at the comb's
-#: speed). Without a fault the strongest evidence of two speeds differs by noise alone:
-#: 0.3 dB standard deviation, at most 1.2 dB, over 60 noise records of 2 and 10 s;
-#: the false combs of the CWRU fan-end outer-race segments lose 4.7-13.8 dB, the right
-#: corrections (MFPT) at most 0.1 dB.
+#: correction that loses a fault is a fault's own comb taken for the shaft's (see
+#: :mod:`ballpass.diagnose.speed`). Without a fault the strongest evidence of two
+#: speeds differs by noise alone: 0.3 dB standard deviation, at most 1.2 dB, over 60
+#: noise records of 2 and 10 s; the false combs of the CWRU fan-end outer-race segments
+#: lose 4.7-13.8 dB, the right corrections (MFPT) at most 0.1 dB. The rule holds for a
+#: correction no fault rate's divisor explains too: an inner-race fault's lines (BPFI
+#: harmonics and their shaft sidebands) are dense enough to make a comb of their own (a
+#: simulated 6205 at 600 rpm, 30 dB SNR, 2 s: 11-12 dB at 2.3 % below the true speed).
 SPEED_KEEP_DB = 3.0
-#: Shortest record whose speed is checked against a fault's own comb, s: at coarser
-#: than 0.5 Hz resolution a fault's own raw-spectrum harmonics pass for a shaft comb and
-#: the evidence cannot tell them (the 6203's BPFO is 1.8 % from 3x: one-second segments
-#: of the CWRU fan-end outer-race records lock onto BPFO / 3). Shorter records take only
-#: the corrections no fault comb explains (:func:`ballpass.diagnose.speed.fault_comb`);
-#: where one could, diagnose the whole record, or pass its speed to its segments.
+#: Shortest record on which any correction of the speed is checked, s: at coarser than
+#: 0.5 Hz resolution a fault's own raw-spectrum harmonics pass for a shaft comb and the
+#: evidence cannot tell them (the 6203's BPFO is 1.8 % from 3x: one-second segments of
+#: the CWRU fan-end outer-race records lock onto BPFO / 3). Shorter records check only
+#: the corrections no fault rate's divisor explains
+#: (:func:`ballpass.diagnose.speed.fault_comb`: every one on a 6205); where one could,
+#: diagnose the whole record, or pass its speed to its segments.
 SPEED_CHECK_S = 2.0
 #: The +-FTF sidebands are resolved from their carrier on records of at least this
 #: many cage periods (1 / FTF): 4 SES bins, the Hann main lobe (+-2 bins) plus the
@@ -686,13 +685,14 @@ def envelope_evidence(
     where the signal carries a shaft-harmonic comb (median level of its ten harmonics at
     least :data:`MIN_COMB_DB` above the background) that stands at least 3 dB higher
     at another speed within ``+-speed_tolerance`` (and more than 0.2 % away) than at
-    the stated one, that speed is used. Where a fault's own raw-spectrum harmonics could
-    make that comb (:func:`ballpass.diagnose.speed.fault_comb`: the 6203's BPFO / 3 is
-    1.8 % above the shaft speed, and on a 2 s record the true shaft lines' main lobes
-    lift its first harmonics) it is used unless the strongest family's evidence is at
-    least :data:`SPEED_KEEP_DB` weaker at it than at the stated speed: a correction that
-    loses the fault is no correction; records shorter than :data:`SPEED_CHECK_S` then
-    keep the stated speed.
+    the stated one, that speed is used unless the strongest family's evidence is at
+    least :data:`SPEED_KEEP_DB` weaker at it than at the stated speed: a fault's own
+    raw-spectrum harmonics can make a comb of their own (the 6203's BPFO / 3 is 1.8 %
+    above the shaft speed, and on a 2 s record the true shaft lines' main lobes lift its
+    first harmonics), and a correction that loses the fault is no correction. Records
+    shorter than :data:`SPEED_CHECK_S` keep the stated speed where a divisor of a fault
+    rate could be the comb (:func:`ballpass.diagnose.speed.fault_comb`), since their
+    evidence cannot tell; other corrections they check as longer records do.
 
     Parameters
     ----------
@@ -797,8 +797,7 @@ def envelope_evidence(
             alt, alt_bands, alt_readings = _best_bands(xv[proposed], comb_rpm[proposed] / 60.0,
                                                        **settings)
             n_readings[proposed] += alt_readings
-            take = (~ambiguous[proposed]
-                    | (_strongest(best)[proposed] - _strongest(alt) < SPEED_KEEP_DB))
+            take = _strongest(best)[proposed] - _strongest(alt) < SPEED_KEEP_DB
             rows = proposed[take]
             for fault, rec in best.items():
                 for key, value in rec.items():

@@ -10,10 +10,11 @@ any slip search. A rotating machine's spectrum carries the shaft harmonics ``k x
 background, within a few percent of the stated speed, is the shaft speed (a harmonic-
 comb search, the discrete analogue of reading the first order of an order spectrum). A
 fault's own harmonics can form a comb too (the 6203's BPFO / 3 lies 1.8 % above its
-shaft speed): :func:`fault_comb` says which corrections a fault's comb can explain, and the
-diagnoser does not use such a correction where it loses 3 dB of fault evidence
-(:func:`ballpass.diagnose.envelope_evidence`). A correction no fault comb explains (every
-one on a 6205, whose defect rates are far from whole orders) is the shaft's.
+shaft speed): the diagnoser does not use a correction that loses 3 dB of fault evidence
+(:func:`ballpass.diagnose.envelope_evidence`), and on records too short for the evidence
+to tell (under 2 s) it checks only the corrections no divisor of a fault rate explains
+(:func:`fault_comb`: every correction within 4 % on a 6205, whose defect rates are far
+from whole multiples of its shaft speed).
 """
 
 from __future__ import annotations
