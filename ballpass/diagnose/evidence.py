@@ -138,8 +138,8 @@ SPEED_KEEP_DB = 3.0
 #: evidence cannot tell them (the 6203's BPFO is 1.8 % from 3x: one-second segments of
 #: the CWRU fan-end outer-race records lock onto BPFO / 3). Shorter records check only
 #: the corrections no fault rate's divisor explains
-#: (:func:`ballpass.diagnose.speed.fault_comb`: every one on a 6205); where one could,
-#: diagnose the whole record, or pass its speed to its segments.
+#: (:func:`ballpass.diagnose.speed.fault_comb`: on a 6205 every one within 4 % at 1797
+#: rpm); where one could, diagnose the whole record, or pass its speed to its segments.
 SPEED_CHECK_S = 2.0
 #: The +-FTF sidebands are resolved from their carrier on records of at least this
 #: many cage periods (1 / FTF): 4 SES bins, the Hann main lobe (+-2 bins) plus the

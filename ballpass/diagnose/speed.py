@@ -13,8 +13,8 @@ fault's own harmonics can form a comb too (the 6203's BPFO / 3 lies 1.8 % above 
 shaft speed): the diagnoser does not use a correction that loses 3 dB of fault evidence
 (:func:`ballpass.diagnose.envelope_evidence`), and on records too short for the evidence
 to tell (under 2 s) it checks only the corrections no divisor of a fault rate explains
-(:func:`fault_comb`: every correction within 4 % on a 6205, whose defect rates are far
-from whole multiples of its shaft speed).
+(:func:`fault_comb`: on a 6205, whose defect rates are far from whole multiples of its
+shaft speed, every correction within 4 % at 1797 rpm).
 """
 
 from __future__ import annotations
@@ -119,10 +119,12 @@ def fault_comb(ratio, rates, low: float, high: float, df: float, stated_hz):
     speed over the stated one) is such a comb when ``ratio`` lies within
     ``c / m x [1 - low, 1 + high]`` (the fault's slip search), widened by the Hann main
     lobe of the raw spectrum (``_LOBE_BINS`` bins of ``df`` at the comb's ``m``-th
-    harmonic). On a 6205 none lies within 4 % of the stated speed on records of a few
-    seconds (the nearest, 2xBSF / 5 = 0.943 and BPFI / 5 = 1.083 orders, lie 1.3 % and
-    2.1 % beyond with the slip search); on a 6203 (3.053, 4.947, 3.988: BPFO / 3,
-    BPFI / 5, 2xBSF / 4) three do.
+    harmonic). On a 6205 the nearest, 2xBSF / 5 = 0.943 and BPFI / 5 = 1.083 orders,
+    lie 1.3 % and 2.1 % beyond +-4 % with the slip search: none is within 4 % where the
+    lobe is narrower than that (one second at 1797 rpm: 1.3 %); at 600 rpm on one second
+    the lobe (2 bins of 1 Hz at 5 x 10 Hz) is 4 %, and corrections beyond -1.3 % and
+    +2.1 % count as a fault's. On a 6203 (3.053, 4.947, 3.988) BPFO / 3, BPFI / 5 and
+    2xBSF / 4 lie within 2 % of the shaft speed.
 
     Parameters
     ----------
