@@ -417,12 +417,14 @@ def markdown(table: pd.DataFrame, seconds: float, sweep: pd.DataFrame | None = N
         "distribution); what it stands above that comes off the ball's evidence, and an "
         "unmodulated 2xBSF comb that would have cleared the threshold grades the verdict "
         "N ([diagnosis_ball.md](diagnosis_ball.md)).",
-        "- **Speed from the signal.** On records of 2 s or more the shaft-harmonic comb "
-        "(median of 10 harmonics) is searched within +-4 % of the stated speed; a "
-        "correction is used unless it loses 3 dB of fault evidence (a fault's own "
-        "harmonics can pass for a shaft comb: the 6203's BPFO / 3 is 1.8 % above its "
-        "shaft speed); either is reported in `explain()`. Segments use their record's "
-        "speed.",
+        "- **Speed from the signal.** The shaft-harmonic comb (median of 10 harmonics) "
+        "is searched within +-4 % of the stated speed. A correction a fault's own comb "
+        "could be (a fault rate over 1-5 within its slip search: the 6203's BPFO / 3 is "
+        "1.8 % above its shaft speed; no 6205 rate comes within 4 %) is used on records "
+        "of 2 s or more unless it loses 3 dB of fault evidence; any other correction is "
+        "used, on one-second segments too; either is reported in `explain()`. Segments "
+        "use their record's speed ([diagnosis_robustness.md](diagnosis_robustness.md): "
+        "a stated speed 1-2 % off).",
         "- **Band by fault evidence.** Every band of the 1/3-binary tree wide enough for "
         "the lines and above them, with signal in it, is demodulated; each family keeps "
         "the band where it reads highest (the IESFOgram idea).",

@@ -11,7 +11,10 @@ background, within a few percent of the stated speed, is the shaft speed (a harm
 comb search, the discrete analogue of reading the first order of an order spectrum). A
 fault's own harmonics can form a comb too (the 6203's BPFO / 3 lies 1.8 % above its
 shaft speed): the diagnoser does not use a correction that loses 3 dB of fault evidence
-(:func:`ballpass.diagnose.envelope_evidence`).
+(:func:`ballpass.diagnose.envelope_evidence`), and on records too short for the evidence
+to tell (under 2 s) it checks only the corrections no divisor of a fault rate explains
+(:func:`fault_comb`: on a 6205, whose defect rates are far from whole multiples of its
+shaft speed, every correction within 4 % at 1797 rpm).
 """
 
 from __future__ import annotations
@@ -22,12 +25,18 @@ import numpy as np
 import scipy.fft
 import scipy.ndimage
 
-__all__ = ["estimate_shaft_speed"]
+__all__ = ["estimate_shaft_speed", "fault_comb"]
 
 #: Harmonics of the shaft speed in the comb.
 _ORDERS = 10
 #: Half-width of the running-median background of the spectrum, Hz.
 _BACKGROUND_HZ = 5.0
+#: Largest divisor ``m`` of a fault rate whose comb (harmonics of rate / m) can pass for
+#: the shaft's: the comb level is the median of its ``_ORDERS`` harmonics, and the
+#: fault's lines (rate, 2 x rate, ...) must make at least two of them.
+_FAULT_DIVISORS = _ORDERS // 2
+#: A raw-spectrum line lifts a comb harmonic this many bins away (the Hann main lobe).
+_LOBE_BINS = 2.0
 
 
 def estimate_shaft_speed(x: np.ndarray, fs: float, rpm, *, tolerance: float = 0.04):
@@ -99,3 +108,61 @@ def estimate_shaft_speed(x: np.ndarray, fs: float, rpm, *, tolerance: float = 0.
     best = np.nanargmax(comb[:, :-1], axis=1)
     i = np.arange(len(x))
     return 60.0 * fr0 * scales[best], comb[i, best], comb[:, -1]
+
+
+def fault_comb(ratio, rates, low: float, high: float, df: float, stated_hz):
+    """Whether a speed correction could be a fault's own comb taken for the shaft's.
+
+    A fault repeating at ``c`` shaft orders puts raw-spectrum lines at ``c, 2c, ...``
+    orders; at a speed of ``c / m`` orders (``m`` = 1..5) they are every ``m``-th
+    harmonic of the comb, at least two of its ten. A correction by ``ratio`` (the comb's
+    speed over the stated one) is such a comb when ``ratio`` lies within
+    ``c / m x [1 - low, 1 + high]`` (the fault's slip search), widened by the Hann main
+    lobe of the raw spectrum (``_LOBE_BINS`` bins of ``df`` at the comb's ``m``-th
+    harmonic). On a 6205 the nearest, 2xBSF / 5 = 0.943 and BPFI / 5 = 1.083 orders,
+    lie 1.3 % and 2.1 % beyond +-4 % with the slip search: none is within 4 % where the
+    lobe is narrower than that (one second at 1797 rpm: 1.3 %); at 600 rpm on one second
+    the lobe (2 bins of 1 Hz at 5 x 10 Hz) is 4 %, and corrections beyond -1.3 % and
+    +2.1 % count as a fault's. On a 6203 (3.053, 4.947, 3.988) BPFO / 3, BPFI / 5 and
+    2xBSF / 4 lie within 2 % of the shaft speed.
+
+    Parameters
+    ----------
+    ratio : array_like, shape (n,)
+        Comb speed over stated speed.
+    rates : sequence of float
+        Fault rates, shaft orders (BPFO, BPFI, 2xBSF).
+    low, high : float
+        Relative slip searched below and above the kinematic rates.
+    df : float
+        Raw-spectrum resolution, Hz (1 / record length).
+    stated_hz : array_like, shape (n,)
+        Stated shaft speed, Hz.
+
+    Returns
+    -------
+    ndarray of bool, shape (n,)
+
+    Examples
+    --------
+    The 6203's BPFO / 3 lies 1.8 % above its shaft speed; no 6205 fault rate comes
+    within 4 %:
+
+    >>> import numpy as np
+    >>> import ballpass as bp
+    >>> from ballpass.diagnose.speed import fault_comb
+    >>> def rates(name):
+    ...     f = bp.Bearing.catalog(name).frequencies(1.0)
+    ...     return [f.bpfo, f.bpfi, f.ball_defect]
+    >>> fault_comb([1.018, 1.0], rates("6203"), 0.02, 0.005, 0.1, [30.0, 30.0]).tolist()
+    [True, True]
+    >>> bool(fault_comb(np.linspace(0.96, 1.04, 81), rates("6205"), 0.02, 0.005, 0.1,
+    ...                 np.full(81, 30.0)).any())
+    False
+    """
+    ratio = np.asarray(ratio, dtype=float)[:, None, None]
+    m = np.arange(1, _FAULT_DIVISORS + 1, dtype=float)
+    c = np.asarray(rates, dtype=float)[:, None] / m  # (rates, m): the combs' speeds, orders
+    lobe = _LOBE_BINS * df / (m * np.asarray(stated_hz, dtype=float)[:, None, None])
+    inside = (ratio >= c * (1.0 - low) - lobe) & (ratio <= c * (1.0 + high) + lobe)
+    return inside.any(axis=(1, 2))
