@@ -182,11 +182,11 @@ def etd_blocks(kb, p, h, prop):
 
 
 @njit(cache=True, error_model="numpy", **_NO_RUNTIME)
-def _etd_apply(v, prop, p, col, rk4):
-    """v <- g(h L) v: on the fast mode of every block in L g's coefficient in column
-    ``col`` (0: exp(z/2), 1: h/2 phi_1(z/2), 2-4: the weights; :func:`etd_blocks`),
-    everywhere else the scalar ``rk4`` (g at z = 0)."""
-    n = v.shape[0]
+def _fast_add(out, v, prop, p, col, rk4):
+    """out += c m1(v) (1, s1) on every body's centre along each direction whose fast
+    root s1 is in L (:func:`etd_blocks`), m1(v) the fast mode's coordinate of v there:
+    c = g / rk4 - 1, g the coefficient in column ``col`` (0: exp(z/2), 1: h/2
+    phi_1(z/2), 2-4: the weights), or with ``col`` -1 c = -s1 (out -= L v)."""
     z = int(p[P_Z])
     nd = 6 + 3 * z
     for j in range(z + 1):
@@ -204,40 +204,44 @@ def _etd_apply(v, prop, p, col, rk4):
             s2 = m[o + 1]
             xv = dx * v[b] + dy * v[b + 1]
             vv = dx * v[nd + b] + dy * v[nd + b + 1]
-            m1 = (s2 * xv - vv) / (s2 - s1) * (m[o + 2 + col] / rk4 - 1.0)
-            v[b] += dx * m1
-            v[b + 1] += dy * m1
-            v[nd + b] += dx * s1 * m1
-            v[nd + b + 1] += dy * s1 * m1
-    for k in range(n):
+            if col < 0:
+                m1 = -(s1 * (s2 * xv - vv) / (s2 - s1))
+            else:
+                m1 = (s2 * xv - vv) / (s2 - s1) * (m[o + 2 + col] / rk4 - 1.0)
+            out[b] += dx * m1
+            out[b + 1] += dy * m1
+            out[nd + b] += dx * s1 * m1
+            out[nd + b + 1] += dy * s1 * m1
+
+
+@njit(cache=True, error_model="numpy", **_NO_RUNTIME)
+def _etd_apply(v, prop, p, col, rk4):
+    """v <- g(h L) v: on the fast mode of every block in L g's coefficient in column
+    ``col`` (0: exp(z/2), 1: h/2 phi_1(z/2), 2-4: the weights; :func:`etd_blocks`),
+    everywhere else the scalar ``rk4`` (g at z = 0)."""
+    _fast_add(v, v, prop, p, col, rk4)
+    for k in range(v.shape[0]):
         v[k] *= rk4
 
 
 @njit(cache=True, error_model="numpy", **_NO_RUNTIME)
 def _minus_lw(k, w, prop, p):
     """k <- k - L w on every body's centre (L as in :func:`etd_blocks`)."""
-    z = int(p[P_Z])
-    nd = 6 + 3 * z
-    for j in range(z + 1):
-        b = 6 + 3 * j if j < z else 3
-        m = prop[j]
-        for kk in range(2):
-            o = 2 + 7 * kk
-            s1 = m[o]
-            if s1 == 0.0:
-                continue
-            if kk == 0:
-                dx, dy = m[0], m[1]
-            else:
-                dx, dy = -m[1], m[0]
-            s2 = m[o + 1]
-            xv = dx * w[b] + dy * w[b + 1]
-            vv = dx * w[nd + b] + dy * w[nd + b + 1]
-            lm = s1 * (s2 * xv - vv) / (s2 - s1)
-            k[b] -= dx * lm
-            k[b + 1] -= dy * lm
-            k[nd + b] -= dx * s1 * lm
-            k[nd + b + 1] -= dy * s1 * lm
+    _fast_add(k, w, prop, p, -1, 1.0)
+
+
+@njit(cache=True, error_model="numpy", **_NO_RUNTIME)
+def _half_stage(t, y, h, src, w, tmp, out, prop, p, faults, sensors, qi, qo, flags, e):
+    """A mid-step stage of :func:`_etd_stages`: w = h/2 phi_1(h L / 2) ``src``, ``out``
+    = N(w) = f(t + h/2, y + w) - L w."""
+    for k in range(y.shape[0]):
+        w[k] = src[k]
+    _etd_apply(w, prop, p, 1, 0.5 * h)
+    for k in range(y.shape[0]):
+        tmp[k] = y[k] + w[k]
+    rhs(t + 0.5 * h, tmp, out, p, faults, sensors, qi, qo, flags, e, True)
+    _minus_lw(out, w, prop, p)
+
 
 @njit(cache=True, error_model="numpy", **_NO_RUNTIME)
 def _etd_stages(t, y, h, k1, k2, k3, k4, tmp, w, kb, prop, p, faults, sensors, qi, qo,
@@ -248,22 +252,9 @@ def _etd_stages(t, y, h, k1, k2, k3, k4, tmp, w, kb, prop, p, faults, sensors, q
     :func:`etd_blocks`), exactly for constant N; where L is zero the step is classical
     RK4. Overwrites k1."""
     n = y.shape[0]
-    # a = h/2 phi1 N(0)
-    for k in range(n):
-        w[k] = k1[k]
-    _etd_apply(w, prop, p, 1, 0.5 * h)
-    for k in range(n):
-        tmp[k] = y[k] + w[k]
-    rhs(t + 0.5 * h, tmp, k2, p, faults, sensors, qi, qo, flags, e2, True)
-    _minus_lw(k2, w, prop, p)  # N_a
-    # b = h/2 phi1 N_a
-    for k in range(n):
-        w[k] = k2[k]
-    _etd_apply(w, prop, p, 1, 0.5 * h)
-    for k in range(n):
-        tmp[k] = y[k] + w[k]
-    rhs(t + 0.5 * h, tmp, k3, p, faults, sensors, qi, qo, flags, e3, True)
-    _minus_lw(k3, w, prop, p)  # N_b
+    # a = h/2 phi1 N(0), then b = h/2 phi1 N_a
+    _half_stage(t, y, h, k1, w, tmp, k2, prop, p, faults, sensors, qi, qo, flags, e2)
+    _half_stage(t, y, h, k2, w, tmp, k3, prop, p, faults, sensors, qi, qo, flags, e3)
     # c = E2 a + h/2 phi1 (2 N_b - N_0)
     for k in range(n):
         w[k] = k1[k]
