@@ -15,6 +15,10 @@ the 6205 reference scene (for benchmarks/multibody_speed.py).
   step (the force the step applies), and the short-horizon load error split into its
   elastic share (K delta^1.5, from the positions) and Kramer's damping share (from the
   contact's closing speed).
+* Two steps with the overdamped radial mode integrated exactly: a copy of the kernels
+  whose RK4 step is the exponential RK4 of Cox & Matthews (2002) on the fast root of
+  every overdamped loaded contact block (:data:`ETD`), its CPU time at two steps per
+  interval against the default, its errors in the work-precision table.
 """
 
 from __future__ import annotations
@@ -78,6 +82,222 @@ VARIANTS = {
 }
 
 
+#: The exponential RK4 step (ETDRK4, Cox & Matthews 2002) in a copy of the kernels:
+#: the fast root of every overdamped loaded contact block (each ball's centre and the
+#: outer race, frozen at the step's start) integrated exactly inside the RK4 stages, the
+#: rest of the state by classical RK4 (the same ODE; only its integration). Compiled in
+#: place of the kernels' RK4 step for dynamic balls (:data:`ETD`).
+ETD_SOURCE = '''
+#: 1 / k! for k = 0..19 (the phi functions' Taylor coefficients)
+INV_FACT = np.array([1.0 / math.factorial(k) for k in range(20)])
+#: per body in ``prop`` of :func:`etd_blocks`: the first eigenvector of K (cos, sin),
+#: then per direction its fast root s1 (0: not in L), its slow root s2, and of s1
+#: exp(z / 2), h / 2 phi_1(z / 2) and the three weights of Cox & Matthews (2002)
+ETD_COLS = 2 + 2 * 7
+#: a direction's fast root is in L only when the block's roots are real and apart:
+#: c^2 / 4 - w0 >= ETD_SPLIT (c / 2)^2 (root ratio >= 3, the modal projection's
+#: condition number below 3); nearer critical damping its fastest root is at most
+#: 1.5 c / 2 and RK4 takes the block explicitly
+ETD_SPLIT = 0.25
+
+
+@njit(cache=True, error_model="numpy", **_NO_RUNTIME)
+def _phi123(z, em):
+    """phi_1, phi_2, phi_3 of a real z <= 0 (phi_k(z) = sum_i z^i / (i + k)!), ``em``
+    = expm1(z): by their Taylor series for |z| <= 0.5 (16 terms: remainder below
+    1e-19), by the recursion phi_(k+1) = (phi_k - 1 / k!) / z beyond (rounding below
+    1e-14)."""
+    if abs(z) <= 0.5:
+        p1 = INV_FACT[16]
+        p2 = INV_FACT[17]
+        p3 = INV_FACT[18]
+        for i in range(14, -1, -1):
+            p1 = p1 * z + INV_FACT[i + 1]
+            p2 = p2 * z + INV_FACT[i + 2]
+            p3 = p3 * z + INV_FACT[i + 3]
+        return p1, p2, p3
+    p1 = em / z
+    p2 = (p1 - 1.0) / z
+    p3 = (p2 - 0.5) / z
+    return p1, p2, p3
+
+
+@njit(cache=True, error_model="numpy", **_NO_RUNTIME)
+def _root_coefs(s, h, out, o):
+    """For a root s (1/s) of a block and the step h: exp(h s / 2), h / 2 phi_1(h s / 2)
+    and Cox & Matthews' weights h (phi1 - 3 phi2 + 4 phi3), h (2 phi2 - 4 phi3),
+    h (4 phi3 - phi2) of z = h s into out[o:o + 5]."""
+    z = h * s
+    em2 = math.expm1(0.5 * z)
+    q1, _, _ = _phi123(0.5 * z, em2)
+    p1, p2, p3 = _phi123(z, em2 * (em2 + 2.0))
+    out[o] = em2 + 1.0
+    out[o + 1] = 0.5 * h * q1
+    out[o + 2] = h * (p1 - 3.0 * p2 + 4.0 * p3)
+    out[o + 3] = h * (2.0 * p2 - 4.0 * p3)
+    out[o + 4] = h * (4.0 * p3 - p2)
+
+
+@njit(cache=True, error_model="numpy", **_NO_RUNTIME)
+def etd_blocks(kb, p, h, prop):
+    """The linear part L of the exponential RK4 step, frozen over a step: per body
+    (every ball's centre, the outer race) the contact block [[0, I], [-K/m, -tau K/m]]
+    (K from :func:`ball_stiffness`) is split along the two eigenvectors of the symmetric
+    K into two scalar blocks [[0, 1], [-w0, -c]] (w0 = k/m, c = tau w0) with roots
+    s1 < s2 < 0 (s1 s2 = w0); where they are real and apart (:data:`ETD_SPLIT`: an
+    overdamped loaded contact) L holds the fast one, s1 times the projection onto its
+    mode (x, v) = m1 (1, s1), m1 = (s2 x - v) / (s2 - s1); every other part of the
+    state is outside L (classical RK4). Writes ``prop`` (Z + 1, ETD_COLS)."""
+    z = int(p[P_Z])
+    tau = p[P_TAU]
+    for j in range(z + 1):
+        inv_m = 1.0 / (p[P_MB] if j < z else p[P_MO])
+        a, b, d = kb[j, 0], kb[j, 1], kb[j, 2]
+        mean = 0.5 * (a + d)
+        r = math.sqrt(0.25 * (a - d) * (a - d) + b * b)
+        if r <= 0.0:
+            ex, ey = 1.0, 0.0
+        else:
+            if a >= d:
+                ex, ey = mean + r - d, b
+            else:
+                ex, ey = b, mean + r - a
+            nrm = math.sqrt(ex * ex + ey * ey)
+            ex /= nrm
+            ey /= nrm
+        prop[j, 0] = ex
+        prop[j, 1] = ey
+        for k in range(2):
+            o = 2 + 7 * k
+            w0 = (mean + r if k == 0 else mean - r) * inv_m
+            c = tau * w0
+            disc = 0.25 * c * c - w0
+            if w0 <= 0.0 or disc < ETD_SPLIT * 0.25 * c * c:
+                prop[j, o] = 0.0
+                continue
+            s1 = -0.5 * c - math.sqrt(disc)
+            prop[j, o] = s1
+            prop[j, o + 1] = w0 / s1  # the slow root, without cancellation
+            _root_coefs(s1, h, prop[j], o + 2)
+
+
+@njit(cache=True, error_model="numpy", **_NO_RUNTIME)
+def _fast_add(out, v, prop, p, col, rk4):
+    """out += c m1(v) (1, s1) on every body's centre along each direction whose fast
+    root s1 is in L (:func:`etd_blocks`), m1(v) the fast mode's coordinate of v there:
+    c = g / rk4 - 1, g the coefficient in column ``col`` (0: exp(z/2), 1: h/2
+    phi_1(z/2), 2-4: the weights), or with ``col`` -1 c = -s1 (out -= L v)."""
+    z = int(p[P_Z])
+    nd = 6 + 3 * z
+    for j in range(z + 1):
+        b = 6 + 3 * j if j < z else 3
+        m = prop[j]
+        for k in range(2):
+            o = 2 + 7 * k
+            s1 = m[o]
+            if s1 == 0.0:
+                continue
+            if k == 0:
+                dx, dy = m[0], m[1]
+            else:
+                dx, dy = -m[1], m[0]
+            s2 = m[o + 1]
+            xv = dx * v[b] + dy * v[b + 1]
+            vv = dx * v[nd + b] + dy * v[nd + b + 1]
+            if col < 0:
+                m1 = -(s1 * (s2 * xv - vv) / (s2 - s1))
+            else:
+                m1 = (s2 * xv - vv) / (s2 - s1) * (m[o + 2 + col] / rk4 - 1.0)
+            out[b] += dx * m1
+            out[b + 1] += dy * m1
+            out[nd + b] += dx * s1 * m1
+            out[nd + b + 1] += dy * s1 * m1
+
+
+@njit(cache=True, error_model="numpy", **_NO_RUNTIME)
+def _etd_apply(v, prop, p, col, rk4):
+    """v <- g(h L) v: on the fast mode of every block in L g's coefficient in column
+    ``col`` (0: exp(z/2), 1: h/2 phi_1(z/2), 2-4: the weights; :func:`etd_blocks`),
+    everywhere else the scalar ``rk4`` (g at z = 0)."""
+    _fast_add(v, v, prop, p, col, rk4)
+    for k in range(v.shape[0]):
+        v[k] *= rk4
+
+
+@njit(cache=True, error_model="numpy", **_NO_RUNTIME)
+def _minus_lw(k, w, prop, p):
+    """k <- k - L w on every body's centre (L as in :func:`etd_blocks`)."""
+    _fast_add(k, w, prop, p, -1, 1.0)
+
+
+@njit(cache=True, error_model="numpy", **_NO_RUNTIME)
+def _half_stage(t, y, h, src, w, tmp, out, prop, p, faults, sensors, qi, qo, flags, e):
+    """A mid-step stage of :func:`_etd_stages`: w = h/2 phi_1(h L / 2) ``src``, ``out``
+    = N(w) = f(t + h/2, y + w) - L w."""
+    for k in range(y.shape[0]):
+        w[k] = src[k]
+    _etd_apply(w, prop, p, 1, 0.5 * h)
+    for k in range(y.shape[0]):
+        tmp[k] = y[k] + w[k]
+    rhs(t + 0.5 * h, tmp, out, p, faults, sensors, qi, qo, flags, e, True)
+    _minus_lw(out, w, prop, p)
+
+
+@njit(cache=True, error_model="numpy", **_NO_RUNTIME)
+def _etd_stages(t, y, h, k1, k2, k3, k4, tmp, w, kb, prop, p, faults, sensors, qi, qo,
+                flags, e2, e3, e4):
+    """One exponential RK4 step (ETDRK4, Cox & Matthews 2002) of y (in place),
+    k1 = f(t, y) given: the deviation w = y(t) - y_n solves w' = L w + N(w),
+    N(w) = f(y_n + w) - L w, L the overdamped contact blocks frozen at y_n (``prop``:
+    :func:`etd_blocks`), exactly for constant N; where L is zero the step is classical
+    RK4. Overwrites k1."""
+    n = y.shape[0]
+    # a = h/2 phi1 N(0), then b = h/2 phi1 N_a
+    _half_stage(t, y, h, k1, w, tmp, k2, prop, p, faults, sensors, qi, qo, flags, e2)
+    _half_stage(t, y, h, k2, w, tmp, k3, prop, p, faults, sensors, qi, qo, flags, e3)
+    # c = E2 a + h/2 phi1 (2 N_b - N_0)
+    for k in range(n):
+        w[k] = k1[k]
+    _etd_apply(w, prop, p, 1, 0.5 * h)
+    _etd_apply(w, prop, p, 0, 1.0)
+    for k in range(n):
+        k4[k] = 2.0 * k3[k] - k1[k]
+    _etd_apply(k4, prop, p, 1, 0.5 * h)
+    for k in range(n):
+        w[k] += k4[k]
+        tmp[k] = y[k] + w[k]
+    rhs(t + h, tmp, k4, p, faults, sensors, qi, qo, flags, e4, True)
+    _minus_lw(k4, w, prop, p)  # N_c
+    # y += f1 N_0 + f2 (N_a + N_b) + f3 N_c
+    for k in range(n):
+        w[k] = k2[k] + k3[k]
+    _etd_apply(k1, prop, p, 2, h / 6.0)
+    _etd_apply(w, prop, p, 3, h / 3.0)
+    _etd_apply(k4, prop, p, 4, h / 6.0)
+    for k in range(n):
+        y[k] += k1[k] + w[k] + k4[k]
+'''
+_RK4_BRANCH = """        if method == METHOD_RK4:
+            if qs:"""
+_ETD_BRANCH = """        if method == METHOD_RK4 and not qs:
+            ball_stiffness(y, p, qi, qo, kb)
+            etd_blocks(kb, p, h, prop)
+            _etd_stages(t, y, h, k1, k2, k3, k4, tmp, gsum, kb, prop, p, faults, sensors,
+                        qi, qo, flags, e2, e3, e4)
+            if step >= n_pre:
+                for s in range(ns):
+                    acc[s] += dt / 6.0 * (e1[s] + 2.0 * e2[s] + 2.0 * e3[s] + e4[s])
+        elif method == METHOD_RK4:
+            if qs:"""
+_KB = "    kb = np.zeros((z + 1, 3))\n"
+ETD_NAME = "exponential RK4 (ETDRK4 on the overdamped contact modes), two steps per interval"
+#: the replacements that make a copy of the kernels step by ETDRK4 (``solver="rk4"``)
+ETD = [(_KB, _KB + "    prop = np.zeros((z + 1, ETD_COLS))\n"), (_RK4_BRANCH, _ETD_BRANCH),
+       ("\n\n@njit(cache=True, error_model=\"numpy\", **_NO_RUNTIME)\ndef _log_crossings(",
+        ETD_SOURCE + "\n\n@njit(cache=True, error_model=\"numpy\", **_NO_RUNTIME)\n"
+        "def _log_crossings(")]
+
+
 def variant_kernels(replacements):
     """A copy of the multibody kernels module with ``replacements`` (old, new) made in
     its source, compiled without numba's on-disk cache."""
@@ -130,8 +350,9 @@ def _cpu(system, h, n_grid, n_sub=None):
 
 
 def evaluation_ceilings(sc, h, repeats):
-    """CPU time of the integration (``sc``, default step) with each kernel variant and
-    with two steps per interval, interleaved with the unchanged kernels. Returns rows
+    """CPU time of the integration (``sc``, default step) with each kernel variant, with
+    two steps per interval and with two exponential RK4 steps per interval (:data:`ETD`),
+    interleaved with the unchanged kernels. Returns rows
     (name, medians of the ratios to the unchanged kernels' time, min, max)."""
     system = build(sc)
     n_grid = int(round(sc.duration_s / h))
@@ -140,7 +361,11 @@ def evaluation_ceilings(sc, h, repeats):
         with kernels(mod):
             _cpu(system, h, 8)
     _cpu(system, h, 8)
-    ratios = {name: [] for name in (*mods, "two RK4 steps per interval (default kernels)")}
+    etd = variant_kernels(ETD)
+    with kernels(etd):
+        _cpu(system, h, 8)
+    ratios = {name: [] for name in (*mods, "two RK4 steps per interval (default kernels)",
+                                    ETD_NAME)}
     for _ in range(repeats):
         base = _cpu(system, h, n_grid)
         for name, mod in mods.items():
@@ -148,6 +373,9 @@ def evaluation_ceilings(sc, h, repeats):
                 ratios[name].append(_cpu(system, h, n_grid) / base)
         ratios["two RK4 steps per interval (default kernels)"].append(
             _cpu(system, h, n_grid, 2) / _cpu(system, h, n_grid))
+        base = _cpu(system, h, n_grid)
+        with kernels(etd):
+            ratios[ETD_NAME].append(_cpu(system, h, n_grid, 2) / base)
     return [(name, float(np.median(v)), min(v), max(v)) for name, v in ratios.items()]
 
 

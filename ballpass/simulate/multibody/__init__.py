@@ -1005,7 +1005,9 @@ MULTIBODY = Model(
     # dynamic balls' cost at their default step): their fault lines are weaker. What
     # each route to 50x can give: docs/results/multibody_speed.md, "routes to 50x sr5"
     # (a cheaper evaluation 55x at most; two RK4 steps per interval 53x, less accurate
-    # in the short-horizon loads)
+    # in the short-horizon loads; two exponential RK4 steps, the overdamped radial mode
+    # integrated exactly, 69x: the balance mended, the faulted scene's short-horizon
+    # loads not)
     relative_cost=76.0,
     solvers=tuple(SOLVERS),
     fixed_step_solvers=tuple(SOLVERS),
