@@ -112,7 +112,9 @@ def breakdown(quick: bool) -> pd.DataFrame:
         breaks, seg_dt = R._rk4_breaks(cr, bound, t_end, R.DT_RK4_OMEGA / bound.omega)
         out = [np.empty((n_out, 2)) for _ in range(3)]
         return lambda: R._rk4(bound.p.copy(), minv, bound.x0, np.zeros(2), h_out, n_out,
-                              breaks, seg_dt, 1e4, bound.x_scale, n_out, *out)
+                              breaks, seg_dt, s.bearing.n_elements,
+                              R._gap_tol(bound), 1e4, bound.x_scale,
+                              n_out, *out)
 
     grid = np.random.default_rng(0).standard_normal((s.n_samples * OVERSAMPLE, 1))
     parts = {"RK4 steps (outputs every 1 ms)": steps_only(1000),
