@@ -72,19 +72,24 @@ Assumptions (where the paper is silent or garbled):
 Solvers: ``rk4`` (default; classical Runge-Kutta 4 at dt = ``DT_RK4_OMEGA`` /
 omega_c, omega_c the linearised contact frequency, steps independent of the output
 grid, restarted at the fault edges and ramp ends, which follow from the kinematics in
-closed form, with ``RK4_RAMP_STEPS`` steps across each ramp;
-:func:`._second_order.rk4_for`), ``newmark`` (the paper's method: average acceleration
-with Newton iterations on the contact forces, :func:`._second_order.newmark_for`) and
-``dopri5`` (adaptive Dormand-Prince on the same equations), so each checks the others
-(tests/test_rotor2.py). Newmark's average-acceleration scheme is unconditionally
-stable, but second order: the contact mode rings for ~15 periods after every roller
-pass and impact and its phase error, (omega dt)^2 / 12 per radian, accumulates, so the
-output acceleration is within 1e-2 of dopri5 only for omega_c dt <~ 0.05 (about one
-step per 5 us output sample at 48 kHz). RK4 reaches it at omega_c dt ~ 0.38-0.4 on
-the 6205 reference scene (5.3e-3 to 7.0e-3 at 0.35), but the NJ 305 paper's scene with
-its roller defect errs 1.2e-2 in displacement at 0.35 (tests/test_rotor2.py); the
-default 0.3 gives 2.8e-3 to 3.9e-3 on the 6205 reference scene with and without a
-defect (docs/rotor2_step.md).
+closed form, with ``RK4_RAMP_STEPS`` steps across each ramp, and where a roller's
+contact closes or opens: a step over which a roller's compression (:func:`rotor2_gaps`)
+changes sign is retaken up to its root on the step's quintic Hermite interpolant, and
+the step on the loaded side of the kink graded towards it, since K delta^n has no
+derivatives of order above n there; :func:`._second_order.rk4_for`), ``newmark`` (the
+paper's method: average acceleration with Newton iterations on the contact forces,
+:func:`._second_order.newmark_for`) and ``dopri5`` (adaptive Dormand-Prince on the same
+equations), so each checks the others (tests/test_rotor2.py). Newmark's
+average-acceleration scheme is unconditionally stable, but second order: the contact
+mode rings for ~15 periods after every roller pass and impact and its phase error,
+(omega dt)^2 / 12 per radian, accumulates, so the output acceleration is within 1e-2 of
+dopri5 only for omega_c dt <~ 0.05 (about one step per 5 us output sample at 48 kHz).
+RK4 at the default 0.3 errs 2.8e-3 to 3.9e-3 on the 6205 reference scene with and
+without a defect and 3.9e-3 to 9.9e-3 on the NJ 305 paper's scene, where its rollers
+leave and re-enter the load zone every pass and, with its defect, the rotor bounces off
+its rollers (about 4 400 restarts per second there; 16 on the 6205 scene, whose Hertz
+contacts' stiffness grows from zero: :data:`GAP_STIFFNESS`), the error falling as the
+fourth power of the step (docs/rotor2_step.md).
 
 Cost: every RK4 step evaluates the force twice at its midpoint and twice at its end;
 the kinematics of those times (roller angles, the defect depth under each roller, the
@@ -130,7 +135,8 @@ __all__ = ["Rotor2Parameters", "ROTOR2", "SOLVERS", "DT_RK4_OMEGA", "RK4_RAMP_ST
 #: solver name -> description
 SOLVERS = {
     "rk4": "classical Runge-Kutta 4, fixed step DT_RK4_OMEGA / omega_c, restarted at the "
-           "fault edges and ramp ends (known in closed form); output by quintic Hermite "
+           "fault edges and ramp ends (known in closed form) and where a roller's contact "
+           "closes or opens (located in the step); output by quintic Hermite "
            "interpolation",
     "newmark": "Newmark-beta, average acceleration (gamma 1/2, beta 1/4), Newton "
                "iterations on the contact forces with their tangent stiffness; fixed step",
