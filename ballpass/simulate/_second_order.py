@@ -1,6 +1,6 @@
 """Generic second-order integrators for the models written as M a + f(t, x, v) = 0
 (rotor2 and later ones): Newmark-beta with Newton iterations, adaptive Dormand-Prince
-5(4) and fixed-step RK4 restarted at known breaks.
+5(4) and fixed-step RK4 restarted at known breaks and where a contact closes or opens.
 
 A model supplies its equations of motion as one numba function
 ``force(t, x, v, p, f, kx, kv)`` that fills the generalised force f (n,), everything
@@ -391,11 +391,10 @@ EVENT_GAP = 1e-11
 #: left this far inside a step costs an error of order (ROOT_TOL h)^(n + 1) for a
 #: contact law delta^n, far below the step's own
 ROOT_TOL = 1e-9
-#: steps over the step next to a contact's kink, at fractions (k / GRADE_STEPS) **
-#: GRADE_POWER of it from the kink: a step starting on a load K tau^n (n = 10/9) errs by
-#: Simpson's rule on it, 1.6e-3 K h^(n + 1); 4 steps at (k / 4)^2 err 1.5e-5 (110x less,
-#: for 3 more steps per closure and opening), an order above the smooth steps' error at
-#: the default step
+#: steps the step next to a contact's kink is split into, ending at fractions
+#: (k / GRADE_STEPS) ** GRADE_POWER of it from the kink: a step starting on a load
+#: K tau^n (n = 10/9) errs by Simpson's rule on it, 1.6e-3 K h^(n + 1); 4 steps at
+#: (k / 4)^2 err 1.5e-5 (110x less, for 3 more steps per closure and opening)
 GRADE_STEPS = 4
 GRADE_POWER = 2
 
@@ -534,6 +533,10 @@ def _rk4_second_order(p, minv, x0, v0, h_out, n_out, breaks, seg_dt, n_gaps, gap
         Largest step of each segment, s (> 0).
     n_gaps : int
         Number of gaps ``gaps`` fills (0: no restarts on gaps).
+    gap_tol : float
+        A sign change restarts only if the gap reaches gap_tol on its positive side at
+        one of the step's ends (a contact's compression, m: the kink's load over the
+        step); 0 restarts at every one.
     bound : float
         The state is declared unbounded when |x_i| > bound * x_scale_i.
     x_scale : ndarray (n,)
@@ -788,8 +791,9 @@ def rk4_for(force, gaps=None, *, cache: bool = True):
     Returns
     -------
     callable
-        ``rk4(p, minv, x0, v0, h_out, n_out, breaks, seg_dt, n_gaps, bound, x_scale,
-        xv_every, out_x, out_v, out_a) -> (status, n_steps, n_restarts, t_fail)``; see
+        ``rk4(p, minv, x0, v0, h_out, n_out, breaks, seg_dt, n_gaps, gap_tol, bound,
+        x_scale, xv_every, out_x, out_v, out_a) -> (status, n_steps, n_restarts,
+        t_fail)``; see
         :func:`_rk4_second_order`.
     """
     gaps = _no_gaps if gaps is None else gaps
