@@ -88,8 +88,8 @@ RK4 at the default 0.3 errs 2.8e-3 to 3.9e-3 on the 6205 reference scene with an
 without a defect and 3.9e-3 to 9.9e-3 on the NJ 305 paper's scene, where its rollers
 leave and re-enter the load zone every pass and, with its defect, the rotor bounces off
 its rollers (about 4 400 restarts per second there; 16 on the 6205 scene, whose Hertz
-contacts' stiffness grows from zero: :data:`GAP_STIFFNESS`), the error falling as the
-fourth power of the step (docs/rotor2_step.md).
+contacts' stiffness grows from zero: :data:`GAP_STIFFNESS`), the error falling 12-15x
+per halved step there (fourth order: 16x; docs/rotor2_step.md).
 
 Cost: every RK4 step evaluates the force twice at its midpoint and twice at its end;
 the kinematics of those times (roller angles, the defect depth under each roller, the
