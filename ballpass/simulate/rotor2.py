@@ -72,19 +72,24 @@ Assumptions (where the paper is silent or garbled):
 Solvers: ``rk4`` (default; classical Runge-Kutta 4 at dt = ``DT_RK4_OMEGA`` /
 omega_c, omega_c the linearised contact frequency, steps independent of the output
 grid, restarted at the fault edges and ramp ends, which follow from the kinematics in
-closed form, with ``RK4_RAMP_STEPS`` steps across each ramp;
-:func:`._second_order.rk4_for`), ``newmark`` (the paper's method: average acceleration
-with Newton iterations on the contact forces, :func:`._second_order.newmark_for`) and
-``dopri5`` (adaptive Dormand-Prince on the same equations), so each checks the others
-(tests/test_rotor2.py). Newmark's average-acceleration scheme is unconditionally
-stable, but second order: the contact mode rings for ~15 periods after every roller
-pass and impact and its phase error, (omega dt)^2 / 12 per radian, accumulates, so the
-output acceleration is within 1e-2 of dopri5 only for omega_c dt <~ 0.05 (about one
-step per 5 us output sample at 48 kHz). RK4 reaches it at omega_c dt ~ 0.38-0.4 on
-the 6205 reference scene (5.3e-3 to 7.0e-3 at 0.35), but the NJ 305 paper's scene with
-its roller defect errs 1.2e-2 in displacement at 0.35 (tests/test_rotor2.py); the
-default 0.3 gives 2.8e-3 to 3.9e-3 on the 6205 reference scene with and without a
-defect (docs/rotor2_step.md).
+closed form, with ``RK4_RAMP_STEPS`` steps across each ramp, and where a roller's
+contact closes or opens: a step over which a roller's compression (:func:`rotor2_gaps`)
+changes sign is retaken up to its root on the step's quintic Hermite interpolant, and
+the step on the loaded side of the kink graded towards it, since K delta^n has no
+derivatives of order above n there; :func:`._second_order.rk4_for`), ``newmark`` (the
+paper's method: average acceleration with Newton iterations on the contact forces,
+:func:`._second_order.newmark_for`) and ``dopri5`` (adaptive Dormand-Prince on the same
+equations), so each checks the others (tests/test_rotor2.py). Newmark's
+average-acceleration scheme is unconditionally stable, but second order: the contact
+mode rings for ~15 periods after every roller pass and impact and its phase error,
+(omega dt)^2 / 12 per radian, accumulates, so the output acceleration is within 1e-2 of
+dopri5 only for omega_c dt <~ 0.05 (about one step per 5 us output sample at 48 kHz).
+RK4 at the default 0.3 errs 2.8e-3 to 3.9e-3 on the 6205 reference scene with and
+without a defect and 3.9e-3 to 9.9e-3 on the NJ 305 paper's scene, where its rollers
+leave and re-enter the load zone every pass and, with its defect, the rotor bounces off
+its rollers (about 4 400 restarts per second there; 16 on the 6205 scene, whose Hertz
+contacts' stiffness grows from zero: :data:`GAP_STIFFNESS`), the error falling 12-15x
+per halved step there (fourth order: 16x; docs/rotor2_step.md).
 
 Cost: every RK4 step evaluates the force twice at its midpoint and twice at its end;
 the kinematics of those times (roller angles, the defect depth under each roller, the
@@ -130,7 +135,8 @@ __all__ = ["Rotor2Parameters", "ROTOR2", "SOLVERS", "DT_RK4_OMEGA", "RK4_RAMP_ST
 #: solver name -> description
 SOLVERS = {
     "rk4": "classical Runge-Kutta 4, fixed step DT_RK4_OMEGA / omega_c, restarted at the "
-           "fault edges and ramp ends (known in closed form); output by quintic Hermite "
+           "fault edges and ramp ends (known in closed form) and where a roller's contact "
+           "closes or opens (located in the step); output by quintic Hermite "
            "interpolation",
     "newmark": "Newmark-beta, average acceleration (gamma 1/2, beta 1/4), Newton "
                "iterations on the contact forces with their tangent stiffness; fixed step",
@@ -155,6 +161,16 @@ DT_NEWMARK_OMEGA = 0.025
 RAMP_STEPS = 128
 #: rk4 steps across each defect ramp (a half-cosine in time)
 RK4_RAMP_STEPS = 8
+#: rk4 restarts where a roller's contact closes or opens (:func:`rotor2_gaps`) if within
+#: the step its stiffness n K delta^(n - 1) reaches GAP_STIFFNESS times the most loaded
+#: roller's static one, i.e. delta >= GAP_STIFFNESS^(1 / (n - 1)) delta_static
+#: (:func:`_gap_tol`): 2.6e-4 delta_static for Palmgren's rollers (n = 10/9: the
+#: stiffness switches on almost whole, and on the NJ 305 scene a restart missed at
+#: 1e-2 delta_static costs 4x the error), 0.16 delta_static for Hertz's balls (n = 3/2:
+#: it grows from zero; on the 6205 reference scene restarting at every closure changes
+#: the error by 10 % for 1.4x the steps). Any value in 0.3-0.55 gives both scenes their
+#: best error (docs/rotor2_step.md)
+GAP_STIFFNESS = 0.4
 
 # parameter vector: the sr5 kernel's speed/cage/contact slots (so _kernels'
 # shaft_angle, shaft_rate and profile apply) and rotor2's own slots after them
@@ -393,6 +409,29 @@ def rotor2_force_only(t, x, v, p, f, kx, kv):
     _force(t, x, v, p, f, kx, kv, False)
 
 
+@njit(cache=True, error_model="numpy", inline="always")
+def rotor2_gaps(t, x, p, g):
+    """The compressions at which the contact law has its kinks, m, into g (Z k,): roller
+    j's lamina lambda at g[j k + lambda] (k = ``p[P_NLAM]`` laminae, one when aligned),
+    delta_j + s_lambda gamma l cos(phi_j) of :func:`_contact` with the defect depth
+    under the roller taken off; Q = K delta^n starts (its derivatives of order above n
+    do not exist) where one changes sign."""
+    k0 = _kinematics(t, p)
+    z = int(p[_K.P_Z])
+    n_lam = int(p[P_NLAM])
+    length_tilt = p[P_LEN] * p[P_TILT]
+    clear = p[_K.P_CLEAR]
+    for j in range(z):
+        r = k0 + 3 + 3 * j
+        cs, sn = p[r], p[r + 1]
+        delta = x[0] * cs + x[1] * sn - clear - p[r + 2]
+        if n_lam == 1:
+            g[j] = delta
+        else:
+            for lam in range(n_lam):
+                g[j * n_lam + lam] = delta + ((lam + 0.5) / n_lam - 0.5) * length_tilt * cs
+
+
 @njit(cache=True, error_model="numpy")
 def _roller(j, t, x, v, p):
     """Roller j at time t for rotor state (x, v): load Q (N), dQ/d(delta) (N/m), contact
@@ -417,7 +456,7 @@ def _loads_many(t, x, v, p, out):
 #: the integrators compiled for rotor2's force
 _newmark = _I.newmark_for(rotor2_force)
 _dopri5 = _I.dopri5_for(rotor2_force_only)
-_rk4 = _I.rk4_for(rotor2_force_only)
+_rk4 = _I.rk4_for(rotor2_force_only, rotor2_gaps)
 
 
 # ---------------------------------------------------------------------- binding
@@ -439,6 +478,7 @@ class _Bound:
     t_impact: float
     t_ramp: np.ndarray
     levels: np.ndarray
+    static_deflection: float
 
 
 def _static_load(scene: Scene, params: Rotor2Parameters) -> float:
@@ -548,7 +588,8 @@ def _bind(scene: Scene, params: Rotor2Parameters) -> _Bound:
     omega = _omega_of(ld if load >= 1.0 else stiffness_and_load_zone(
         b, 1.0, kh, params.cage_angle_deg)[1], params.rotor_mass_kg)
     return _Bound(p=p, x0=x0, x_scale=np.full(2, scale), omega=omega,
-                  mass=params.rotor_mass_kg, t_impact=t_impact, t_ramp=t_ramp, levels=levels)
+                  mass=params.rotor_mass_kg, t_impact=t_impact, t_ramp=t_ramp, levels=levels,
+                  static_deflection=static)
 
 
 def _crossings(scene: Scene, p: np.ndarray, levels: np.ndarray, t_end: float) -> FaultCrossings:
@@ -602,6 +643,13 @@ def _crossings(scene: Scene, p: np.ndarray, levels: np.ndarray, t_end: float) ->
     return FaultCrossings(time_s=t[order], fault=np.concatenate(faults)[order],
                           element=np.concatenate(paths)[order],
                           edge=np.concatenate(edges)[order])
+
+
+def _gap_tol(bound: _Bound) -> float:
+    """Compression (m) a closing or opening contact must reach within an rk4 step for
+    the step to restart on it (:data:`GAP_STIFFNESS`)."""
+    n = bound.p[_K.P_NH]
+    return bound.static_deflection * GAP_STIFFNESS ** (1.0 / (n - 1.0))
 
 
 def _rk4_breaks(cr: FaultCrossings, bound: _Bound, t_end: float, dt_max: float):
@@ -677,10 +725,13 @@ def _run(scene: Scene, solver: str, *, dt=None, rtol=None, atol=None, params=Non
         acc = np.empty((n_out, 2))
         # x and v are only read for the contact forces, at the output samples: without
         # them only row 0 is written (the untouched rows cost no memory traffic)
-        status, n_steps, t_fail = _rk4(bound.p, np.linalg.inv(mass), bound.x0, np.zeros(2),
-                                       h_out, n_out, breaks, seg_dt, 1e4, bound.x_scale,
-                                       oversample if return_forces else n_out, xs, vs, acc)
-        info.update(n_steps=int(n_steps), n_rejected=0, dt_s=dt_max, n_events=breaks.size)
+        n_gaps = scene.bearing.n_elements * int(bound.p[P_NLAM])
+        status, n_steps, n_restarts, t_fail = _rk4(
+            bound.p, np.linalg.inv(mass), bound.x0, np.zeros(2), h_out, n_out, breaks,
+            seg_dt, n_gaps, _gap_tol(bound), 1e4, bound.x_scale,
+            oversample if return_forces else n_out, xs, vs, acc)
+        info.update(n_steps=int(n_steps), n_rejected=0, dt_s=dt_max, n_events=breaks.size,
+                    n_contact_restarts=int(n_restarts))
         step_text = f"dt = {dt_max:.3g} s"
     elif solver == "newmark":
         dt_req = dt if dt is not None else min(DT_NEWMARK_OMEGA / bound.omega,
