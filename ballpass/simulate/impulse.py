@@ -478,11 +478,11 @@ def _impacts(scene: Scene, params: ImpulseParameters | None = None):
     # the last level a path crosses, the first for an inner-race defect (its paths run
     # backwards through it, see _edge_names)
     inner = np.array([f.kind == "inner" for f in scene.faults], dtype=bool)
-    # the depth of each fault's strikes: its race's; a ball defect's against the outer
-    # race (face 0) and the inner race (face 1)
-    depth = np.array([[f.effective_depth_mm(scene.bearing, r) * 1e-3
-                       for r in (("outer", "inner") if f.kind == "ball" else (f.kind,) * 2)]
-                      for f in scene.faults]).reshape(-1, 2)
+    # the depth of each fault's strikes, sr5's (its fault table, localized faults first):
+    # a race fault's against its race, a ball defect's against the outer race (face 0)
+    # and the inner race (face 1); a round pit's the shallower depth that unloads a
+    # contact as the pit does (sr5._pit_depth_m)
+    depth = np.ascontiguousarray(bm.faults[:len(scene.faults)][:, [K.F_DEPTH, K.F_DEPTH_IN]])
     t_hit, steps = _impact_steps(before, fault, elem, level, np.where(inner, 0, 3),
                                  bm.faults, bm.p, bm.walk, depth, _zone(scene, load_zone, kh),
                                  bm.sensors, params.housing_mass)
