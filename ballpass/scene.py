@@ -131,7 +131,9 @@ class Fault:
         sin(lambda) uniform on [-sin D, sin D]; a round pit of diameter ``width_mm``
         then unloads the strip of the Hertz contact it covers, and it strikes on a
         share min(1, (w/2 + a) / (R sin D)) of the revolutions (R the ball radius, a
-        the contact ellipse's semi-axis across the track). Default 0: the axis is
+        the semi-axis across the track of the contact ellipse on the race it meets,
+        the inner race's the wider; one latitude per revolution for both races).
+        Default 0: the axis is
         fixed and the defect strikes on every revolution it is engaged. 90 is a ball
         turning every way.
 

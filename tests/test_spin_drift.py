@@ -19,7 +19,7 @@ from scipy import integrate
 import ballpass as bp
 from ballpass.simulate import _kernels as K
 from ballpass.simulate.impulse import _impacts
-from ballpass.simulate.sr5 import build_model
+from ballpass.simulate.sr5 import _ellipse_half_width_m, _reference_load_n, build_model
 
 #: a CWRU-like drive-end scene: 6205, 0.021 in (0.53 mm) ball defect, 1797 rpm, no slip
 #: (the kinematics are then exactly periodic), a 12 kHz record ringing at 3.5 kHz
@@ -41,11 +41,12 @@ def hertz_strip(s, r):
     return integrate.quad(lambda x: 1.0 - x * x, lo, hi)[0] / (4.0 / 3.0)
 
 
-def shares(scene, n_rev):
+def shares(scene, n_rev, face=0):
     """strike_share of the scene's ball defect on its first ``n_rev`` spin revolutions
-    (the phase at each outer-race contact, 2 pi k), and its fault-table row."""
+    (the phase at each outer-race contact, 2 pi k), where it meets the outer race
+    (``face`` 0) or the inner race (1), and its fault-table row."""
     faults = build_model(scene).faults
-    return np.array([K.strike_share(faults, 0, 2.0 * math.pi * k)
+    return np.array([K.strike_share(faults, 0, 2.0 * math.pi * k, face)
                      for k in range(n_rev)]), faults[0]
 
 
@@ -56,12 +57,22 @@ def test_strip_share_is_the_hertz_integral(s, r):
     assert K.strip_share(s, r) == pytest.approx(hertz_strip(s, r), abs=1e-12)
 
 
-@pytest.mark.parametrize("drift, width", [(15.0, 0.53), (40.0, 0.53), (90.0, 0.53),
-                                          (90.0, 0.18), (3.0, 0.18)])
-def test_share_of_struck_revolutions_is_the_closed_form(drift, width):
+@pytest.mark.parametrize("drift, width, face", [(15.0, 0.53, 0), (40.0, 0.53, 0),
+                                                (90.0, 0.53, 0), (90.0, 0.18, 0),
+                                                (3.0, 0.18, 0), (40.0, 0.53, 1),
+                                                (90.0, 0.18, 1)])
+def test_share_of_struck_revolutions_is_the_closed_form(drift, width, face):
     n = 20_000
-    got, row = shares(bp.Scene(**BASE, fault=ball(drift, width)), n)
-    ratio_r, ratio_big_r = row[K.F_PIT_A], row[K.F_BALL_A]     # r / a and R / a
+    got, row = shares(bp.Scene(**BASE, fault=ball(drift, width)), n, face)
+    # r / a and R / a with the semi-axis a of the face's own contact ellipse: the table
+    # holds them over the outer ellipse's a_o and a_o / a_i; Hertz's a grows as Q^(1/3)
+    # on both races, so a_o / a_i is the same at any load (rounding: 1e-9)
+    b = bp.Bearing.catalog("6205")
+    q = _reference_load_n(b, 500.0)
+    a_o, a_i = (_ellipse_half_width_m(b, race, q) for race in ("outer", "inner"))
+    assert row[K.F_A_IN] == pytest.approx(a_o / a_i, rel=1e-9)
+    scale = a_o / a_i if face else 1.0
+    ratio_r, ratio_big_r = row[K.F_PIT_A] * scale, row[K.F_BALL_A] * scale
     assert ratio_r == pytest.approx(0.5 * width / (0.5 * 7.94) * ratio_big_r, rel=1e-3)
     p = min(1.0, (ratio_r + 1.0) / (ratio_big_r * math.sin(math.radians(drift))))
     # Binomial(20000, p): 5 standard errors, at most 0.018
@@ -103,19 +114,26 @@ def test_strikes_hit_both_races_on_the_2xbsf_grid_and_as_often_as_the_geometry_s
     gaps = np.diff(struck) / period
     np.testing.assert_allclose(gaps, np.round(gaps), atol=1e-6)
     assert set(np.round(gaps).astype(int)) >= {1, 3}     # misses between strikes
-    # both races: a revolution holds one outer contact and then one inner contact,
-    # struck alike wherever the fixed axis strikes both (both in the load zone)
+    # both races: a revolution holds one outer contact and then one inner contact at
+    # one latitude of the defect; the inner contact's ellipse is the wider on a 6205
+    # (a_o / a_i < 1), so wherever the fixed axis strikes both (both in the load zone)
+    # an outer strike comes with an inner one, and some inner strikes come alone
     assert not np.any(hit & ~hit1)
+    row = build_model(sc).faults[0]
+    assert row[K.F_A_IN] < 1.0
     pair = np.flatnonzero((face[:-1] == 0) & (face[1:] == 1))
     both = pair[hit1[pair] & hit1[pair + 1]]
-    np.testing.assert_array_equal(hit[both], hit[both + 1])
-    assert hit[both].sum() > 50 and (~hit[both]).sum() > 50
-    # share of the loaded exits that strike: the closed form (r + a) / R at D = 90 deg;
-    # ~700 loaded revolutions of 20 s, each one Bernoulli draw: 5 standard errors
-    row = build_model(sc).faults[0]
-    p = (row[K.F_PIT_A] + 1.0) / row[K.F_BALL_A]
-    n_rev = hit1.sum() / 2
-    assert hit.sum() / hit1.sum() == pytest.approx(p, abs=5 * math.sqrt(p * (1 - p) / n_rev))
+    assert not np.any(hit[both] & ~hit[both + 1])
+    assert np.any(~hit[both] & hit[both + 1])
+    assert hit[both].sum() > 50 and (~hit[both + 1]).sum() > 50
+    # share of the loaded exits that strike, per face: the closed form (r + a) / R at
+    # D = 90 deg with the face's ellipse; ~700 loaded revolutions of 20 s, each one
+    # Bernoulli draw per face: 5 standard errors
+    for f, scale in ((0, 1.0), (1, row[K.F_A_IN])):
+        p = (row[K.F_PIT_A] * scale + 1.0) / (row[K.F_BALL_A] * scale)
+        n_rev = hit1[face == f].sum()
+        got = hit[face == f].sum() / n_rev
+        assert got == pytest.approx(p, abs=5 * math.sqrt(p * (1 - p) / n_rev)), f
 
 
 def test_sr5_strikes_on_the_revolutions_the_impulse_model_strikes():

@@ -53,7 +53,9 @@ N_PARAMS = 26
 # shape (RAMP_COSINE or RAMP_LINEAR), engagement probability per spin revolution (ball
 # defects) and the seed of those draws; for a ball defect whose spin axis drifts
 # (:func:`strike_share`): sin of the drift range (0 = no drift), the ball radius and the
-# pit radius, both over the contact ellipse's semi-axis across the track. F_DEPTH is a
+# pit radius, both over the outer-race contact ellipse's semi-axis across the track, and
+# F_A_IN, that semi-axis over the inner-race contact's (the inner face's ellipse is
+# another width: on a 6205 at 500 N 0.92 mm against 0.73 mm). F_DEPTH is a
 # race defect's depth; a ball defect's F_DEPTH is its depth where it strikes the outer
 # race and F_DEPTH_IN where it strikes the inner race (the mating surfaces' curvature
 # sets each, :meth:`ballpass.Fault.effective_depth_mm`; F_DEPTH_IN is 0 on other rows).
@@ -61,8 +63,8 @@ N_PARAMS = 26
 # the order, F_DEPTH the amplitude (m), F_ELEM the ball (KIND_WAVY_BALL).
 F_KIND, F_CENTRE, F_HALF, F_DEPTH, F_RAMP, F_ELEM, F_PSI0 = 0, 1, 2, 3, 4, 5, 6
 F_SHAPE, F_ENGAGE, F_SEED = 7, 8, 9
-F_DRIFT, F_BALL_A, F_PIT_A, F_DEPTH_IN = 10, 11, 12, 13
-N_FCOLS = 14
+F_DRIFT, F_BALL_A, F_PIT_A, F_DEPTH_IN, F_A_IN = 10, 11, 12, 13, 14
+N_FCOLS = 15
 RAMP_COSINE, RAMP_LINEAR = 0, 1
 # columns of the sensor table: angle (rad), attenuation kappa, cos and sin of the angle
 S_ANG, S_ATT, S_COS, S_SIN = 0, 1, 2, 3
@@ -322,10 +324,11 @@ def strip_share(s, r):
 
 
 @njit(cache=True, error_model="numpy")
-def strike_share(faults, i, spin):
+def strike_share(faults, i, spin, face):
     """Depth factor, in [0, 1], of ball defect i during the spin revolution holding
-    spin phase ``spin`` (rad): 0 when the defect misses the rolling band, 1 when it
-    strikes as a defect on the band does.
+    spin phase ``spin`` (rad), where it meets the outer race (``face`` 0) or the inner
+    race (1): 0 when the defect misses the rolling band, 1 when it strikes as a defect
+    on the band does.
 
     The engagement draw of :func:`engaged` first; then, with a spin-axis drift
     (``faults[i, F_DRIFT]`` = sin D > 0), the defect's latitude lambda from the
@@ -334,9 +337,10 @@ def strike_share(faults, i, spin):
     to the defect's radius (Archimedes: a uniform direction on a zone of the sphere
     has a uniform sine of latitude; D = 90 deg, a ball turning every way). The pit,
     of radius r, then lies s = R sin(lambda) off the centre line of the contact
-    ellipse (semi-axis a across the track); it removes the strip |x - s| < r of the
+    ellipse (semi-axis a across the track, that of the race the face meets: one
+    latitude per revolution, two ellipses); it removes the strip |x - s| < r of the
     contact (:func:`strip_share`), and the depth is scaled by that share over the
-    share of a pit on the centre line. It strikes on a share
+    share of a pit on the centre line. It strikes a face on a share
     min(1, (r + a) / (R sin D)) of the revolutions.
     """
     if not engaged(faults, i, spin):
@@ -346,8 +350,9 @@ def strike_share(faults, i, spin):
         return 1.0
     k = math.floor((spin + 0.5 * math.pi) / TWO_PI)
     u = (2.0 * _unit_draw(k, faults[i, F_SEED]) - 1.0) * sin_d
-    r = faults[i, F_PIT_A]
-    return strip_share(u * faults[i, F_BALL_A], r) / strip_share(0.0, r)
+    scale = faults[i, F_A_IN] if face == 1 else 1.0   # a_outer / a_face
+    r = faults[i, F_PIT_A] * scale
+    return strip_share(u * faults[i, F_BALL_A] * scale, r) / strip_share(0.0, r)
 
 
 @njit(cache=True, error_model="numpy")
@@ -449,7 +454,7 @@ def fault_depths(t, p, faults, kin, cage_rate, rates):
                 if abs(off) >= half:
                     continue
                 inside = 1.0
-                share = strike_share(faults, i, spin)
+                share = strike_share(faults, i, spin, face)
                 if share == 0.0:
                     continue
                 depth = share * faults[i, F_DEPTH_IN if face == 1 else F_DEPTH]

@@ -253,7 +253,7 @@ def _impact_steps(before, fault, elem, level, exit_level, faults, p, walk, depth
             # the revolution's strike, as sr5's fault depths take it, on the race the
             # path's face meets
             share = K.strike_share(faults, i, faults[i, K.F_CENTRE]
-                                   + p[K.P_SPIN] * (psi - faults[i, K.F_PSI0]))
+                                   + p[K.P_SPIN] * (psi - faults[i, K.F_PSI0]), elem[c])
             h = depth[i, elem[c]]
         dq = _released(psi, share * h, zone) / housing_mass
         for s in range(sensors.shape[0]):

@@ -341,15 +341,18 @@ def _waviness_rows(scene: Scene, rng: np.random.Generator) -> list:
     return rows
 
 
-def _drift_columns(scene: Scene, fault, bearing_load: float) -> tuple[float, float, float]:
-    """Fault-table columns F_DRIFT, F_BALL_A, F_PIT_A of a ball defect whose spin axis
-    drifts (:func:`._kernels.strike_share`): sin of the drift range, the ball radius R
-    and the pit radius w/2 over the semi-axis a of the contact ellipse across the track
-    (the outer-race contact of the most loaded ball, Stribeck's Q_max, as for a pit)."""
+def _drift_columns(scene: Scene, fault,
+                   bearing_load: float) -> tuple[float, float, float, float]:
+    """Fault-table columns F_DRIFT, F_BALL_A, F_PIT_A, F_A_IN of a ball defect whose
+    spin axis drifts (:func:`._kernels.strike_share`): sin of the drift range, the ball
+    radius R and the pit radius w/2 over the semi-axis a_o of the outer-race contact
+    ellipse across the track, and a_o over the inner-race contact's a_i (the contacts of
+    the most loaded ball, Stribeck's Q_max, as for a pit)."""
     b = scene.bearing
-    a = _ellipse_half_width_m(b, "outer", _reference_load_n(b, bearing_load))
+    q_ref = _reference_load_n(b, bearing_load)
+    a = _ellipse_half_width_m(b, "outer", q_ref)
     return (math.sin(math.radians(fault.spin_drift_deg)), 0.5 * b.element_diameter_m / a,
-            0.5 * fault.width_mm * 1e-3 / a)
+            0.5 * fault.width_mm * 1e-3 / a, a / _ellipse_half_width_m(b, "inner", q_ref))
 
 
 def _fault_table(scene: Scene, psi0: np.ndarray, kh: float | None = None,
@@ -392,7 +395,8 @@ def _fault_table(scene: Scene, psi0: np.ndarray, kh: float | None = None,
         if f.kind == "ball":
             row[K.F_DEPTH_IN] = depth_in
         if f.spin_drift_deg > 0.0:
-            row[[K.F_DRIFT, K.F_BALL_A, K.F_PIT_A]] = _drift_columns(scene, f, bearing_load)
+            row[[K.F_DRIFT, K.F_BALL_A, K.F_PIT_A, K.F_A_IN]] = _drift_columns(
+                scene, f, bearing_load)
         rows.append(row)
         inner = half * (1.0 - 2.0 * ramp) if ramp > 0 else math.nan
         levels.append([-half, -inner, inner, half])
