@@ -119,9 +119,15 @@ def test_an_interrupt_a_library_turns_into_another_error_is_still_an_interrupt(
                             "dtype.") from None
 
     monkeypatch.setattr(commands, "run", swallowed)
-    assert main(["features", "x.npz"]) == EXIT_INTERRUPTED
-    assert capsys.readouterr().err == "ballpass features: interrupted\n"
-    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler  # restored
+    # Python's own Ctrl-C handler, as in a terminal: a shell without job control starts
+    # a background job (`pytest &`) with SIGINT ignored, which main leaves alone
+    inherited = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        assert main(["features", "x.npz"]) == EXIT_INTERRUPTED
+        assert capsys.readouterr().err == "ballpass features: interrupted\n"
+        assert signal.getsignal(signal.SIGINT) is signal.default_int_handler  # restored
+    finally:
+        signal.signal(signal.SIGINT, inherited)
 
 
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
